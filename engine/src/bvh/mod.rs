@@ -1,0 +1,37 @@
+//! Bounding volume hierarchies for ray tracing.
+//!
+//! # Layout
+//!
+//! Two levels. Every mesh gets a bottom-level BVH (BLAS) in object space,
+//! all analytic spheres share one more BLAS, and a top-level BVH (TLAS) is
+//! built over the world bounds of the instances. Moving an instance only
+//! requires [`Bvh::rebuild_top_level`].
+//!
+//! Every tree is a compact binary BVH of 32-byte [`BvhNode`]s built with a
+//! multi-threaded binned SAH builder ([`build`]). Children of an interior
+//! node are adjacent, leaves hold up to 8 primitives as a contiguous range
+//! of the tree's primitive order. For the GPU, triangles are reordered in
+//! leaf order (see `scene::gpu`), so leaves index the triangle list
+//! directly and no indirection array is needed.
+//!
+//! The CPU traversal ([`Bvh::intersect`], [`Bvh::occluded`]) handles
+//! triangles and spheres through instance transforms; it serves tests and
+//! picking.
+
+mod aabb;
+mod blas;
+pub mod build;
+mod intersect;
+mod node;
+mod ray;
+mod scene_bvh;
+mod tlas;
+mod traverse;
+
+pub use aabb::Aabb;
+pub use blas::{Blas, BlasGeometry};
+pub use intersect::{ray_sphere, ray_triangle};
+pub use node::BvhNode;
+pub use ray::{Hit, HitKind, Ray};
+pub use scene_bvh::{Bvh, BvhInstance, InstanceSource};
+pub use tlas::Tlas;

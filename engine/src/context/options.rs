@@ -1,0 +1,82 @@
+//! How a context is asked for: validation level, device choice, window support.
+
+use std::ffi::CString;
+
+/// How much validation the context enables.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Validation {
+    /// No validation layer.
+    Off,
+    /// `VK_LAYER_KHRONOS_validation` with its default checks.
+    On,
+    /// The validation layer plus synchronization validation (hazards between commands).
+    Sync,
+}
+
+/// Everything [`crate::Context::new`] needs to know.
+#[derive(Clone, Debug)]
+pub struct ContextDesc {
+    /// Application name reported to the driver.
+    pub app_name: String,
+    /// Validation level.
+    pub validation: Validation,
+    /// When true and the validation layer is not installed, creation fails instead of warning.
+    pub require_validation: bool,
+    /// A substring of the device name to use (the `LUCID_DEVICE` variable).
+    pub device: Option<String>,
+    /// Extra instance extensions (e.g. the surface extensions a window needs).
+    pub instance_extensions: Vec<CString>,
+    /// Frames the CPU may record ahead of the GPU.
+    pub frames_in_flight: usize,
+}
+
+impl Default for ContextDesc {
+    fn default() -> Self {
+        Self {
+            app_name: "lucid".into(),
+            validation: if cfg!(debug_assertions) {
+                Validation::On
+            } else {
+                Validation::Off
+            },
+            require_validation: false,
+            device: None,
+            instance_extensions: Vec::new(),
+            frames_in_flight: 2,
+        }
+    }
+}
+
+impl ContextDesc {
+    /// The default description, adjusted by `LUCID_DEVICE` (device name substring) and
+    /// `LUCID_VALIDATION` (`0`/`off`, `1`/`on`, `sync`).
+    pub fn from_env() -> Self {
+        let mut desc = Self {
+            device: std::env::var("LUCID_DEVICE").ok().filter(|s| !s.is_empty()),
+            ..Self::default()
+        };
+        if let Ok(value) = std::env::var("LUCID_VALIDATION") {
+            desc.validation = match value.to_lowercase().as_str() {
+                "0" | "off" | "false" => Validation::Off,
+                "sync" => Validation::Sync,
+                _ => Validation::On,
+            };
+        }
+        desc
+    }
+
+    /// The description tests use: validation required (with synchronization validation when `sync`),
+    /// and the device from `LUCID_DEVICE` if set.
+    pub fn for_tests(sync: bool) -> Self {
+        Self {
+            validation: if sync {
+                Validation::Sync
+            } else {
+                Validation::On
+            },
+            require_validation: true,
+            device: std::env::var("LUCID_DEVICE").ok().filter(|s| !s.is_empty()),
+            ..Self::default()
+        }
+    }
+}

@@ -1,0 +1,140 @@
+//! Physical-device selection as plain data: which device the engine picks, and why the others were not.
+
+use crate::error::EngineError;
+
+/// What the engine knows about one physical device when choosing.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct DeviceCandidate {
+    /// The driver's device name (e.g. `NVIDIA H200`, `llvmpipe (LLVM 15.0.6, 256 bits)`).
+    pub name: String,
+    /// Discrete, integrated, virtual, CPU or other.
+    pub kind: DeviceKind,
+    /// Why the device cannot run Lucid, if it cannot (missing Vulkan 1.3, no compute queue, ...).
+    pub unusable: Option<String>,
+}
+
+/// The kind of a physical device, in the order the engine prefers them.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, PartialOrd, Ord)]
+pub enum DeviceKind {
+    /// A discrete GPU.
+    Discrete,
+    /// A GPU integrated with the CPU.
+    Integrated,
+    /// A virtualised GPU.
+    Virtual,
+    /// A software implementation such as lavapipe.
+    Cpu,
+    /// Anything else.
+    Other,
+}
+
+/// Chooses a device: the first usable one whose name contains `requested` (case-insensitive) if given,
+/// otherwise the most preferred kind (discrete first), ties broken by enumeration order.
+pub fn select_device(
+    candidates: &[DeviceCandidate],
+    requested: Option<&str>,
+) -> Result<usize, EngineError> {
+    let describe = || {
+        candidates
+            .iter()
+            .map(|c| match &c.unusable {
+                Some(why) => format!("{} ({why})", c.name),
+                None => c.name.clone(),
+            })
+            .collect::<Vec<_>>()
+    };
+    if let Some(requested) = requested.filter(|r| !r.is_empty()) {
+        let needle = requested.to_lowercase();
+        let matching: Vec<usize> = (0..candidates.len())
+            .filter(|&i| candidates[i].name.to_lowercase().contains(&needle))
+            .collect();
+        if matching.is_empty() {
+            return Err(EngineError::NoSuchDevice {
+                requested: requested.to_string(),
+                available: describe(),
+            });
+        }
+        return matching
+            .iter()
+            .copied()
+            .find(|&i| candidates[i].unusable.is_none())
+            .ok_or_else(|| EngineError::NoSuitableDevice {
+                reason: format!("every device matching {requested:?} is unusable"),
+                available: describe(),
+            });
+    }
+    (0..candidates.len())
+        .filter(|&i| candidates[i].unusable.is_none())
+        .min_by_key(|&i| (candidates[i].kind, i))
+        .ok_or_else(|| EngineError::NoSuitableDevice {
+            reason: if candidates.is_empty() {
+                "the Vulkan loader reported no physical devices".to_string()
+            } else {
+                "none supports Vulkan 1.3 compute with the features Lucid needs".to_string()
+            },
+            available: describe(),
+        })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn candidate(name: &str, kind: DeviceKind, unusable: Option<&str>) -> DeviceCandidate {
+        DeviceCandidate {
+            name: name.into(),
+            kind,
+            unusable: unusable.map(str::to_string),
+        }
+    }
+
+    #[test]
+    fn prefers_discrete_gpu() {
+        let list = [
+            candidate("llvmpipe", DeviceKind::Cpu, None),
+            candidate("NVIDIA H200", DeviceKind::Discrete, None),
+        ];
+        assert_eq!(select_device(&list, None).unwrap(), 1);
+    }
+
+    #[test]
+    fn skips_unusable_devices() {
+        let list = [
+            candidate("old gpu", DeviceKind::Discrete, Some("Vulkan 1.1")),
+            candidate("llvmpipe", DeviceKind::Cpu, None),
+        ];
+        assert_eq!(select_device(&list, None).unwrap(), 1);
+    }
+
+    #[test]
+    fn request_by_substring_is_case_insensitive() {
+        let list = [
+            candidate("NVIDIA H200", DeviceKind::Discrete, None),
+            candidate("llvmpipe (LLVM 15)", DeviceKind::Cpu, None),
+        ];
+        assert_eq!(select_device(&list, Some("LLVMPIPE")).unwrap(), 1);
+    }
+
+    #[test]
+    fn unknown_request_lists_available_devices() {
+        let list = [candidate("llvmpipe", DeviceKind::Cpu, None)];
+        let err = select_device(&list, Some("radeon")).unwrap_err();
+        let text = err.to_string();
+        assert!(matches!(err, EngineError::NoSuchDevice { .. }));
+        assert!(
+            text.contains("radeon") && text.contains("llvmpipe"),
+            "{text}"
+        );
+    }
+
+    #[test]
+    fn no_usable_device_is_an_error_naming_why() {
+        let list = [candidate(
+            "old gpu",
+            DeviceKind::Discrete,
+            Some("Vulkan 1.1"),
+        )];
+        let text = select_device(&list, None).unwrap_err().to_string();
+        assert!(text.contains("old gpu (Vulkan 1.1)"), "{text}");
+    }
+}

@@ -1,0 +1,104 @@
+//! LDR-FLIP (Andersson et al. 2020, "FLIP: A Difference Evaluator for
+//! Alternating Images"), implemented from the paper and its published
+//! constants.
+//!
+//! Both images go to the YCxCz opponent space. The colour pipeline filters
+//! them with contrast-sensitivity functions for the viewing distance and
+//! compares them in Hunt-adjusted L*a*b* with HyAB; the feature pipeline
+//! compares edge and point detector responses on luminance. Per pixel,
+//! `FLIP = colour_error ^ (1 - feature_error)`, in `[0, 1]`.
+
+mod color;
+mod color_pipeline;
+mod feature_pipeline;
+
+use super::check::{check_pair, check_parameter};
+use super::plane::{clamp_unit, Plane};
+use super::MetricsError;
+use crate::capture::ImageData;
+use color::{linear_rgb_to_ycxcz, ycxcz_luminance};
+use color_pipeline::{color_difference, CsfFilters, Opponent};
+use feature_pipeline::FeatureFilters;
+
+/// The reference implementation's default observer: a 0.7 m wide 3840-pixel
+/// monitor viewed from 0.7 m, `0.7 * (3840 / 0.7) * pi / 180` ≈ 67.02 pixels
+/// per degree of visual angle.
+pub const DEFAULT_PIXELS_PER_DEGREE: f64 = 67.02;
+
+/// Largest accepted pixels-per-degree: filter sizes grow linearly with it.
+const MAX_PIXELS_PER_DEGREE: f64 = 1000.0;
+
+/// The outcome of [`flip`].
+#[derive(Debug, Clone, PartialEq)]
+pub struct FlipResult {
+    /// Mean of `error_map`: the single-number FLIP score, in `[0, 1]`.
+    pub mean: f64,
+    /// Width of `error_map`.
+    pub width: u32,
+    /// Height of `error_map`.
+    pub height: u32,
+    /// Per-pixel FLIP error in `[0, 1]`, row-major, top row first.
+    pub error_map: Vec<f32>,
+}
+
+/// LDR-FLIP of `test` against `reference` for an observer seeing
+/// `pixels_per_degree` pixels per degree of visual angle (use
+/// [`DEFAULT_PIXELS_PER_DEGREE`] unless the viewing setup is known).
+///
+/// The images are read as linear display light: R, G, B are clamped to
+/// `[0, 1]` (NaN counts as 0), which is the reference implementation's
+/// input after its sRGB decode. For linear HDR frames, compare
+/// [`PngEncoding::tone_map`](crate::capture::PngEncoding::tone_map) of both
+/// images. Identical images give exactly 0.
+pub fn flip(
+    test: &ImageData,
+    reference: &ImageData,
+    pixels_per_degree: f64,
+) -> Result<FlipResult, MetricsError> {
+    check_pair(test, reference)?;
+    check_parameter(
+        "pixels_per_degree",
+        pixels_per_degree,
+        pixels_per_degree > 0.0 && pixels_per_degree <= MAX_PIXELS_PER_DEGREE,
+        "must be in (0, 1000]",
+    )?;
+    let (width, height) = (reference.width, reference.height);
+    let ppd = pixels_per_degree as f32;
+    let reference = opponent(reference);
+    let test = opponent(test);
+
+    let csf = CsfFilters::new(ppd);
+    let color_error = color_difference(&csf.apply(&reference), &csf.apply(&test));
+
+    let luminance = |image: &Opponent| image.y.map(ycxcz_luminance);
+    let feature_error =
+        FeatureFilters::new(ppd).difference(&luminance(&reference), &luminance(&test));
+
+    let error_map: Vec<f32> = color_error
+        .iter()
+        .zip(&feature_error)
+        .map(|(&c, &f)| c.powf(1.0 - f))
+        .collect();
+    let mean = error_map.iter().map(|&e| f64::from(e)).sum::<f64>() / error_map.len() as f64;
+    Ok(FlipResult {
+        mean,
+        width,
+        height,
+        error_map,
+    })
+}
+
+/// The image in YCxCz, its R, G, B clamped to `[0, 1]` first.
+fn opponent(image: &ImageData) -> Opponent {
+    let channel = |c: usize| {
+        Plane::from_image(image, |p| {
+            let rgb = [p[0], p[1], p[2]].map(clamp_unit);
+            linear_rgb_to_ycxcz(rgb)[c]
+        })
+    };
+    Opponent {
+        y: channel(0),
+        cx: channel(1),
+        cz: channel(2),
+    }
+}

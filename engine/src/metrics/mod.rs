@@ -1,0 +1,22 @@
+//! Image-quality metrics over [`ImageData`](crate::capture::ImageData):
+//! pure functions comparing a test image (or sequence) with a reference.
+//!
+//! Every function checks its inputs and returns a [`MetricsError`] instead of
+//! panicking. Pixel-wise error metrics use the R, G and B channels and ignore
+//! alpha. Non-finite pixel values propagate into the results; check
+//! [`ImageData::has_non_finite`](crate::capture::ImageData::has_non_finite)
+//! first where that matters.
+
+mod check;
+mod error;
+mod flip;
+mod pixelwise;
+mod plane;
+mod ssim;
+mod temporal;
+
+pub use error::MetricsError;
+pub use flip::{flip, FlipResult, DEFAULT_PIXELS_PER_DEGREE};
+pub use pixelwise::{max_abs_error, mean_per_channel, mse, psnr, rel_mse, DEFAULT_REL_MSE_EPSILON};
+pub use ssim::{dssim, ssim, SsimMode};
+pub use temporal::{temporal_instability, TemporalInstability};

@@ -1,0 +1,81 @@
+//! Temporal instability (flicker) of a frame sequence against a reference
+//! sequence.
+
+use super::check::check_pair;
+use super::MetricsError;
+use crate::capture::{rec709_luminance, ImageData};
+
+/// Result of [`temporal_instability`].
+#[derive(Debug, Clone, PartialEq)]
+pub struct TemporalInstability {
+    /// One value per consecutive frame pair `(i, i + 1)`.
+    pub per_pair: Vec<f64>,
+    /// Mean of `per_pair`.
+    pub mean: f64,
+}
+
+/// How much more (or differently) the test sequence changes from frame to
+/// frame than the reference does.
+///
+/// For each consecutive pair `(i, i + 1)` and each pixel, with `L` the
+/// Rec.709 luminance:
+/// `|(L_test[i+1] - L_test[i]) - (L_ref[i+1] - L_ref[i])|`, averaged over
+/// the pixels and divided by the mean luminance of the whole reference
+/// sequence. Identical sequences give 0; a test that flickers over a static
+/// reference gives its mean frame-to-frame luminance change relative to the
+/// reference brightness.
+///
+/// All frames must have the same size, the sequences the same length (at
+/// least 2), and the reference a positive mean luminance.
+pub fn temporal_instability(
+    test_frames: &[ImageData],
+    reference_frames: &[ImageData],
+) -> Result<TemporalInstability, MetricsError> {
+    if test_frames.len() != reference_frames.len() {
+        return Err(MetricsError::FrameCountMismatch {
+            test: test_frames.len(),
+            reference: reference_frames.len(),
+        });
+    }
+    if test_frames.len() < 2 {
+        return Err(MetricsError::TooFewFrames {
+            count: test_frames.len(),
+        });
+    }
+    let first = &reference_frames[0];
+    for frame in test_frames.iter().chain(reference_frames) {
+        check_pair(frame, first)?;
+    }
+    let luminance = |frames: &[ImageData]| -> Vec<Vec<f64>> {
+        frames
+            .iter()
+            .map(|f| {
+                f.pixels
+                    .iter()
+                    .map(|&p| f64::from(rec709_luminance(p)))
+                    .collect()
+            })
+            .collect()
+    };
+    let test_lum = luminance(test_frames);
+    let ref_lum = luminance(reference_frames);
+
+    let pixels = first.pixels.len() as f64;
+    let ref_mean = ref_lum.iter().flatten().sum::<f64>() / (pixels * ref_lum.len() as f64);
+    if !(ref_mean.is_finite() && ref_mean > 0.0) {
+        return Err(MetricsError::DegenerateReference { mean: ref_mean });
+    }
+
+    let per_pair: Vec<f64> = test_lum
+        .windows(2)
+        .zip(ref_lum.windows(2))
+        .map(|(t, r)| {
+            let sum: f64 = (0..t[0].len())
+                .map(|i| ((t[1][i] - t[0][i]) - (r[1][i] - r[0][i])).abs())
+                .sum();
+            sum / pixels / ref_mean
+        })
+        .collect();
+    let mean = per_pair.iter().sum::<f64>() / per_pair.len() as f64;
+    Ok(TemporalInstability { per_pair, mean })
+}

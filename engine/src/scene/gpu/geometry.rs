@@ -1,0 +1,88 @@
+//! Packs vertices, triangles and bottom-level nodes.
+
+use glam::Vec2;
+
+use super::encode::{encode_normal, encode_uv};
+use super::layout::{GpuSphere, GpuVertex};
+use crate::bvh::{Bvh, BvhNode};
+use crate::scene::Scene;
+
+/// Packed geometry and bottom levels.
+pub struct PackedGeometry {
+    /// All mesh vertices, mesh after mesh.
+    pub vertices: Vec<GpuVertex>,
+    /// Triangle vertex indices (absolute), each mesh's triangles in its
+    /// BLAS leaf order.
+    pub indices: Vec<u32>,
+    /// All BLAS nodes with absolute child and triangle indices.
+    pub blas_nodes: Vec<BvhNode>,
+    /// Root node of each BLAS in `blas_nodes` (same order as `Bvh::blases`).
+    pub blas_roots: Vec<u32>,
+    /// First global triangle of each mesh.
+    pub triangle_base: Vec<u32>,
+    /// Spheres in sphere-BLAS leaf order.
+    pub spheres: Vec<GpuSphere>,
+}
+
+/// Packs all meshes and spheres of `scene` using the BLAS leaf orders of `bvh`.
+pub fn pack(scene: &Scene, bvh: &Bvh) -> PackedGeometry {
+    let vertex_total: usize = scene.meshes.iter().map(|m| m.positions.len()).sum();
+    let mut out = PackedGeometry {
+        vertices: Vec::with_capacity(vertex_total),
+        indices: Vec::with_capacity(scene.unique_triangle_count() * 3),
+        blas_nodes: Vec::with_capacity(bvh.blases.iter().map(|b| b.nodes.len()).sum()),
+        blas_roots: Vec::with_capacity(bvh.blases.len()),
+        triangle_base: Vec::with_capacity(scene.meshes.len()),
+        spheres: Vec::new(),
+    };
+    for (mesh, blas) in scene.meshes.iter().zip(&bvh.blases) {
+        let vertex_base = out.vertices.len() as u32;
+        out.vertices
+            .extend(mesh.positions.iter().enumerate().map(|(i, p)| GpuVertex {
+                position: p.to_array(),
+                normal: encode_normal(mesh.normals[i]),
+                uv: encode_uv(mesh.uvs.get(i).copied().unwrap_or(Vec2::ZERO)),
+            }));
+        let tri_base = (out.indices.len() / 3) as u32;
+        out.triangle_base.push(tri_base);
+        out.indices.extend(
+            blas.order
+                .iter()
+                .flat_map(|&t| (mesh.indices[t as usize] + vertex_base).to_array()),
+        );
+        push_nodes(&mut out, &blas.nodes, tri_base);
+    }
+    if let Some(blas) = bvh.blases.get(scene.meshes.len()) {
+        out.spheres = blas
+            .order
+            .iter()
+            .map(|&s| {
+                let sp = &scene.spheres[s as usize];
+                GpuSphere {
+                    center_radius: sp.center.extend(sp.radius).to_array(),
+                    material: sp.material,
+                    scene_sphere: s,
+                    pad: [0; 2],
+                }
+            })
+            .collect();
+        push_nodes(&mut out, &blas.nodes, 0);
+    }
+    out
+}
+
+/// Appends one tree, relocating child links by the node base and leaf
+/// ranges by `prim_base`. An empty tree keeps its `left_or_first == 0`.
+fn push_nodes(out: &mut PackedGeometry, nodes: &[BvhNode], prim_base: u32) {
+    let node_base = out.blas_nodes.len() as u32;
+    out.blas_roots.push(node_base);
+    out.blas_nodes.extend(nodes.iter().map(|&n| {
+        let mut n = n;
+        if n.is_leaf() {
+            n.left_or_first += prim_base;
+        } else if n.left_or_first != 0 {
+            n.left_or_first += node_base;
+        }
+        n
+    }));
+}

@@ -1,0 +1,313 @@
+//! GPU structs. Each mirrors a GLSL std430 struct documented on it; all
+//! are `Pod` and have no implicit padding.
+
+use bytemuck::{Pod, Zeroable};
+
+/// A mesh vertex, 20 bytes (std430 stride 20: only scalar members).
+/// ```glsl
+/// struct Vertex {
+///     float px, py, pz;
+///     uint  normal; // octahedral, unpackSnorm2x16 (see encode_normal)
+///     uint  uv;     // unpackHalf2x16
+/// };
+/// ```
+#[repr(C)]
+#[derive(Clone, Copy, Debug, Default, PartialEq, Pod, Zeroable)]
+pub struct GpuVertex {
+    /// Object-space position.
+    pub position: [f32; 3],
+    /// Octahedral snorm16x2 shading normal.
+    pub normal: u32,
+    /// Half-float texture coordinates.
+    pub uv: u32,
+}
+
+/// An instance, 112 bytes (std430 alignment 16).
+/// ```glsl
+/// struct Instance {
+///     vec4 object_to_world[3]; // rows of a 3x4 affine matrix
+///     vec4 world_to_object[3];
+///     uint blas_root;          // index of the BLAS root in blas_nodes
+///     uint material;           // material index; ~0u for the sphere instance
+///     uint kind;               // 0 = triangles, 1 = spheres
+///     uint scene_instance;     // Scene::instances index; ~0u for spheres
+/// };
+/// ```
+#[repr(C)]
+#[derive(Clone, Copy, Debug, Default, PartialEq, Pod, Zeroable)]
+pub struct GpuInstance {
+    /// Rows of the object-to-world 3x4 matrix.
+    pub object_to_world: [[f32; 4]; 3],
+    /// Rows of the world-to-object 3x4 matrix.
+    pub world_to_object: [[f32; 4]; 3],
+    /// Root node of the instance's BLAS in `blas_nodes`.
+    pub blas_root: u32,
+    /// Material of every triangle (`u32::MAX` for spheres, which carry
+    /// their own).
+    pub material: u32,
+    /// 0 = triangle BLAS, 1 = sphere BLAS.
+    pub kind: u32,
+    /// Index into `Scene::instances` (`u32::MAX` for the sphere instance).
+    pub scene_instance: u32,
+}
+
+/// An analytic sphere, 32 bytes.
+/// ```glsl
+/// struct Sphere { vec4 center_radius; uint material; uint scene_sphere; uint pad0, pad1; };
+/// ```
+#[repr(C)]
+#[derive(Clone, Copy, Debug, Default, PartialEq, Pod, Zeroable)]
+pub struct GpuSphere {
+    /// Centre (xyz) and radius (w), world space.
+    pub center_radius: [f32; 4],
+    /// Material index.
+    pub material: u32,
+    /// Index into `Scene::spheres`.
+    pub scene_sphere: u32,
+    /// Padding to 32 bytes.
+    pub pad: [u32; 2],
+}
+
+/// Material kinds as stored in [`GpuMaterial::kind`].
+pub mod material_kind {
+    /// Lambertian diffuse.
+    pub const DIFFUSE: u32 = 0;
+    /// GGX conductor.
+    pub const CONDUCTOR: u32 = 1;
+    /// Smooth or rough dielectric.
+    pub const DIELECTRIC: u32 = 2;
+}
+
+/// A material, 48 bytes.
+/// ```glsl
+/// struct Material {
+///     vec3  base_color; uint kind;    // kind: 0 diffuse, 1 conductor, 2 dielectric
+///     vec3  emission;   float alpha;  // GGX alpha
+///     float ior; uint texture;        // ~0u = no base-colour texture
+///     uint  flags;                    // bit 0 emissive, bit 1 smooth (alpha < 1e-3)
+///     uint  pad;
+/// };
+/// ```
+#[repr(C)]
+#[derive(Clone, Copy, Debug, Default, PartialEq, Pod, Zeroable)]
+pub struct GpuMaterial {
+    /// Albedo / metal colour / transmission tint.
+    pub base_color: [f32; 3],
+    /// See [`material_kind`].
+    pub kind: u32,
+    /// Emitted radiance.
+    pub emission: [f32; 3],
+    /// GGX alpha.
+    pub alpha: f32,
+    /// Index of refraction.
+    pub ior: f32,
+    /// Texture record index or `u32::MAX`.
+    pub texture: u32,
+    /// Bit 0: emissive; bit 1: smooth.
+    pub flags: u32,
+    /// Padding to 48 bytes.
+    pub pad: u32,
+}
+
+/// Light kinds as stored in [`GpuLight::kind`].
+pub mod light_kind {
+    /// Emissive triangle.
+    pub const TRIANGLE: u32 = 0;
+    /// Emissive sphere.
+    pub const SPHERE: u32 = 1;
+    /// Point light (delta).
+    pub const POINT: u32 = 2;
+    /// Spot light (delta).
+    pub const SPOT: u32 = 3;
+}
+
+/// One NEE light, 80 bytes.
+/// ```glsl
+/// struct Light {
+///     uint kind;      // see light_kind
+///     uint index;     // triangle: global triangle index; sphere: index in spheres
+///     uint instance;  // triangle: index in instances; otherwise ~0u
+///     uint pad;
+///     vec4 p0;        // triangle: world v0, area | sphere: centre, radius | point/spot: position, 0
+///     vec4 p1;        // triangle: world v1 | spot: unit direction, cos(outer angle)
+///     vec4 p2;        // triangle: world v2 | spot: cos(inner angle), 0, 0, 0
+///     vec4 emission;  // rgb radiance (area) or intensity (W/sr, delta); w = power
+/// };
+/// ```
+#[repr(C)]
+#[derive(Clone, Copy, Debug, Default, PartialEq, Pod, Zeroable)]
+pub struct GpuLight {
+    /// See [`light_kind`].
+    pub kind: u32,
+    /// Primitive index (see the GLSL comment).
+    pub index: u32,
+    /// Instance index for triangles.
+    pub instance: u32,
+    /// Padding.
+    pub pad: u32,
+    /// First geometry vector.
+    pub p0: [f32; 4],
+    /// Second geometry vector.
+    pub p1: [f32; 4],
+    /// Third geometry vector.
+    pub p2: [f32; 4],
+    /// Emission (rgb) and power (w).
+    pub emission: [f32; 4],
+}
+
+/// One column of the light alias table with the pdf and CDF, 16 bytes.
+/// ```glsl
+/// struct LightSample { float threshold; uint alias; float pdf; float cdf; };
+/// ```
+/// Sampling: `i = min(uint(u * n), n - 1)`, keep `i` if
+/// `fract(u * n) < threshold`, else take `alias`; the chosen light's
+/// selection probability is its `pdf`.
+#[repr(C)]
+#[derive(Clone, Copy, Debug, Default, PartialEq, Pod, Zeroable)]
+pub struct GpuAliasEntry {
+    /// Probability of keeping this column.
+    pub threshold: f32,
+    /// Alternative light index.
+    pub alias: u32,
+    /// Selection probability of light `i`.
+    pub pdf: f32,
+    /// Inclusive CDF up to light `i`.
+    pub cdf: f32,
+}
+
+/// Texture formats as stored in [`GpuTextureRecord::format`].
+pub mod texture_format {
+    /// One `u32` per texel, RGBA8 sRGB (`unpackUnorm4x8` then decode).
+    pub const RGBA8_SRGB: u32 = 0;
+    /// One `u32` per texel, RGBA8 linear.
+    pub const RGBA8_LINEAR: u32 = 1;
+    /// Four `u32` per texel holding `f32` bits (`uintBitsToFloat`).
+    pub const RGBA32F: u32 = 2;
+}
+
+/// Where a texture lives in the texel buffer, 16 bytes.
+/// ```glsl
+/// struct TextureRecord { uint offset; uint width; uint height; uint format; };
+/// ```
+/// `offset` counts `u32` words; texel `(x, y)` starts at
+/// `offset + (y * width + x) * words_per_texel`.
+#[repr(C)]
+#[derive(Clone, Copy, Debug, Default, PartialEq, Pod, Zeroable)]
+pub struct GpuTextureRecord {
+    /// First word in the texel buffer.
+    pub offset: u32,
+    /// Width in texels.
+    pub width: u32,
+    /// Height in texels.
+    pub height: u32,
+    /// See [`texture_format`].
+    pub format: u32,
+}
+
+/// Camera parameters, 64 bytes.
+/// ```glsl
+/// struct Camera {
+///     vec4 position_aperture; // eye, aperture radius (0 = pinhole)
+///     vec4 right_focus;       // unit right, focus distance
+///     vec4 up_tan_half_fov;   // unit up, tan(vfov / 2)
+///     vec4 forward;           // unit view direction, 0
+/// };
+/// ```
+#[repr(C)]
+#[derive(Clone, Copy, Debug, Default, PartialEq, Pod, Zeroable)]
+pub struct GpuCamera {
+    /// Eye position and aperture radius.
+    pub position_aperture: [f32; 4],
+    /// Right vector and focus distance.
+    pub right_focus: [f32; 4],
+    /// Up vector and tangent of half the vertical FOV.
+    pub up_tan_half_fov: [f32; 4],
+    /// View direction.
+    pub forward: [f32; 4],
+}
+
+/// Environment parameters, 64 bytes.
+/// ```glsl
+/// struct Environment {
+///     uint kind; uint pad0, pad1, pad2; // 0 = constant (zenith), 1 = sky
+///     vec4 zenith; vec4 horizon; vec4 ground;
+/// };
+/// ```
+#[repr(C)]
+#[derive(Clone, Copy, Debug, Default, PartialEq, Pod, Zeroable)]
+pub struct GpuEnvironment {
+    /// 0 = constant radiance `zenith`, 1 = sky gradient.
+    pub kind: u32,
+    /// Padding.
+    pub pad: [u32; 3],
+    /// Zenith (or constant) radiance.
+    pub zenith: [f32; 4],
+    /// Horizon radiance.
+    pub horizon: [f32; 4],
+    /// Ground radiance.
+    pub ground: [f32; 4],
+}
+
+/// Sun parameters, 32 bytes.
+/// ```glsl
+/// struct Sun { vec4 direction_cos; vec4 radiance_enabled; };
+/// ```
+/// `direction_cos`: unit direction to the sun, cosine of its angular
+/// radius. `radiance_enabled`: disc radiance, 1 if a sun exists else 0.
+#[repr(C)]
+#[derive(Clone, Copy, Debug, Default, PartialEq, Pod, Zeroable)]
+pub struct GpuSun {
+    /// Direction to the sun and cos(angular radius).
+    pub direction_cos: [f32; 4],
+    /// Radiance and an enabled flag.
+    pub radiance_enabled: [f32; 4],
+}
+
+/// Per-scene constants, 208 bytes (valid as std140 and std430).
+/// ```glsl
+/// struct SceneParams {
+///     Camera camera; Environment environment; Sun sun;
+///     uvec4 counts0;  // triangles, instances, spheres, lights
+///     uvec4 counts1;  // materials, textures, tlas nodes, blas nodes
+///     vec4  light;    // total NEE light power, 0, 0, 0
+/// };
+/// ```
+#[repr(C)]
+#[derive(Clone, Copy, Debug, Default, PartialEq, Pod, Zeroable)]
+pub struct GpuSceneParams {
+    /// Camera.
+    pub camera: GpuCamera,
+    /// Environment.
+    pub environment: GpuEnvironment,
+    /// Sun.
+    pub sun: GpuSun,
+    /// Triangles, instances, spheres, lights.
+    pub counts0: [u32; 4],
+    /// Materials, textures, TLAS nodes, BLAS nodes.
+    pub counts1: [u32; 4],
+    /// Total power of the light table (x). A BSDF-sampled hit on an
+    /// emitter has selection probability `power / total`, with power
+    /// computed as in `LightDistribution`, so no reverse lookup is needed.
+    pub light: [f32; 4],
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use std::mem::size_of;
+
+    #[test]
+    fn sizes_match_documented_std430_layouts() {
+        assert_eq!(size_of::<GpuVertex>(), 20);
+        assert_eq!(size_of::<GpuInstance>(), 112);
+        assert_eq!(size_of::<GpuSphere>(), 32);
+        assert_eq!(size_of::<GpuMaterial>(), 48);
+        assert_eq!(size_of::<GpuLight>(), 80);
+        assert_eq!(size_of::<GpuAliasEntry>(), 16);
+        assert_eq!(size_of::<GpuTextureRecord>(), 16);
+        assert_eq!(size_of::<GpuCamera>(), 64);
+        assert_eq!(size_of::<GpuEnvironment>(), 64);
+        assert_eq!(size_of::<GpuSun>(), 32);
+        assert_eq!(size_of::<GpuSceneParams>(), 208);
+    }
+}

@@ -1,0 +1,200 @@
+//! Packs materials, textures, lights, camera, environment and sun.
+
+use super::layout::{
+    light_kind, material_kind, texture_format, GpuAliasEntry, GpuCamera, GpuEnvironment, GpuLight,
+    GpuMaterial, GpuSun, GpuTextureRecord,
+};
+use crate::scene::{
+    Camera, Environment, LightDistribution, LightSource, MaterialKind, PunctualLight, Scene, Sun,
+    TexelData,
+};
+
+/// Converts the scene materials.
+pub fn materials(scene: &Scene) -> Vec<GpuMaterial> {
+    scene
+        .materials
+        .iter()
+        .map(|m| GpuMaterial {
+            base_color: m.base_color.to_array(),
+            kind: match m.kind {
+                MaterialKind::Diffuse => material_kind::DIFFUSE,
+                MaterialKind::Conductor => material_kind::CONDUCTOR,
+                MaterialKind::Dielectric => material_kind::DIELECTRIC,
+            },
+            emission: m.emission.to_array(),
+            alpha: m.alpha,
+            ior: m.ior,
+            texture: m.base_color_texture.unwrap_or(u32::MAX),
+            flags: u32::from(m.is_emissive())
+                | (u32::from(m.alpha < crate::scene::SMOOTH_ALPHA) << 1),
+            pad: 0,
+        })
+        .collect()
+}
+
+/// Flattens all textures into one texel buffer plus records.
+pub fn textures(scene: &Scene) -> (Vec<u32>, Vec<GpuTextureRecord>) {
+    let mut texels = Vec::new();
+    let mut records = Vec::with_capacity(scene.textures.len());
+    for t in &scene.textures {
+        let offset = texels.len() as u32;
+        let format = match &t.texels {
+            TexelData::Rgba8(d) => {
+                texels.extend(d.iter().map(|&p| u32::from_le_bytes(p)));
+                if t.srgb {
+                    texture_format::RGBA8_SRGB
+                } else {
+                    texture_format::RGBA8_LINEAR
+                }
+            }
+            TexelData::RgbaF32(d) => {
+                texels.extend(d.iter().flatten().map(|f| f.to_bits()));
+                texture_format::RGBA32F
+            }
+        };
+        records.push(GpuTextureRecord {
+            offset,
+            width: t.width,
+            height: t.height,
+            format,
+        });
+    }
+    (texels, records)
+}
+
+/// Index remappings from scene order to GPU order needed by the lights.
+pub struct LightRemap<'a> {
+    /// GPU instance index of each scene instance (`u32::MAX` if culled).
+    pub instance: &'a [u32],
+    /// Global GPU triangle index of `(mesh, triangle)`.
+    pub triangle: &'a dyn Fn(u32, u32) -> u32,
+    /// GPU sphere index of each scene sphere.
+    pub sphere: &'a [u32],
+}
+
+/// Converts the light distribution into GPU lights and the alias table.
+pub fn lights(
+    scene: &Scene,
+    dist: &LightDistribution,
+    remap: &LightRemap,
+) -> (Vec<GpuLight>, Vec<GpuAliasEntry>) {
+    let lights = dist
+        .entries
+        .iter()
+        .map(|e| {
+            let emission = e.emission.extend(e.power).to_array();
+            match e.source {
+                LightSource::Triangle { instance, triangle } => {
+                    let inst = &scene.instances[instance as usize];
+                    let mesh = &scene.meshes[inst.mesh as usize];
+                    let [a, b, c] = mesh
+                        .triangle(triangle as usize)
+                        .map(|p| inst.transform.transform_point3(p));
+                    let area = 0.5 * (b - a).cross(c - a).length();
+                    GpuLight {
+                        kind: light_kind::TRIANGLE,
+                        index: (remap.triangle)(inst.mesh, triangle),
+                        instance: remap.instance[instance as usize],
+                        pad: 0,
+                        p0: a.extend(area).to_array(),
+                        p1: b.extend(0.0).to_array(),
+                        p2: c.extend(0.0).to_array(),
+                        emission,
+                    }
+                }
+                LightSource::Sphere { sphere } => {
+                    let s = &scene.spheres[sphere as usize];
+                    GpuLight {
+                        kind: light_kind::SPHERE,
+                        index: remap.sphere[sphere as usize],
+                        instance: u32::MAX,
+                        p0: s.center.extend(s.radius).to_array(),
+                        emission,
+                        ..Default::default()
+                    }
+                }
+                LightSource::Punctual { light } => match scene.punctual_lights[light as usize] {
+                    PunctualLight::Point { position, .. } => GpuLight {
+                        kind: light_kind::POINT,
+                        index: light,
+                        instance: u32::MAX,
+                        p0: position.extend(0.0).to_array(),
+                        emission,
+                        ..Default::default()
+                    },
+                    PunctualLight::Spot {
+                        position,
+                        direction,
+                        inner_angle,
+                        outer_angle,
+                        ..
+                    } => GpuLight {
+                        kind: light_kind::SPOT,
+                        index: light,
+                        instance: u32::MAX,
+                        p0: position.extend(0.0).to_array(),
+                        p1: direction.extend(outer_angle.cos()).to_array(),
+                        p2: [inner_angle.cos(), 0.0, 0.0, 0.0],
+                        emission,
+                        ..Default::default()
+                    },
+                },
+            }
+        })
+        .collect();
+    let t = &dist.table;
+    let table = t
+        .entries
+        .iter()
+        .enumerate()
+        .map(|(i, e)| GpuAliasEntry {
+            threshold: e.threshold,
+            alias: e.alias,
+            pdf: t.pdf[i],
+            cdf: t.cdf[i],
+        })
+        .collect();
+    (lights, table)
+}
+
+/// Converts the camera.
+pub fn camera(c: &Camera) -> GpuCamera {
+    GpuCamera {
+        position_aperture: c.position.extend(c.aperture_radius).to_array(),
+        right_focus: c.right().extend(c.focus_distance).to_array(),
+        up_tan_half_fov: c.up().extend((0.5 * c.vfov).tan()).to_array(),
+        forward: c.forward().extend(0.0).to_array(),
+    }
+}
+
+/// Converts the environment.
+pub fn environment(e: &Environment) -> GpuEnvironment {
+    match *e {
+        Environment::Constant(c) => GpuEnvironment {
+            kind: 0,
+            zenith: c.extend(0.0).to_array(),
+            horizon: c.extend(0.0).to_array(),
+            ground: c.extend(0.0).to_array(),
+            ..Default::default()
+        },
+        Environment::Sky {
+            zenith,
+            horizon,
+            ground,
+        } => GpuEnvironment {
+            kind: 1,
+            zenith: zenith.extend(0.0).to_array(),
+            horizon: horizon.extend(0.0).to_array(),
+            ground: ground.extend(0.0).to_array(),
+            ..Default::default()
+        },
+    }
+}
+
+/// Converts the optional sun.
+pub fn sun(s: Option<&Sun>) -> GpuSun {
+    s.map_or_else(GpuSun::default, |s| GpuSun {
+        direction_cos: s.direction.extend(s.angular_radius.cos()).to_array(),
+        radiance_enabled: s.radiance().extend(1.0).to_array(),
+    })
+}

@@ -1,0 +1,180 @@
+//! Surface materials and their range validation.
+
+use glam::Vec3;
+
+use super::SceneError;
+
+/// GGX `alpha` below which a surface is treated as perfectly smooth.
+pub const SMOOTH_ALPHA: f32 = 1e-3;
+
+/// The scattering model of a material.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum MaterialKind {
+    /// Lambertian diffuse reflection with albedo `base_color`.
+    Diffuse,
+    /// GGX microfacet conductor; `base_color` is the metal colour (F0).
+    Conductor,
+    /// Dielectric (glass) with index of refraction `ior`; smooth when
+    /// `alpha < SMOOTH_ALPHA`, rough GGX otherwise. `base_color` tints
+    /// transmission.
+    Dielectric,
+}
+
+/// A surface material. Any material may also emit (`emission > 0`), which
+/// turns its surfaces into area lights.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Material {
+    /// Name used in error messages and reports.
+    pub name: String,
+    /// Scattering model.
+    pub kind: MaterialKind,
+    /// Albedo / metal colour / transmission tint, linear RGB in `[0, 1]`.
+    pub base_color: Vec3,
+    /// Optional base-colour texture (index into `Scene::textures`),
+    /// multiplied with `base_color`.
+    pub base_color_texture: Option<u32>,
+    /// GGX roughness `alpha` (= perceptual roughness squared) in `[0, 1]`.
+    pub alpha: f32,
+    /// Index of refraction (dielectrics), `>= 1`.
+    pub ior: f32,
+    /// Emitted radiance, linear RGB, `>= 0`.
+    pub emission: Vec3,
+}
+
+impl Material {
+    fn base(name: &str, kind: MaterialKind, base_color: Vec3) -> Self {
+        Self {
+            name: name.to_owned(),
+            kind,
+            base_color,
+            base_color_texture: None,
+            alpha: 0.0,
+            ior: 1.5,
+            emission: Vec3::ZERO,
+        }
+    }
+
+    /// A Lambertian diffuse material.
+    pub fn diffuse(name: &str, albedo: Vec3) -> Self {
+        Self::base(name, MaterialKind::Diffuse, albedo)
+    }
+
+    /// A rough (or, with `alpha = 0`, mirror) conductor.
+    pub fn conductor(name: &str, metal_color: Vec3, alpha: f32) -> Self {
+        Self {
+            alpha,
+            ..Self::base(name, MaterialKind::Conductor, metal_color)
+        }
+    }
+
+    /// A smooth (`alpha = 0`) or rough dielectric.
+    pub fn dielectric(name: &str, ior: f32, alpha: f32) -> Self {
+        Self {
+            alpha,
+            ior,
+            ..Self::base(name, MaterialKind::Dielectric, Vec3::ONE)
+        }
+    }
+
+    /// A diffuse emitter: black albedo with the given emitted radiance.
+    pub fn emissive(name: &str, radiance: Vec3) -> Self {
+        Self::diffuse(name, Vec3::ZERO).with_emission(radiance)
+    }
+
+    /// This material with emitted radiance `radiance`.
+    pub fn with_emission(mut self, radiance: Vec3) -> Self {
+        self.emission = radiance;
+        self
+    }
+
+    /// Whether the material emits light.
+    pub fn is_emissive(&self) -> bool {
+        self.emission.max_element() > 0.0
+    }
+
+    /// Whether the material is a perfectly smooth dielectric.
+    pub fn is_smooth_dielectric(&self) -> bool {
+        self.kind == MaterialKind::Dielectric && self.alpha < SMOOTH_ALPHA
+    }
+
+    /// Whether the material is a rough dielectric.
+    pub fn is_rough_dielectric(&self) -> bool {
+        self.kind == MaterialKind::Dielectric && self.alpha >= SMOOTH_ALPHA
+    }
+
+    /// Brings parameters into range. Non-finite values, a negative
+    /// emission or an IOR below 1 are rejected with an error naming the
+    /// material; colours outside `[0, 1]` and roughness outside `[0, 1]`
+    /// are clamped, and a warning naming the material is returned for each.
+    pub fn sanitize(&mut self) -> Result<Vec<String>, SceneError> {
+        let reject = |reason: String| SceneError::InvalidMaterial {
+            name: self.name.clone(),
+            reason,
+        };
+        let finite = self.base_color.is_finite()
+            && self.emission.is_finite()
+            && self.alpha.is_finite()
+            && self.ior.is_finite();
+        if !finite {
+            return Err(reject(
+                "parameters must be finite (found NaN or infinity)".into(),
+            ));
+        }
+        if self.emission.min_element() < 0.0 {
+            return Err(reject(format!("negative emission {}", self.emission)));
+        }
+        if self.kind == MaterialKind::Dielectric && self.ior < 1.0 {
+            return Err(reject(format!(
+                "index of refraction {} is below 1",
+                self.ior
+            )));
+        }
+        let mut warnings = Vec::new();
+        let clamped = self.base_color.clamp(Vec3::ZERO, Vec3::ONE);
+        if clamped != self.base_color {
+            warnings.push(format!(
+                "material `{}`: base colour {} clamped to [0, 1]",
+                self.name, self.base_color
+            ));
+            self.base_color = clamped;
+        }
+        let alpha = self.alpha.clamp(0.0, 1.0);
+        if alpha != self.alpha {
+            warnings.push(format!(
+                "material `{}`: roughness alpha {} clamped to [0, 1]",
+                self.name, self.alpha
+            ));
+            self.alpha = alpha;
+        }
+        Ok(warnings)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn sanitize_clamps_and_rejects() {
+        let mut m = Material::diffuse("bright", Vec3::new(1.5, -0.1, 0.5));
+        let w = m.sanitize().unwrap();
+        assert_eq!(m.base_color, Vec3::new(1.0, 0.0, 0.5));
+        assert!(w[0].contains("bright"));
+
+        let mut nan = Material::conductor("nanmetal", Vec3::ONE, f32::NAN);
+        let e = nan.sanitize().unwrap_err().to_string();
+        assert!(e.contains("nanmetal") && e.contains("finite"), "{e}");
+
+        let mut glass = Material::dielectric("badglass", 0.8, 0.0);
+        let e = glass.sanitize().unwrap_err().to_string();
+        assert!(e.contains("badglass") && e.contains("below 1"), "{e}");
+
+        let mut neg = Material::emissive("neglight", Vec3::splat(-1.0));
+        assert!(neg.sanitize().unwrap_err().to_string().contains("neglight"));
+
+        let mut rough = Material::dielectric("frosted", 1.5, 2.0);
+        rough.sanitize().unwrap();
+        assert_eq!(rough.alpha, 1.0);
+        assert!(rough.is_rough_dielectric() && !rough.is_smooth_dielectric());
+    }
+}

@@ -1,0 +1,33 @@
+//! Scene description: meshes, spheres, instances, materials, textures,
+//! lights, cameras and camera paths, plus glTF import, built-in scenes and
+//! the packed GPU layout.
+
+mod alias;
+pub mod builtin;
+mod camera;
+mod camera_path;
+mod error;
+mod features;
+pub mod gpu;
+mod instance;
+mod light;
+mod light_list;
+mod material;
+mod mesh;
+mod model;
+mod sphere;
+mod texture;
+
+pub use alias::{AliasEntry, AliasTable};
+pub use camera::{look_rotation, Camera};
+pub use camera_path::{CameraKey, CameraPath, PathInterpolation};
+pub use error::SceneError;
+pub use features::SceneFeatures;
+pub use instance::Instance;
+pub use light::{luminance, Environment, PunctualLight, Sun};
+pub use light_list::{LightDistribution, LightEntry, LightSource};
+pub use material::{Material, MaterialKind, SMOOTH_ALPHA};
+pub use mesh::Mesh;
+pub use model::{AnalyticRadiance, Scene};
+pub use sphere::Sphere;
+pub use texture::{TexelData, Texture};

@@ -1,0 +1,362 @@
+//! Render graphs executed on the device (lavapipe in CI) with validation on: exact outputs,
+//! aliasing, history across frames, specialization, reflection and binding errors.
+
+use lucid_engine::graph::{Access, Executor, RenderGraph};
+use lucid_engine::memory::ImageDesc;
+use lucid_engine::shader::DescriptorKind;
+use lucid_passes::shaders::test_pattern::{ACCUMULATE, COMBINE, GRADIENT, SCALE};
+use lucid_passes::test_pattern::{self, Params};
+use lucid_tests::{assert_no_validation_messages, executor};
+
+fn assert_close(got: &[[f32; 4]], want: &[[f32; 4]], tolerance: f32) {
+    assert_eq!(got.len(), want.len());
+    for (i, (g, w)) in got.iter().zip(want).enumerate() {
+        for c in 0..4 {
+            let scale = w[c].abs().max(1.0);
+            assert!(
+                (g[c] - w[c]).abs() <= tolerance * scale,
+                "pixel {i} channel {c}: got {} want {}",
+                g[c],
+                w[c]
+            );
+        }
+    }
+}
+
+fn run_pattern(executor: &mut Executor, w: u32, h: u32, params: &Params) -> Vec<[f32; 4]> {
+    let mut g = RenderGraph::new();
+    let out = test_pattern::add(&mut g, w, h, params);
+    let readback = g.readback(out.combined);
+    let frame = executor.execute(g.compile().unwrap()).unwrap();
+    executor
+        .wait(frame)
+        .unwrap()
+        .image(readback)
+        .unwrap()
+        .pixels
+}
+
+#[test]
+fn three_pass_graph_output_equals_expected_values() {
+    // Synchronization validation catches any missing or wrong barrier between the passes.
+    let (ctx, mut executor) = executor(true);
+    let (w, h) = (61, 37); // not multiples of the workgroup size
+    let params = Params::default();
+    let got = run_pattern(&mut executor, w, h, &params);
+    assert_close(&got, &test_pattern::expected(w, h, &params), 1e-5);
+    let timings = executor.pass_timings();
+    let names: Vec<&str> = timings.iter().map(|t| t.name.as_str()).collect();
+    assert_eq!(
+        names,
+        [
+            "test_pattern.gradient",
+            "test_pattern.row_sum",
+            "test_pattern.combine",
+            "readback test_pattern.combined"
+        ]
+    );
+    assert!(timings.iter().all(|t| t.ms >= 0.0 && t.ms.is_finite()));
+    // A second frame reuses the transients and barriers from the tracked state.
+    let again = run_pattern(&mut executor, w, h, &params);
+    assert_eq!(got, again, "frames are reproducible");
+    assert_no_validation_messages(&ctx);
+}
+
+#[test]
+fn specialization_constants_change_the_pipeline() {
+    let (ctx, mut executor) = executor(false);
+    let params = Params {
+        add_offset: false,
+        combine_group_width: 16,
+        gain: 2.0,
+        checker: 3,
+        ..Params::default()
+    };
+    let got = run_pattern(&mut executor, 40, 24, &params);
+    assert_close(&got, &test_pattern::expected(40, 24, &params), 1e-5);
+    let with_offset = Params {
+        add_offset: true,
+        ..params
+    };
+    let got = run_pattern(&mut executor, 40, 24, &with_offset);
+    assert_close(&got, &test_pattern::expected(40, 24, &with_offset), 1e-5);
+    assert_eq!(
+        executor.library().pipeline_count(),
+        4,
+        "gradient, row_sum and two combines"
+    );
+    assert_no_validation_messages(&ctx);
+}
+
+#[test]
+fn aliased_transients_keep_correct_contents() {
+    let (ctx, mut executor) = executor(true);
+    let (w, h) = (32, 16);
+    let mut g = RenderGraph::new();
+    let mut p = g.add_pass("gradient");
+    let t = p.create_image("t0", ImageDesc::rgba32f(w, h));
+    let mut prev = p.write(t, Access::ComputeWrite);
+    let first = prev;
+    p.execute(move |ctx| {
+        ctx.compute(&GRADIENT)
+            .image("u_out", first)
+            .push(&[1.0f32.to_bits(), 4u32])
+            .dispatch_threads([w, h, 1])
+    });
+    for i in 1..5 {
+        let mut p = g.add_pass(&format!("scale{i}"));
+        let input = p.read(prev, Access::ComputeRead);
+        let t = p.create_image(&format!("t{i}"), ImageDesc::rgba32f(w, h));
+        let out = p.write(t, Access::ComputeWrite);
+        p.execute(move |ctx| {
+            ctx.compute(&SCALE)
+                .image("u_in", input)
+                .image("u_out", out)
+                .push(&2.0f32)
+                .dispatch_threads([w, h, 1])
+        });
+        prev = out;
+    }
+    let readback = g.readback(prev);
+    let compiled = g.compile().unwrap();
+    assert_eq!(compiled.plan.slots.len(), 2, "{}", compiled.plan.dump());
+    let frame = executor.execute(compiled).unwrap();
+    let got = executor
+        .wait(frame)
+        .unwrap()
+        .image(readback)
+        .unwrap()
+        .pixels;
+    let params = Params {
+        gain: 1.0,
+        checker: 4,
+        ..Params::default()
+    };
+    let want: Vec<[f32; 4]> = (0..h)
+        .flat_map(|y| (0..w).map(move |x| (x, y)))
+        .map(|(x, y)| test_pattern::expected_pattern(w, h, x, y, &params).map(|v| v * 16.0))
+        .collect();
+    assert_close(&got, &want, 1e-6);
+    assert_no_validation_messages(&ctx);
+}
+
+fn accumulate_frame(executor: &mut Executor, w: u32, h: u32) -> f32 {
+    let mut g = RenderGraph::new();
+    let history = g.temporal_image("test.accumulate", ImageDesc::rgba32f(w, h));
+    let mut p = g.add_pass("accumulate");
+    let prev = p.read(history.prev, Access::ComputeRead);
+    let cur = p.write(history.cur, Access::ComputeWrite);
+    p.execute(move |ctx| {
+        ctx.compute(&ACCUMULATE)
+            .image("u_prev", prev)
+            .image("u_cur", cur)
+            .push(&1.0f32)
+            .dispatch_threads([w, h, 1])
+    });
+    let readback = g.readback(cur);
+    let frame = executor.execute(g.compile().unwrap()).unwrap();
+    let image = executor.wait(frame).unwrap().image(readback).unwrap();
+    let first = image.pixels[0][0];
+    assert!(
+        image.pixels.iter().all(|p| p[0] == first),
+        "uniform history"
+    );
+    first
+}
+
+#[test]
+fn history_survives_frames_and_resets() {
+    let (ctx, mut executor) = executor(true);
+    let counts: Vec<f32> = (0..4)
+        .map(|_| accumulate_frame(&mut executor, 16, 8))
+        .collect();
+    assert_eq!(counts, [1.0, 2.0, 3.0, 4.0]);
+    executor.reset_history();
+    assert_eq!(
+        accumulate_frame(&mut executor, 16, 8),
+        1.0,
+        "reset clears history"
+    );
+    assert_eq!(accumulate_frame(&mut executor, 16, 8), 2.0);
+    assert_eq!(
+        accumulate_frame(&mut executor, 24, 8),
+        1.0,
+        "resize starts a new history"
+    );
+    assert_no_validation_messages(&ctx);
+}
+
+#[test]
+fn frames_in_flight_overlap_and_each_returns_its_outputs() {
+    let (ctx, mut executor) = executor(true);
+    let params = Params::default();
+    let mut frames = Vec::new();
+    for gain in [1.0f32, 2.0] {
+        let mut g = RenderGraph::new();
+        let out = test_pattern::add(&mut g, 16, 16, &Params { gain, ..params });
+        let readback = g.readback(out.pattern);
+        frames.push((
+            executor.execute(g.compile().unwrap()).unwrap(),
+            readback,
+            gain,
+        ));
+    }
+    for (frame, readback, gain) in frames {
+        let image = executor.wait(frame).unwrap().image(readback).unwrap();
+        assert_eq!(image.pixels[16 + 8][0], 8.0 / 16.0 * gain);
+    }
+    assert_no_validation_messages(&ctx);
+}
+
+#[test]
+fn reflection_finds_bindings_by_name() {
+    let (ctx, executor) = executor(false);
+    let r = executor.library().reflection(&COMBINE).unwrap();
+    let u_in = r.binding("u_in").unwrap();
+    assert_eq!(
+        (u_in.binding, u_in.kind, u_in.read_only),
+        (0, DescriptorKind::StorageImage, true)
+    );
+    let sums = r.binding("b_sums").unwrap();
+    assert_eq!(
+        (sums.binding, sums.kind),
+        (1, DescriptorKind::StorageBuffer)
+    );
+    assert_eq!(
+        r.binding("RowSums").unwrap().binding,
+        1,
+        "blocks are found by type name too"
+    );
+    let u_out = r.binding("u_out").unwrap();
+    assert_eq!((u_out.binding, u_out.read_only), (2, false));
+    assert_eq!(r.push_constant_size, 4);
+    assert_eq!(r.workgroup_size, [1, 8, 1], "local_size_x_id default is 1");
+    assert!(r.spec_constant("ADD_OFFSET").is_some());
+    assert_eq!(r.spec_constant("local_size_x").unwrap().id, 0);
+    assert!(r.binding("u_missing").is_none());
+    let g = executor.library().reflection(&GRADIENT).unwrap();
+    assert_eq!(g.workgroup_size, [8, 8, 1]);
+    assert_eq!(g.push_constant_size, 8);
+    assert_no_validation_messages(&ctx);
+}
+
+fn run_with_binding(executor: &mut Executor, name: &'static str) -> String {
+    let mut g = RenderGraph::new();
+    let mut p = g.add_pass("bad_binding");
+    let t = p.create_image("t", ImageDesc::rgba32f(8, 8));
+    let t = p.write(t, Access::ComputeWrite);
+    p.execute(move |ctx| {
+        ctx.compute(&GRADIENT)
+            .image(name, t)
+            .push(&[1.0f32.to_bits(), 2u32])
+            .dispatch_threads([8, 8, 1])
+    });
+    g.readback(t);
+    executor
+        .execute(g.compile().unwrap())
+        .err()
+        .expect("must fail")
+        .to_string()
+}
+
+#[test]
+fn binding_an_unknown_name_is_a_clear_error() {
+    let (ctx, mut executor) = executor(false);
+    let message = run_with_binding(&mut executor, "u_typo");
+    assert!(
+        message.contains("u_typo") && message.contains("u_out"),
+        "{message}"
+    );
+    assert!(
+        message.contains("test_pattern/gradient") && message.contains("bad_binding"),
+        "{message}"
+    );
+    // The executor stays usable after a failed frame.
+    let ok = run_pattern(&mut executor, 8, 8, &Params::default());
+    assert_eq!(ok.len(), 64);
+    assert_no_validation_messages(&ctx);
+}
+
+#[test]
+fn binding_undeclared_or_missing_resources_are_errors() {
+    let (ctx, mut executor) = executor(false);
+    let mut g = RenderGraph::new();
+    let mut p = g.add_pass("w");
+    let a = p.create_image("a", ImageDesc::rgba32f(8, 8));
+    let a = p.write(a, Access::ComputeWrite);
+    p.execute(move |ctx| {
+        ctx.compute(&GRADIENT)
+            .image("u_out", a)
+            .push(&[0u32, 1])
+            .dispatch_threads([8, 8, 1])
+    });
+    let mut p = g.add_pass("scale_without_declaring_input");
+    let b = p.create_image("b", ImageDesc::rgba32f(8, 8));
+    let b = p.write(b, Access::ComputeWrite);
+    p.execute(move |ctx| {
+        ctx.compute(&SCALE)
+            .image("u_in", a)
+            .image("u_out", b)
+            .push(&1.0f32)
+            .dispatch_threads([8, 8, 1])
+    });
+    g.readback(b);
+    let message = executor
+        .execute(g.compile().unwrap())
+        .err()
+        .unwrap()
+        .to_string();
+    assert!(message.contains("without declaring"), "{message}");
+
+    let mut g = RenderGraph::new();
+    let mut p = g.add_pass("forgets_a_binding");
+    let a = p.create_image("a", ImageDesc::rgba32f(8, 8));
+    let a = p.write(a, Access::ComputeWrite);
+    p.execute(move |ctx| {
+        ctx.compute(&SCALE)
+            .image("u_out", a)
+            .push(&1.0f32)
+            .dispatch_threads([8, 8, 1])
+    });
+    g.readback(a);
+    let message = executor
+        .execute(g.compile().unwrap())
+        .err()
+        .unwrap()
+        .to_string();
+    assert!(message.contains("\"u_in\" was not bound"), "{message}");
+    assert_no_validation_messages(&ctx);
+}
+
+#[test]
+fn synchronization_validation_reports_a_hazard_the_graph_did_not_declare() {
+    // Two dispatches inside one pass: the second reads what the first wrote, with no barrier
+    // between them (the graph only places barriers between passes). The layer must flag it, which
+    // proves the validation net the other tests rely on is live.
+    let (ctx, mut executor) = executor(true);
+    let mut g = RenderGraph::new();
+    let mut p = g.add_pass("read_after_write_inside_one_pass");
+    let a = p.create_image("a", ImageDesc::rgba32f(8, 8));
+    let a = p.write(a, Access::ComputeWrite);
+    let b = p.create_image("b", ImageDesc::rgba32f(8, 8));
+    let b = p.write(b, Access::ComputeWrite);
+    p.execute(move |ctx| {
+        ctx.compute(&GRADIENT)
+            .image("u_out", a)
+            .push(&[1.0f32.to_bits(), 2u32])
+            .dispatch_threads([8, 8, 1])?;
+        ctx.compute(&SCALE)
+            .image("u_in", a)
+            .image("u_out", b)
+            .push(&2.0f32)
+            .dispatch_threads([8, 8, 1])
+    });
+    let readback = g.readback(b);
+    let frame = executor.execute(g.compile().unwrap()).unwrap();
+    executor.wait(frame).unwrap().image(readback).unwrap();
+    let messages = ctx.validation_log().take();
+    assert!(
+        messages.iter().any(|m| m.id.contains("SYNC-HAZARD-READ")),
+        "synchronization validation must flag the unsynchronised read: {messages:?}"
+    );
+}

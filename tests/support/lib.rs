@@ -1,0 +1,44 @@
+//! Shared helpers for Lucid's GPU tests: a validated context and checks on validation messages.
+
+use lucid_engine::graph::Executor;
+use lucid_engine::shader::ShaderLibrary;
+use lucid_engine::{Context, ContextDesc, Validation};
+
+/// A context with the validation layer required (plus synchronization validation when `sync`).
+pub fn context(sync: bool) -> Context {
+    let ctx = Context::new(&ContextDesc::for_tests(sync)).expect("create a Vulkan context");
+    let expected = if sync {
+        Validation::Sync
+    } else {
+        Validation::On
+    };
+    assert_eq!(
+        ctx.validation(),
+        expected,
+        "validation must be active in tests"
+    );
+    ctx
+}
+
+/// A validated context and an executor on it.
+pub fn executor(sync: bool) -> (Context, Executor) {
+    let ctx = context(sync);
+    let library = ShaderLibrary::new(&ctx, None).expect("shader library");
+    let executor = Executor::new(&ctx, library).expect("executor");
+    (ctx, executor)
+}
+
+/// Panics with every collected validation message, if any.
+pub fn assert_no_validation_messages(ctx: &Context) {
+    let messages = ctx.validation_log().take();
+    assert!(
+        messages.is_empty(),
+        "{} validation message(s):\n{}",
+        messages.len(),
+        messages
+            .iter()
+            .map(|m| m.to_string())
+            .collect::<Vec<_>>()
+            .join("\n")
+    );
+}
