@@ -21,6 +21,12 @@ use ash::vk;
 use std::collections::HashMap;
 use std::sync::Arc;
 
+/// The `prev` and `cur` resources of one temporal key in a plan, and its description.
+type TemporalIds = (Option<ResourceId>, Option<ResourceId>, ImageDesc);
+
+/// Which `prev` handles hold history this frame, and the history images to clear first.
+type TemporalBinding = (HashMap<ResourceId, bool>, Vec<Arc<Image>>);
+
 /// Identifies a submitted frame.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, PartialOrd, Ord, Hash)]
 pub struct FrameId(u64);
@@ -327,11 +333,10 @@ impl Executor {
         &mut self,
         plan: &Plan,
         physical: &mut HashMap<ResourceId, Physical>,
-    ) -> Result<(HashMap<ResourceId, bool>, Vec<Arc<Image>>)> {
+    ) -> Result<TemporalBinding> {
         let mut valid = HashMap::new();
         let mut clears = Vec::new();
-        let mut by_key: HashMap<&str, (Option<ResourceId>, Option<ResourceId>, ImageDesc)> =
-            HashMap::new();
+        let mut by_key: HashMap<&str, TemporalIds> = HashMap::new();
         for (i, r) in plan.resources.iter().enumerate() {
             let id = ResourceId(i as u32);
             let ResourceDesc::Image(desc) = r.desc else {

@@ -211,8 +211,21 @@ impl Buffer {
                     self.size
                 ))
             })?;
-        let mapped = self.mapped_mut()?;
-        mapped[offset as usize..end as usize].copy_from_slice(data);
+        let ptr = self
+            .allocation
+            .as_ref()
+            .and_then(|a| a.mapped_ptr())
+            .ok_or_else(|| self.not_mapped())?;
+        // SAFETY: the mapping covers `size` bytes (checked above) and lives as long as the allocation;
+        // callers synchronise with the GPU before writing (uploads wait, per-frame data is ring-buffered).
+        unsafe {
+            std::ptr::copy_nonoverlapping(
+                data.as_ptr(),
+                ptr.as_ptr().cast::<u8>().add(offset as usize),
+                data.len(),
+            )
+        };
+        debug_assert!(end <= self.size);
         Ok(())
     }
 
@@ -223,21 +236,6 @@ impl Buffer {
             .and_then(|a| a.mapped_slice())
             .map(|s| &s[..self.size as usize])
             .ok_or_else(|| self.not_mapped())
-    }
-
-    fn mapped_mut(&self) -> Result<&mut [u8]> {
-        let ptr = self
-            .allocation
-            .as_ref()
-            .and_then(|a| a.mapped_ptr())
-            .ok_or_else(|| self.not_mapped())?;
-        // SAFETY: the mapping covers `size` bytes and lives as long as the allocation; callers
-        // synchronise with the GPU before writing (uploads wait, per-frame buffers are ring-buffered).
-        Ok(
-            unsafe {
-                std::slice::from_raw_parts_mut(ptr.as_ptr().cast::<u8>(), self.size as usize)
-            },
-        )
     }
 
     fn not_mapped(&self) -> EngineError {
