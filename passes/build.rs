@@ -1,4 +1,5 @@
 //! Compiles every compute shader under `shaders/` with `glslc` into SPIR-V (Vulkan 1.2 target) and
+//! keeps debug names (reflection binds by them; drivers optimise the SPIR-V themselves), and
 //! generates `shaders.rs`: one module per folder, one `ShaderSource` static per `.comp` file.
 
 use std::fmt::Write as _;
@@ -40,8 +41,6 @@ fn main() {
             let handle = std::thread::spawn(move || {
                 Command::new(&glslc)
                     .arg("--target-env=vulkan1.2")
-                    .arg("-O")
-                    .arg("-g")
                     .arg("-I")
                     .arg(&shaders)
                     .arg(&src)

@@ -42,3 +42,5 @@ pub fn assert_no_validation_messages(ctx: &Context) {
             .join("\n")
     );
 }
+
+pub mod render;

@@ -107,6 +107,53 @@ impl<'a> PassContext<'a> {
         }
     }
 
+    /// Writes `data` at the start of a buffer the pass declared with `Access::TransferWrite`, inline in
+    /// the command buffer (at most 65536 bytes, a multiple of 4): per-frame constants need no staging.
+    pub fn update_buffer(&self, handle: BufferHandle, data: &[u8]) -> Result<()> {
+        self.require_transfer_write(handle, "update_buffer")?;
+        if data.is_empty() || data.len() % 4 != 0 || data.len() > 65536 {
+            return Err(EngineError::InvalidArgument(format!(
+                "pass {}: update_buffer takes 4..=65536 bytes in multiples of 4, not {}",
+                self.pass_name,
+                data.len()
+            )));
+        }
+        let buffer = self.buffer(handle)?;
+        // SAFETY: cmd is recording; the buffer is alive for the frame and in transfer-write state.
+        unsafe {
+            self.ctx
+                .device()
+                .cmd_update_buffer(self.cmd, buffer.raw(), 0, data)
+        };
+        Ok(())
+    }
+
+    /// Fills a buffer the pass declared with `Access::TransferWrite` with a repeated 32-bit value.
+    pub fn fill_buffer(&self, handle: BufferHandle, value: u32) -> Result<()> {
+        self.require_transfer_write(handle, "fill_buffer")?;
+        let buffer = self.buffer(handle)?;
+        // SAFETY: cmd is recording; the buffer is alive for the frame and in transfer-write state.
+        unsafe {
+            self.ctx
+                .device()
+                .cmd_fill_buffer(self.cmd, buffer.raw(), 0, vk::WHOLE_SIZE, value)
+        };
+        Ok(())
+    }
+
+    fn require_transfer_write(&self, handle: BufferHandle, what: &str) -> Result<()> {
+        let access = self.declared(handle, what)?;
+        if access == Access::TransferWrite {
+            Ok(())
+        } else {
+            Err(EngineError::InvalidArgument(format!(
+                "pass {}: {what} needs Access::TransferWrite on {}, not {access:?}",
+                self.pass_name,
+                self.resource_name(handle.id())
+            )))
+        }
+    }
+
     fn missing(&self, id: ResourceId) -> EngineError {
         EngineError::InvalidArgument(format!(
             "pass {}: resource {} has no physical resource",

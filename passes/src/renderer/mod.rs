@@ -1,0 +1,302 @@
+//! The frame, assembled in one place: the sandbox, the command line and an embedding game all render
+//! through [`Renderer`].
+//!
+//! ```no_run
+//! # fn demo() -> lucid_engine::Result<()> {
+//! use lucid_engine::{Context, ContextDesc};
+//! use lucid_passes::renderer::{Renderer, Settings};
+//! let ctx = Context::new(&ContextDesc::from_env())?;
+//! let scene = lucid_engine::scene::builtin::build("cornell-box").expect("built-in scene");
+//! let mut renderer = Renderer::new(&ctx, scene, 256, 256, Settings::default())?;
+//! for _ in 0..16 {
+//!     renderer.render()?;
+//! }
+//! let image = renderer.render_and_read()?; // the accumulated HDR image
+//! # Ok(()) }
+//! ```
+
+mod settings;
+
+pub use settings::{Algorithm, Settings};
+
+use crate::frame_constants::{self, FrameConstants};
+use crate::scene_buffers::{specialization, SceneBuffers};
+use crate::{accumulate, path_trace, tonemap};
+use lucid_engine::capture::ImageData;
+use lucid_engine::graph::{Executor, FrameId, ImageHandle, ReadbackId, RenderGraph};
+use lucid_engine::scene::gpu::{self, GpuCamera, GpuScene};
+use lucid_engine::scene::{Camera, Scene};
+use lucid_engine::bvh::Bvh;
+use lucid_engine::shader::{ShaderLibrary, Specialization};
+use lucid_engine::{Context, EngineError, Result};
+
+/// The images of one frame, for callers that add passes of their own (display, capture).
+#[derive(Clone, Copy, Debug)]
+pub struct FrameImages {
+    /// Noisy radiance of this frame.
+    pub radiance: ImageHandle,
+    /// Radiance demodulated by albedo.
+    pub demodulated: ImageHandle,
+    /// Accumulated (or this frame's) HDR radiance.
+    pub hdr: ImageHandle,
+    /// Tone-mapped sRGB RGBA8.
+    pub ldr: ImageHandle,
+}
+
+/// Counts from the last completed frame.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct FrameStats {
+    /// Samples dropped because they were NaN or infinite.
+    pub non_finite_samples: u32,
+}
+
+/// Renders a scene frame after frame: owns the executor, the scene on the GPU, the camera and
+/// accumulation state.
+pub struct Renderer {
+    ctx: Context,
+    executor: Executor,
+    scene: Scene,
+    bvh: Bvh,
+    gpu: GpuScene,
+    buffers: SceneBuffers,
+    spec: Specialization,
+    camera: Camera,
+    prev_camera: GpuCamera,
+    settings: Settings,
+    width: u32,
+    height: u32,
+    accumulated: u32,
+    frame_index: u32,
+    pending_stats: Option<(FrameId, ReadbackId)>,
+    stats: FrameStats,
+}
+
+impl Renderer {
+    /// Validates `scene`, builds its BVH, uploads it and prepares rendering at `width`×`height`.
+    pub fn new(ctx: &Context, mut scene: Scene, width: u32, height: u32, settings: Settings) -> Result<Self> {
+        check_size(width, height)?;
+        scene
+            .validate()
+            .map_err(|e| EngineError::InvalidArgument(format!("scene {}: {e}", scene.name)))?;
+        let bvh = Bvh::build(&scene);
+        let gpu = GpuScene::new(&scene, &bvh);
+        let buffers = SceneBuffers::upload(ctx, &gpu)?;
+        let spec = specialization(&gpu.features);
+        let library = ShaderLibrary::new(ctx, None)?;
+        let camera = scene.camera;
+        Ok(Self {
+            ctx: ctx.clone(),
+            executor: Executor::new(ctx, library)?,
+            prev_camera: gpu::camera(&camera),
+            camera,
+            scene,
+            bvh,
+            gpu,
+            buffers,
+            spec,
+            settings,
+            width,
+            height,
+            accumulated: 0,
+            frame_index: 0,
+            pending_stats: None,
+            stats: FrameStats::default(),
+        })
+    }
+
+    /// The scene being rendered.
+    pub fn scene(&self) -> &Scene {
+        &self.scene
+    }
+
+    /// The scene's BVH (for picking with CPU traversal).
+    pub fn bvh(&self) -> &Bvh {
+        &self.bvh
+    }
+
+    /// The specialization constants derived from the scene's features.
+    pub fn specialization(&self) -> &Specialization {
+        &self.spec
+    }
+
+    /// The executor (pass timings, shader library, history resets).
+    pub fn executor(&self) -> &Executor {
+        &self.executor
+    }
+
+    /// The executor, to run graphs that [`Renderer::add_frame`] was added to.
+    pub fn executor_mut(&mut self) -> &mut Executor {
+        &mut self.executor
+    }
+
+    /// The current settings.
+    pub fn settings(&self) -> &Settings {
+        &self.settings
+    }
+
+    /// Changes settings; anything but display settings restarts accumulation.
+    pub fn set_settings(&mut self, settings: Settings) {
+        if self.settings.restarts_accumulation(&settings) {
+            self.accumulated = 0;
+        }
+        self.settings = settings;
+    }
+
+    /// The camera.
+    pub fn camera(&self) -> Camera {
+        self.camera
+    }
+
+    /// Moves the camera; a change restarts accumulation.
+    pub fn set_camera(&mut self, camera: Camera) {
+        if camera != self.camera {
+            self.accumulated = 0;
+        }
+        self.camera = camera;
+    }
+
+    /// Output size.
+    pub fn size(&self) -> (u32, u32) {
+        (self.width, self.height)
+    }
+
+    /// Changes the output size (zero sizes are rejected; skip rendering while minimised instead).
+    pub fn resize(&mut self, width: u32, height: u32) -> Result<()> {
+        check_size(width, height)?;
+        if (width, height) != (self.width, self.height) {
+            self.width = width;
+            self.height = height;
+            self.accumulated = 0;
+        }
+        Ok(())
+    }
+
+    /// Places instance `index` of the scene at `transform`: only the top level is rebuilt.
+    pub fn set_instance_transform(&mut self, index: usize, transform: glam::Affine3A) -> Result<()> {
+        let instance = self.scene.instances.get_mut(index).ok_or_else(|| {
+            EngineError::InvalidArgument(format!("scene has no instance {index}"))
+        })?;
+        instance.transform = transform;
+        self.bvh
+            .rebuild_top_level(&self.scene)
+            .map_err(|e| EngineError::InvalidArgument(e.to_string()))?;
+        self.gpu.update_top_level(&self.scene, &self.bvh);
+        self.buffers.update_top_level(&self.ctx, &self.gpu)?;
+        self.accumulated = 0;
+        Ok(())
+    }
+
+    /// Frames averaged into the current output.
+    pub fn accumulated_frames(&self) -> u32 {
+        self.accumulated
+    }
+
+    /// Counts from the last completed frame.
+    pub fn stats(&self) -> FrameStats {
+        self.stats
+    }
+
+    /// Adds this frame's passes to `g` and advances the frame state; run `g` on
+    /// [`Renderer::executor_mut`]. Returns the frame's images and the stats readback.
+    pub fn add_frame(&mut self, g: &mut RenderGraph) -> (FrameImages, ReadbackId) {
+        let (w, h) = (self.width, self.height);
+        let camera = gpu::camera(&self.camera);
+        let accumulated = if self.settings.accumulate { self.accumulated } else { 0 };
+        let constants = FrameConstants {
+            camera,
+            prev_camera: self.prev_camera,
+            frame: [
+                self.frame_index,
+                self.settings.seed,
+                self.settings.samples_per_pixel.max(1),
+                self.settings.max_depth,
+            ],
+            size: [w, h, accumulated, 0],
+            params: [self.settings.rr_depth as f32, 0.0, 0.0, 0.0],
+        };
+        let frame = frame_constants::add(g, &constants);
+        let scene = self.buffers.import(g);
+        let traced = match self.settings.algorithm {
+            Algorithm::PathTracing => path_trace::add(g, &scene, frame, &self.spec, w, h),
+        };
+        let hdr = accumulate::add(g, traced.radiance, w, h, accumulated);
+        let ldr = tonemap::add(g, hdr, w, h, self.settings.display);
+        let stats = g.readback(traced.stats);
+        self.prev_camera = camera;
+        self.frame_index = self.frame_index.wrapping_add(1);
+        self.accumulated = if self.settings.accumulate {
+            accumulated.saturating_add(1)
+        } else {
+            0
+        };
+        (
+            FrameImages {
+                radiance: traced.radiance,
+                demodulated: traced.demodulated,
+                hdr,
+                ldr,
+            },
+            stats,
+        )
+    }
+
+    /// Records the stats of a finished frame.
+    pub fn collect_stats(&mut self, outputs: &lucid_engine::graph::FrameOutputs, stats: ReadbackId) -> Result<()> {
+        let bytes = outputs.bytes(stats)?;
+        let dropped = u32::from_le_bytes([bytes[0], bytes[1], bytes[2], bytes[3]]);
+        if dropped > 0 {
+            tracing::warn!("{dropped} non-finite samples dropped this frame");
+        }
+        self.stats = FrameStats {
+            non_finite_samples: dropped,
+        };
+        Ok(())
+    }
+
+    /// Renders one frame without waiting for it (frames in flight); stats of finished frames are
+    /// collected as they complete.
+    pub fn render(&mut self) -> Result<FrameId> {
+        let mut g = RenderGraph::new();
+        let (_, stats) = self.add_frame(&mut g);
+        let frame = self.executor.execute(g.compile()?)?;
+        if let Some((old, old_stats)) = self.pending_stats.replace((frame, stats)) {
+            let outputs = self.executor.wait(old)?;
+            self.collect_stats(&outputs, old_stats)?;
+        }
+        Ok(frame)
+    }
+
+    /// Renders one frame, waits for it and returns its HDR output (the accumulated image when
+    /// accumulation is on).
+    pub fn render_and_read(&mut self) -> Result<ImageData> {
+        let mut g = RenderGraph::new();
+        let (images, stats) = self.add_frame(&mut g);
+        let hdr = g.readback(images.hdr);
+        let frame = self.executor.execute(g.compile()?)?;
+        if let Some((old, old_stats)) = self.pending_stats.take() {
+            let outputs = self.executor.wait(old)?;
+            self.collect_stats(&outputs, old_stats)?;
+        }
+        let outputs = self.executor.wait(frame)?;
+        self.collect_stats(&outputs, stats)?;
+        outputs.image(hdr)
+    }
+
+    /// Waits for every frame in flight.
+    pub fn finish(&mut self) -> Result<()> {
+        if let Some((old, old_stats)) = self.pending_stats.take() {
+            let outputs = self.executor.wait(old)?;
+            self.collect_stats(&outputs, old_stats)?;
+        }
+        self.executor.wait_all()
+    }
+}
+
+fn check_size(width: u32, height: u32) -> Result<()> {
+    if width == 0 || height == 0 {
+        return Err(EngineError::InvalidArgument(format!(
+            "render size {width}x{height} is empty"
+        )));
+    }
+    Ok(())
+}

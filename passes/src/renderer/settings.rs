@@ -1,0 +1,74 @@
+//! What a frame renders: algorithm, samples, depth, accumulation and display settings.
+
+use lucid_engine::capture::{PngEncoding, ToneCurve};
+
+/// The light-transport algorithm, switchable per frame.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
+pub enum Algorithm {
+    /// Unidirectional path tracing with NEE and MIS.
+    #[default]
+    PathTracing,
+}
+
+impl Algorithm {
+    /// Every algorithm, for menus and argument parsing.
+    pub const ALL: [Algorithm; 1] = [Algorithm::PathTracing];
+
+    /// The short name used on the command line (`pt`).
+    pub fn short_name(self) -> &'static str {
+        match self {
+            Algorithm::PathTracing => "pt",
+        }
+    }
+
+    /// Parses a short name.
+    pub fn from_short_name(name: &str) -> Option<Self> {
+        Self::ALL.into_iter().find(|a| a.short_name() == name)
+    }
+}
+
+/// Render settings. Changing anything but exposure and tone curve restarts accumulation.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Settings {
+    /// The light-transport algorithm.
+    pub algorithm: Algorithm,
+    /// Samples per pixel per frame.
+    pub samples_per_pixel: u32,
+    /// Longest path, in Mitsuba's convention (1: emitters seen directly, 2: direct lighting, ...).
+    pub max_depth: u32,
+    /// Depth from which Russian roulette may end paths.
+    pub rr_depth: u32,
+    /// Seed of the per-pixel random numbers.
+    pub seed: u32,
+    /// Average frames while camera and scene are still.
+    pub accumulate: bool,
+    /// Exposure (stops) and tone curve of the displayed image.
+    pub display: PngEncoding,
+}
+
+impl Default for Settings {
+    fn default() -> Self {
+        Self {
+            algorithm: Algorithm::PathTracing,
+            samples_per_pixel: 1,
+            max_depth: 8,
+            rr_depth: 5,
+            seed: 0,
+            accumulate: true,
+            display: PngEncoding {
+                exposure: 0.0,
+                tone: ToneCurve::Aces,
+            },
+        }
+    }
+}
+
+impl Settings {
+    /// Whether going from `self` to `other` invalidates accumulated samples.
+    pub fn restarts_accumulation(&self, other: &Settings) -> bool {
+        Settings {
+            display: other.display,
+            ..*self
+        } != *other
+    }
+}

@@ -1,0 +1,143 @@
+//! The scene on the GPU: one storage buffer per array of a packed [`GpuScene`], imported into each
+//! frame's graph and bound by the names the shaders declare in `shaders/common/scene.glsl`.
+
+use bytemuck::Pod;
+use lucid_engine::graph::{Access, BufferHandle, Dispatch, PassBuilder, RenderGraph};
+use lucid_engine::memory::Buffer;
+use lucid_engine::scene::gpu::GpuScene;
+use lucid_engine::scene::SceneFeatures;
+use lucid_engine::shader::Specialization;
+use lucid_engine::{Context, Result};
+use std::sync::Arc;
+
+/// The names of the scene buffers in the shaders, in [`SceneBuffers::buffers`] order.
+const NAMES: [&str; 12] = [
+    "b_vertices",
+    "b_indices",
+    "b_blas",
+    "b_tlas",
+    "b_instances",
+    "b_spheres",
+    "b_materials",
+    "b_lights",
+    "b_light_table",
+    "b_texels",
+    "b_textures",
+    "b_scene",
+];
+
+/// Device-local copies of a packed scene.
+pub struct SceneBuffers {
+    buffers: [Arc<Buffer>; 12],
+    /// The features the scene uses (drive shader specialization).
+    pub features: SceneFeatures,
+}
+
+fn upload<T: Pod>(ctx: &Context, name: &str, data: &[T]) -> Result<Arc<Buffer>> {
+    Buffer::with_data(
+        ctx,
+        name,
+        "scene",
+        ash::vk::BufferUsageFlags::STORAGE_BUFFER,
+        bytemuck::cast_slice(data),
+    )
+    .map(Arc::new)
+}
+
+impl SceneBuffers {
+    /// Uploads every array of `gpu`.
+    pub fn upload(ctx: &Context, gpu: &GpuScene) -> Result<Self> {
+        Ok(Self {
+            buffers: [
+                upload(ctx, NAMES[0], &gpu.vertices)?,
+                upload(ctx, NAMES[1], &gpu.indices)?,
+                upload(ctx, NAMES[2], &gpu.blas_nodes)?,
+                upload(ctx, NAMES[3], &gpu.tlas_nodes)?,
+                upload(ctx, NAMES[4], &gpu.instances)?,
+                upload(ctx, NAMES[5], &gpu.spheres)?,
+                upload(ctx, NAMES[6], &gpu.materials)?,
+                upload(ctx, NAMES[7], &gpu.lights)?,
+                upload(ctx, NAMES[8], &gpu.light_table)?,
+                upload(ctx, NAMES[9], &gpu.texels)?,
+                upload(ctx, NAMES[10], &gpu.textures)?,
+                upload(ctx, NAMES[11], std::slice::from_ref(&gpu.params))?,
+            ],
+            features: gpu.features,
+        })
+    }
+
+    /// Re-uploads what moving instances or the camera changes (TLAS, instances, lights, params).
+    /// Frames in flight keep the old buffers alive until they finish.
+    pub fn update_top_level(&mut self, ctx: &Context, gpu: &GpuScene) -> Result<()> {
+        self.buffers[3] = upload(ctx, NAMES[3], &gpu.tlas_nodes)?;
+        self.buffers[4] = upload(ctx, NAMES[4], &gpu.instances)?;
+        self.buffers[7] = upload(ctx, NAMES[7], &gpu.lights)?;
+        self.buffers[8] = upload(ctx, NAMES[8], &gpu.light_table)?;
+        self.buffers[11] = upload(ctx, NAMES[11], std::slice::from_ref(&gpu.params))?;
+        Ok(())
+    }
+
+    /// Replaces the materials (and params) after a material edit.
+    pub fn update_materials(&mut self, ctx: &Context, gpu: &GpuScene) -> Result<()> {
+        self.buffers[6] = upload(ctx, NAMES[6], &gpu.materials)?;
+        self.update_top_level(ctx, gpu)
+    }
+
+    /// Imports the buffers into a frame's graph.
+    pub fn import(&self, g: &mut RenderGraph) -> SceneHandles {
+        SceneHandles {
+            handles: std::array::from_fn(|i| g.import_buffer(NAMES[i], self.buffers[i].clone())),
+        }
+    }
+
+    /// Bytes of scene data on the GPU.
+    pub fn bytes(&self) -> u64 {
+        self.buffers.iter().map(|b| b.size()).sum()
+    }
+}
+
+/// The scene buffers of one frame's graph.
+#[derive(Clone, Copy, Debug)]
+pub struct SceneHandles {
+    handles: [BufferHandle; 12],
+}
+
+impl SceneHandles {
+    /// Declares that the pass reads every scene buffer.
+    pub fn read(&self, pass: &mut PassBuilder<'_>) {
+        for h in self.handles {
+            pass.read(h, Access::ComputeRead);
+        }
+    }
+
+    /// Binds every scene buffer by its shader name.
+    pub fn bind<'p, 'a>(&self, mut dispatch: Dispatch<'p, 'a>) -> Dispatch<'p, 'a> {
+        for (name, h) in NAMES.iter().zip(self.handles) {
+            dispatch = dispatch.buffer(name, h);
+        }
+        dispatch
+    }
+}
+
+/// The specialization constants that compile out what a scene lacks.
+pub fn specialization(features: &SceneFeatures) -> Specialization {
+    let used = |name: &str| {
+        features
+            .specialization_constants()
+            .iter()
+            .find(|(n, _)| *n == name)
+            .is_some_and(|(_, v)| *v)
+    };
+    [
+        "HAS_SPHERES",
+        "HAS_CONDUCTOR",
+        "HAS_DIELECTRIC",
+        "HAS_DIELECTRIC_ROUGH",
+        "HAS_SUN",
+        "HAS_DELTA_LIGHTS",
+        "HAS_ENVIRONMENT",
+        "HAS_TEXTURES",
+    ]
+    .into_iter()
+    .fold(Specialization::new(), |spec, name| spec.set(name, used(name)))
+}

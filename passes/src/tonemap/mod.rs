@@ -1,0 +1,28 @@
+//! Tone mapping: exposure, a filmic curve (ACES fit or AgX) and sRGB, into an 8-bit image
+//! (`shaders/tonemap/tonemap.comp`, identical to `lucid_engine::capture::PngEncoding`).
+
+use crate::shaders::tonemap::TONEMAP;
+use lucid_engine::capture::{PngEncoding, ToneCurve};
+use lucid_engine::graph::{Access, ImageHandle, RenderGraph};
+use lucid_engine::memory::ImageDesc;
+
+/// Adds tone mapping of `hdr` with `encoding`; returns the sRGB-encoded RGBA8 image.
+pub fn add(g: &mut RenderGraph, hdr: ImageHandle, width: u32, height: u32, encoding: PngEncoding) -> ImageHandle {
+    let curve: u32 = match encoding.tone {
+        ToneCurve::Clamp => 0,
+        ToneCurve::Aces => 1,
+        ToneCurve::AgX => 2,
+    };
+    let mut p = g.add_pass("tonemap");
+    let hdr = p.read(hdr, Access::ComputeRead);
+    let ldr = p.create_image("tonemap.ldr", ImageDesc::rgba8(width, height));
+    let ldr = p.write(ldr, Access::ComputeWrite);
+    p.execute(move |ctx| {
+        ctx.compute(&TONEMAP)
+            .image("u_hdr", hdr)
+            .image("u_ldr", ldr)
+            .push(&[encoding.exposure.to_bits(), curve])
+            .dispatch_threads([width, height, 1])
+    });
+    ldr
+}

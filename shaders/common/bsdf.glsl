@@ -1,0 +1,269 @@
+// BSDFs in the local shading frame (normal = +z): Lambertian diffuse, GGX conductor (smooth or
+// rough), dielectric (smooth or rough, Walter et al. 2007). Diffuse and conductors are two-sided.
+// Returned values include the cosine of the incident direction. Specialization constants drop the
+// code of materials a scene lacks. Requires math.glsl.
+#ifndef LUCID_BSDF_GLSL
+#define LUCID_BSDF_GLSL
+
+layout(constant_id = 101) const bool HAS_CONDUCTOR = true;
+layout(constant_id = 102) const bool HAS_DIELECTRIC = true;
+layout(constant_id = 103) const bool HAS_DIELECTRIC_ROUGH = true;
+
+struct BsdfParams {
+    uint kind;        // MATERIAL_*
+    vec3 color;       // albedo, metal F0 or transmission tint
+    float alpha;      // GGX alpha
+    float ior;        // dielectric index of refraction (outside is 1)
+    bool smooth_lobe; // delta reflection / refraction
+};
+
+struct BsdfSample {
+    vec3 wi;
+    vec3 weight; // f * |cos| / pdf
+    float pdf;   // solid-angle pdf (0 for delta lobes)
+    bool delta;
+};
+
+float ggx_d(vec3 h, float alpha) {
+    if (h.z <= 0.0) {
+        return 0.0;
+    }
+    float a2 = alpha * alpha;
+    float c2 = h.z * h.z;
+    float d = c2 * (a2 - 1.0) + 1.0;
+    return a2 / (PI * d * d);
+}
+
+float ggx_lambda(vec3 w, float alpha) {
+    float c2 = w.z * w.z;
+    float t2 = max(0.0, 1.0 - c2) / max(c2, 1e-12);
+    return 0.5 * (sqrt(1.0 + alpha * alpha * t2) - 1.0);
+}
+
+float ggx_g1(vec3 w, float alpha) {
+    return 1.0 / (1.0 + ggx_lambda(w, alpha));
+}
+
+float ggx_g2(vec3 wo, vec3 wi, float alpha) {
+    return 1.0 / (1.0 + ggx_lambda(wo, alpha) + ggx_lambda(wi, alpha));
+}
+
+// Visible-normal sampling (Heitz 2018) for wo in the upper hemisphere.
+vec3 ggx_sample_visible(vec3 wo, float alpha, vec2 u) {
+    vec3 vh = normalize(vec3(alpha * wo.x, alpha * wo.y, wo.z));
+    float len2 = vh.x * vh.x + vh.y * vh.y;
+    vec3 t1 = len2 > 0.0 ? vec3(-vh.y, vh.x, 0.0) * inversesqrt(len2) : vec3(1.0, 0.0, 0.0);
+    vec3 t2 = cross(vh, t1);
+    float r = sqrt(u.x);
+    float phi = 2.0 * PI * u.y;
+    float p1 = r * cos(phi);
+    float p2 = r * sin(phi);
+    float s = 0.5 * (1.0 + vh.z);
+    p2 = (1.0 - s) * sqrt(max(0.0, 1.0 - p1 * p1)) + s * p2;
+    vec3 nh = p1 * t1 + p2 * t2 + sqrt(max(0.0, 1.0 - p1 * p1 - p2 * p2)) * vh;
+    return normalize(vec3(alpha * nh.x, alpha * nh.y, max(1e-6, nh.z)));
+}
+
+// pdf of the visible normal h for wo (upper hemisphere).
+float ggx_visible_pdf(vec3 wo, vec3 h, float alpha) {
+    return ggx_g1(wo, alpha) * max(0.0, dot(wo, h)) * ggx_d(h, alpha) / max(wo.z, 1e-8);
+}
+
+vec3 fresnel_schlick(vec3 f0, float cos_theta) {
+    float m = clamp(1.0 - cos_theta, 0.0, 1.0);
+    float m5 = m * m * m * m * m;
+    return f0 + (1.0 - f0) * m5;
+}
+
+// Unpolarised Fresnel reflectance for a dielectric; eta = n_transmitted / n_incident,
+// cos_i > 0 on the incident side. cos_t returns the transmitted cosine (0 on total reflection).
+float fresnel_dielectric(float cos_i, float eta, out float cos_t) {
+    float sin2_t = (1.0 - cos_i * cos_i) / (eta * eta);
+    if (sin2_t >= 1.0) {
+        cos_t = 0.0;
+        return 1.0;
+    }
+    cos_t = sqrt(1.0 - sin2_t);
+    float rs = (cos_i - eta * cos_t) / (cos_i + eta * cos_t);
+    float rp = (eta * cos_i - cos_t) / (eta * cos_i + cos_t);
+    return 0.5 * (rs * rs + rp * rp);
+}
+
+// ---- diffuse ----
+
+vec3 diffuse_eval(BsdfParams m, vec3 wo, vec3 wi, out float pdf) {
+    pdf = 0.0;
+    if (wo.z * wi.z <= 0.0) {
+        return vec3(0.0);
+    }
+    pdf = abs(wi.z) * INV_PI;
+    return m.color * INV_PI * abs(wi.z);
+}
+
+bool diffuse_sample(BsdfParams m, vec3 wo, vec2 u, out BsdfSample s) {
+    vec3 wi = sample_cosine_hemisphere(u);
+    s.wi = wo.z < 0.0 ? -wi : wi;
+    s.pdf = wi.z * INV_PI;
+    s.weight = m.color;
+    s.delta = false;
+    return s.pdf > 0.0;
+}
+
+// ---- conductor ----
+
+vec3 conductor_eval(BsdfParams m, vec3 wo, vec3 wi, out float pdf) {
+    pdf = 0.0;
+    if (m.smooth_lobe || wo.z * wi.z <= 0.0) {
+        return vec3(0.0);
+    }
+    float flip = wo.z < 0.0 ? -1.0 : 1.0;
+    wo.z *= flip;
+    wi.z *= flip;
+    vec3 h = normalize(wo + wi);
+    float d = ggx_d(h, m.alpha);
+    pdf = ggx_visible_pdf(wo, h, m.alpha) / (4.0 * max(dot(wo, h), 1e-8));
+    vec3 f = fresnel_schlick(m.color, dot(wi, h));
+    return f * d * ggx_g2(wo, wi, m.alpha) / (4.0 * wo.z);
+}
+
+bool conductor_sample(BsdfParams m, vec3 wo, vec2 u, out BsdfSample s) {
+    float flip = wo.z < 0.0 ? -1.0 : 1.0;
+    wo.z *= flip;
+    if (m.smooth_lobe) {
+        s.wi = vec3(-wo.x, -wo.y, wo.z * flip);
+        s.weight = fresnel_schlick(m.color, wo.z);
+        s.pdf = 0.0;
+        s.delta = true;
+        return true;
+    }
+    vec3 h = ggx_sample_visible(wo, m.alpha, u);
+    vec3 wi = reflect(-wo, h);
+    s.delta = false;
+    if (wi.z <= 0.0) {
+        return false;
+    }
+    s.pdf = ggx_visible_pdf(wo, h, m.alpha) / (4.0 * max(dot(wo, h), 1e-8));
+    s.weight = fresnel_schlick(m.color, dot(wi, h)) * ggx_g2(wo, wi, m.alpha) / ggx_g1(wo, m.alpha);
+    s.wi = vec3(wi.xy, wi.z * flip);
+    return s.pdf > 0.0;
+}
+
+// ---- dielectric ----
+
+// Generalised half vector of a refraction, facing +z.
+vec3 refraction_half(vec3 wo, vec3 wi, float eta_o, float eta_i) {
+    vec3 h = -(eta_o * wo + eta_i * wi);
+    return normalize(h.z < 0.0 ? -h : h);
+}
+
+vec3 dielectric_eval(BsdfParams m, vec3 wo, vec3 wi, out float pdf) {
+    pdf = 0.0;
+    if (m.smooth_lobe || wo.z == 0.0 || wi.z == 0.0) {
+        return vec3(0.0);
+    }
+    bool entering = wo.z > 0.0;
+    float eta = entering ? m.ior : 1.0 / m.ior; // n on the wi side of refraction / n on wo side
+    // Work with wo in the upper hemisphere.
+    float flip = entering ? 1.0 : -1.0;
+    vec3 o = vec3(wo.xy, wo.z * flip);
+    vec3 i = vec3(wi.xy, wi.z * flip);
+    bool reflection = i.z > 0.0;
+    vec3 h = reflection ? normalize(o + i) : refraction_half(o, i, 1.0, eta);
+    if (dot(o, h) <= 0.0 || (reflection ? dot(i, h) <= 0.0 : dot(i, h) >= 0.0)) {
+        return vec3(0.0);
+    }
+    float cos_t;
+    float f = fresnel_dielectric(dot(o, h), eta, cos_t);
+    float d = ggx_d(h, m.alpha);
+    float g = ggx_g2(o, i, m.alpha);
+    float vis = ggx_visible_pdf(o, h, m.alpha);
+    if (reflection) {
+        pdf = f * vis / (4.0 * dot(o, h));
+        return vec3(f * d * g / (4.0 * o.z));
+    }
+    float denom = dot(o, h) + eta * dot(i, h);
+    float jacobian = eta * eta * abs(dot(i, h)) / (denom * denom);
+    pdf = (1.0 - f) * vis * jacobian;
+    float value = (1.0 - f) * d * g * abs(dot(i, h)) * abs(dot(o, h)) * eta * eta / (o.z * denom * denom);
+    // Radiance is scaled by 1 / eta^2 when it crosses into the other medium.
+    return m.color * value / (eta * eta);
+}
+
+bool dielectric_sample(BsdfParams m, vec3 wo, vec3 u, out BsdfSample s) {
+    bool entering = wo.z > 0.0;
+    float eta = entering ? m.ior : 1.0 / m.ior;
+    float flip = entering ? 1.0 : -1.0;
+    vec3 o = vec3(wo.xy, wo.z * flip);
+    vec3 h = m.smooth_lobe ? vec3(0.0, 0.0, 1.0) : ggx_sample_visible(o, m.alpha, u.xy);
+    float cos_o = dot(o, h);
+    if (cos_o <= 0.0) {
+        return false;
+    }
+    float cos_t;
+    float f = fresnel_dielectric(cos_o, eta, cos_t);
+    vec3 i;
+    bool reflection = u.z < f;
+    if (reflection) {
+        i = reflect(-o, h);
+    } else {
+        i = (-o / eta) + (cos_o / eta - cos_t) * h;
+        i = normalize(i);
+    }
+    if (reflection ? i.z <= 0.0 : i.z >= 0.0) {
+        return false;
+    }
+    s.wi = vec3(i.xy, i.z * flip);
+    s.delta = m.smooth_lobe;
+    vec3 tint = reflection ? vec3(1.0) : m.color / (eta * eta);
+    if (m.smooth_lobe) {
+        s.pdf = 0.0;
+        s.weight = tint;
+        return true;
+    }
+    // Microfacet: weight = G2 / G1(o) for the chosen lobe (Fresnel cancels its selection pdf).
+    s.weight = tint * ggx_g2(o, i, m.alpha) / ggx_g1(o, m.alpha);
+    float vis = ggx_visible_pdf(o, h, m.alpha);
+    if (reflection) {
+        s.pdf = f * vis / (4.0 * cos_o);
+    } else {
+        float denom = cos_o + eta * dot(i, h);
+        s.pdf = (1.0 - f) * vis * eta * eta * abs(dot(i, h)) / (denom * denom);
+    }
+    return s.pdf > 0.0;
+}
+
+// ---- dispatch ----
+
+vec3 bsdf_eval(BsdfParams m, vec3 wo, vec3 wi, out float pdf) {
+    if (HAS_CONDUCTOR && m.kind == MATERIAL_CONDUCTOR) {
+        return conductor_eval(m, wo, wi, pdf);
+    }
+    if (HAS_DIELECTRIC && m.kind == MATERIAL_DIELECTRIC) {
+        if (!HAS_DIELECTRIC_ROUGH) {
+            pdf = 0.0;
+            return vec3(0.0);
+        }
+        return dielectric_eval(m, wo, wi, pdf);
+    }
+    return diffuse_eval(m, wo, wi, pdf);
+}
+
+bool bsdf_sample(BsdfParams m, vec3 wo, vec3 u, out BsdfSample s) {
+    if (HAS_CONDUCTOR && m.kind == MATERIAL_CONDUCTOR) {
+        return conductor_sample(m, wo, u.xy, s);
+    }
+    if (HAS_DIELECTRIC && m.kind == MATERIAL_DIELECTRIC) {
+        if (!HAS_DIELECTRIC_ROUGH) {
+            m.smooth_lobe = true;
+        }
+        return dielectric_sample(m, wo, u, s);
+    }
+    return diffuse_sample(m, wo, u.xy, s);
+}
+
+// Whether the BSDF is a pure delta (no next-event estimation is useful).
+bool bsdf_is_delta(BsdfParams m) {
+    return m.kind != MATERIAL_DIFFUSE && m.smooth_lobe;
+}
+
+#endif

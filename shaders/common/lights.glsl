@@ -1,0 +1,194 @@
+// Light sampling for next-event estimation and the matching pdfs for MIS: emissive triangles and
+// spheres (power-proportional alias table), point and spot lights, the sun, and the environment
+// (reached by BSDF sampling only). Requires scene.glsl, math.glsl.
+#ifndef LUCID_LIGHTS_GLSL
+#define LUCID_LIGHTS_GLSL
+
+layout(constant_id = 104) const bool HAS_SUN = true;
+layout(constant_id = 105) const bool HAS_DELTA_LIGHTS = true;
+layout(constant_id = 106) const bool HAS_ENVIRONMENT = true;
+
+struct LightSample {
+    vec3 wi;        // unit direction from the shading point to the light
+    float dist;     // distance to the sampled point (T_INFINITY for the sun)
+    vec3 radiance;  // arriving radiance (or intensity / dist^2 for delta lights)
+    float pdf;      // solid-angle pdf including selection (selection only for delta lights)
+    bool delta;
+};
+
+bool sun_enabled() {
+    return HAS_SUN && b_scene.p.sun.radiance_enabled.w > 0.0;
+}
+
+// Probability of choosing the sun over the light table.
+float sun_selection() {
+    if (!sun_enabled()) {
+        return 0.0;
+    }
+    return b_scene.p.counts0.w > 0u ? 0.5 : 1.0;
+}
+
+vec3 environment_radiance(vec3 dir) {
+    if (!HAS_ENVIRONMENT) {
+        return vec3(0.0);
+    }
+    Environment e = b_scene.p.environment;
+    if (e.kind == 0u) {
+        return e.zenith.rgb;
+    }
+    return dir.y <= 0.0 ? e.ground.rgb : mix(e.horizon.rgb, e.zenith.rgb, sqrt(dir.y));
+}
+
+// The sun's radiance seen along dir (0 outside its disc).
+vec3 sun_radiance(vec3 dir) {
+    if (!sun_enabled()) {
+        return vec3(0.0);
+    }
+    Sun s = b_scene.p.sun;
+    return dot(dir, s.direction_cos.xyz) >= s.direction_cos.w ? s.radiance_enabled.rgb : vec3(0.0);
+}
+
+float sun_pdf() {
+    float cos_max = b_scene.p.sun.direction_cos.w;
+    return sun_selection() / (2.0 * PI * max(1.0 - cos_max, 1e-7));
+}
+
+// The emitting side of a triangle: its geometric normal turned towards the shading normals.
+vec3 triangle_front_normal(uint instance, uint tri, vec3 p0, vec3 p1, vec3 p2) {
+    vec3 ng = normalize(cross(p1 - p0, p2 - p0));
+    Instance inst = b_instances.i[instance];
+    vec3 ns = decode_normal(b_vertices.v[b_indices.i[3u * tri]].normal)
+            + decode_normal(b_vertices.v[b_indices.i[3u * tri + 1u]].normal)
+            + decode_normal(b_vertices.v[b_indices.i[3u * tri + 2u]].normal);
+    ns = transform_normal(inst.world_to_object, ns);
+    return dot(ng, ns) < 0.0 ? -ng : ng;
+}
+
+float emitter_power(vec3 emission, float area) {
+    return PI * area * luminance(emission);
+}
+
+// Solid-angle pdf that NEE samples the point `p_light` on emissive triangle `tri` of `instance`
+// (world vertices p0..p2) from `p`.
+float triangle_light_pdf(vec3 p, vec3 p_light, vec3 front, vec3 p0, vec3 p1, vec3 p2, vec3 emission) {
+    float total = b_scene.p.light.x;
+    float area = 0.5 * length(cross(p1 - p0, p2 - p0));
+    if (total <= 0.0 || area <= 0.0) {
+        return 0.0;
+    }
+    vec3 d = p_light - p;
+    float dist2 = dot(d, d);
+    float cos_l = abs(dot(front, normalize(d)));
+    float selection = emitter_power(emission, area) / total * (1.0 - sun_selection());
+    return selection * dist2 / max(cos_l * area, 1e-12);
+}
+
+float sphere_light_pdf(vec3 p, vec4 center_radius, vec3 emission) {
+    float total = b_scene.p.light.x;
+    float r = center_radius.w;
+    float d2 = dot(center_radius.xyz - p, center_radius.xyz - p);
+    if (total <= 0.0 || d2 <= r * r) {
+        return 0.0;
+    }
+    float cos_max = sqrt(max(0.0, 1.0 - r * r / d2));
+    float selection = emitter_power(emission, 4.0 * PI * r * r) / total * (1.0 - sun_selection());
+    return selection / (2.0 * PI * max(1.0 - cos_max, 1e-7));
+}
+
+uint pick_light(float u, uint count) {
+    float scaled = u * float(count);
+    uint i = min(uint(scaled), count - 1u);
+    LightTableEntry e = b_light_table.e[i];
+    return fract(scaled) < e.threshold ? i : e.alias;
+}
+
+// Samples a light as seen from p. u.x picks the light; u.yz place the point.
+bool sample_light(vec3 p, vec3 u, out LightSample ls) {
+    ls.delta = false;
+    ls.dist = T_INFINITY;
+    ls.radiance = vec3(0.0);
+    ls.pdf = 0.0;
+    ls.wi = vec3(0.0, 1.0, 0.0);
+    float p_sun = sun_selection();
+    uint count = b_scene.p.counts0.w;
+    if (u.x < p_sun) {
+        Sun s = b_scene.p.sun;
+        vec3 t;
+        vec3 b;
+        make_frame(s.direction_cos.xyz, t, b);
+        ls.wi = to_world(sample_cone(u.yz, s.direction_cos.w), t, b, s.direction_cos.xyz);
+        ls.radiance = s.radiance_enabled.rgb;
+        ls.pdf = sun_pdf();
+        return true;
+    }
+    if (count == 0u) {
+        return false;
+    }
+    float u_pick = p_sun > 0.0 ? (u.x - p_sun) / (1.0 - p_sun) : u.x;
+    uint index = pick_light(min(u_pick, 0.99999994), count);
+    Light light = b_lights.l[index];
+    float selection = b_light_table.e[index].pdf * (1.0 - p_sun);
+    if (light.kind == LIGHT_TRIANGLE) {
+        float su = sqrt(u.y);
+        vec2 bary = vec2(1.0 - su, u.z * su);
+        vec3 q = bary.x * light.p0.xyz + bary.y * light.p1.xyz + (1.0 - bary.x - bary.y) * light.p2.xyz;
+        vec3 front = triangle_front_normal(light.instance, light.index, light.p0.xyz, light.p1.xyz, light.p2.xyz);
+        vec3 d = q - p;
+        float dist2 = dot(d, d);
+        ls.dist = sqrt(dist2);
+        ls.wi = d / ls.dist;
+        float cos_l = -dot(front, ls.wi);
+        float area = light.p0.w;
+        if (cos_l <= 0.0 || area <= 0.0) {
+            return false;
+        }
+        ls.radiance = light.emission.rgb;
+        ls.pdf = selection * dist2 / (cos_l * area);
+        return true;
+    }
+    if (light.kind == LIGHT_SPHERE) {
+        vec3 c = light.p0.xyz;
+        float r = light.p0.w;
+        vec3 to_c = c - p;
+        float d2 = dot(to_c, to_c);
+        if (d2 <= r * r) {
+            return false;
+        }
+        float d = sqrt(d2);
+        float cos_max = sqrt(max(0.0, 1.0 - r * r / d2));
+        vec3 axis = to_c / d;
+        vec3 t;
+        vec3 b;
+        make_frame(axis, t, b);
+        vec3 local = sample_cone(u.yz, cos_max);
+        ls.wi = to_world(local, t, b, axis);
+        // Distance to the first intersection with the sphere along wi.
+        float proj = d * local.z;
+        float h2 = max(0.0, r * r - (d2 - proj * proj));
+        ls.dist = proj - sqrt(h2);
+        ls.radiance = light.emission.rgb;
+        ls.pdf = selection / (2.0 * PI * max(1.0 - cos_max, 1e-7));
+        return true;
+    }
+    if (HAS_DELTA_LIGHTS) {
+        vec3 d = light.p0.xyz - p;
+        float dist2 = dot(d, d);
+        ls.dist = sqrt(dist2);
+        ls.wi = d / ls.dist;
+        ls.delta = true;
+        ls.pdf = selection;
+        float falloff = 1.0;
+        if (light.kind == LIGHT_SPOT) {
+            float cos_a = dot(-ls.wi, light.p1.xyz);
+            float cos_outer = light.p1.w;
+            float cos_inner = light.p2.x;
+            falloff = clamp((cos_a - cos_outer) / max(cos_inner - cos_outer, 1e-4), 0.0, 1.0);
+            falloff *= falloff;
+        }
+        ls.radiance = light.emission.rgb * falloff / max(dist2, 1e-8);
+        return falloff > 0.0;
+    }
+    return false;
+}
+
+#endif

@@ -1,0 +1,105 @@
+// What a ray hit: position, geometric and shading normals, uv, material. Requires scene.glsl,
+// traverse.glsl, bsdf.glsl.
+#ifndef LUCID_SURFACE_GLSL
+#define LUCID_SURFACE_GLSL
+
+layout(constant_id = 107) const bool HAS_TEXTURES = true;
+
+struct Surface {
+    vec3 p;
+    vec3 ng;        // geometric normal, on the side of the shading normal (the "front")
+    vec3 ns;        // shading normal
+    vec2 uv;
+    uint material;
+    uint object_id; // scene instance, or 0x80000000 | sphere
+    // Emitting-triangle data for MIS (world vertices); unused for spheres.
+    vec3 p0;
+    vec3 p1;
+    vec3 p2;
+    bool sphere;
+    vec4 center_radius;
+};
+
+Surface surface_at(Hit hit, vec3 origin, vec3 dir) {
+    Surface s;
+    Instance inst = b_instances.i[hit.instance];
+    s.p = origin + dir * hit.t;
+    s.sphere = HAS_SPHERES && inst.kind == INSTANCE_SPHERES;
+    if (s.sphere) {
+        Sphere sp = b_spheres.s[hit.primitive];
+        vec3 c = transform_point(inst.object_to_world, sp.center_radius.xyz);
+        s.center_radius = vec4(c, sp.center_radius.w);
+        s.ng = normalize(s.p - c);
+        s.ns = s.ng;
+        vec3 n = s.ng;
+        s.uv = vec2(atan(n.z, n.x) * (0.5 * INV_PI) + 0.5, acos(clamp(n.y, -1.0, 1.0)) * INV_PI);
+        s.material = sp.material;
+        s.object_id = 0x80000000u | sp.scene_sphere;
+        return s;
+    }
+    uint i0 = b_indices.i[3u * hit.primitive];
+    uint i1 = b_indices.i[3u * hit.primitive + 1u];
+    uint i2 = b_indices.i[3u * hit.primitive + 2u];
+    Vertex v0 = b_vertices.v[i0];
+    Vertex v1 = b_vertices.v[i1];
+    Vertex v2 = b_vertices.v[i2];
+    vec3 b = vec3(1.0 - hit.bary.x - hit.bary.y, hit.bary.x, hit.bary.y);
+    s.p0 = transform_point(inst.object_to_world, vec3(v0.px, v0.py, v0.pz));
+    s.p1 = transform_point(inst.object_to_world, vec3(v1.px, v1.py, v1.pz));
+    s.p2 = transform_point(inst.object_to_world, vec3(v2.px, v2.py, v2.pz));
+    s.p = b.x * s.p0 + b.y * s.p1 + b.z * s.p2;
+    vec3 ns = b.x * decode_normal(v0.normal) + b.y * decode_normal(v1.normal) + b.z * decode_normal(v2.normal);
+    s.ns = normalize(transform_normal(inst.world_to_object, ns));
+    s.ng = normalize(cross(s.p1 - s.p0, s.p2 - s.p0));
+    if (dot(s.ng, s.ns) < 0.0) {
+        s.ng = -s.ng;
+    }
+    if (HAS_TEXTURES) {
+        s.uv = b.x * unpackHalf2x16(v0.uv) + b.y * unpackHalf2x16(v1.uv) + b.z * unpackHalf2x16(v2.uv);
+    } else {
+        s.uv = vec2(0.0);
+    }
+    s.material = inst.material;
+    s.object_id = inst.scene_instance;
+    return s;
+}
+
+BsdfParams material_params(uint material, vec2 uv) {
+    Material m = b_materials.m[material];
+    BsdfParams p;
+    p.kind = m.kind;
+    p.color = m.base_color;
+    if (HAS_TEXTURES && m.texture != 0xffffffffu) {
+        p.color *= sample_texture(m.texture, uv).rgb;
+    }
+    p.alpha = max(m.alpha, 1e-4);
+    p.ior = m.ior;
+    p.smooth_lobe = (m.flags & MATERIAL_FLAG_SMOOTH) != 0u;
+    return p;
+}
+
+// The colour a denoiser divides radiance by (and multiplies back): the material's base colour for
+// diffuse and conductors, white for dielectrics.
+vec3 demodulation_albedo(BsdfParams m) {
+    return m.kind == MATERIAL_DIELECTRIC ? vec3(1.0) : m.color;
+}
+
+// Radiance emitted from the surface towards -dir (one-sided: front only).
+vec3 surface_emission(Surface s, vec3 dir) {
+    Material m = b_materials.m[s.material];
+    if ((m.flags & MATERIAL_FLAG_EMISSIVE) == 0u || dot(s.ng, dir) >= 0.0) {
+        return vec3(0.0);
+    }
+    return m.emission;
+}
+
+// The NEE pdf of having sampled this emitting surface point from `from` (for MIS).
+float surface_light_pdf(Surface s, vec3 from) {
+    vec3 emission = b_materials.m[s.material].emission;
+    if (s.sphere) {
+        return sphere_light_pdf(from, s.center_radius, emission);
+    }
+    return triangle_light_pdf(from, s.p, s.ng, s.p0, s.p1, s.p2, emission);
+}
+
+#endif

@@ -1,0 +1,205 @@
+// Ray queries over the two-level BVH (TLAS over instances, BLAS over triangles or spheres):
+// stack-based, near child first, with early exit for shadow rays. Requires scene.glsl.
+#ifndef LUCID_TRAVERSE_GLSL
+#define LUCID_TRAVERSE_GLSL
+
+layout(constant_id = 100) const bool HAS_SPHERES = true;
+
+const uint TLAS_STACK = 24u;
+const uint BLAS_STACK = 40u;
+const float T_INFINITY = 3.0e38;
+
+struct Hit {
+    float t;
+    uint instance;  // index in b_instances
+    uint primitive; // global triangle index, or sphere index
+    vec2 bary;      // barycentrics (v1, v2) for triangles
+};
+
+// Entry distance of the ray into the box, or T_INFINITY when missed or beyond t_max.
+float box_entry(BvhNode node, vec3 origin, vec3 inv_dir, float t_max) {
+    vec3 t0 = (vec3(node.min_x, node.min_y, node.min_z) - origin) * inv_dir;
+    vec3 t1 = (vec3(node.max_x, node.max_y, node.max_z) - origin) * inv_dir;
+    vec3 lo = min(t0, t1);
+    vec3 hi = max(t0, t1);
+    float enter = max(max(lo.x, lo.y), max(lo.z, 0.0));
+    float leave = min(min(hi.x, hi.y), min(hi.z, t_max));
+    return enter <= leave ? enter : T_INFINITY;
+}
+
+vec3 safe_inverse(vec3 d) {
+    const float tiny = 1e-20;
+    return 1.0 / vec3(abs(d.x) > tiny ? d.x : (d.x >= 0.0 ? tiny : -tiny),
+                      abs(d.y) > tiny ? d.y : (d.y >= 0.0 ? tiny : -tiny),
+                      abs(d.z) > tiny ? d.z : (d.z >= 0.0 ? tiny : -tiny));
+}
+
+// Möller-Trumbore; returns t (or T_INFINITY) and barycentrics.
+float intersect_triangle(uint tri, vec3 o, vec3 d, float t_max, out vec2 bary) {
+    vec3 p0 = vertex_position(b_indices.i[3u * tri]);
+    vec3 p1 = vertex_position(b_indices.i[3u * tri + 1u]);
+    vec3 p2 = vertex_position(b_indices.i[3u * tri + 2u]);
+    vec3 e1 = p1 - p0;
+    vec3 e2 = p2 - p0;
+    vec3 pv = cross(d, e2);
+    float det = dot(e1, pv);
+    bary = vec2(0.0);
+    if (abs(det) < 1e-12) {
+        return T_INFINITY;
+    }
+    float inv_det = 1.0 / det;
+    vec3 tv = o - p0;
+    float u = dot(tv, pv) * inv_det;
+    if (u < 0.0 || u > 1.0) {
+        return T_INFINITY;
+    }
+    vec3 qv = cross(tv, e1);
+    float v = dot(d, qv) * inv_det;
+    if (v < 0.0 || u + v > 1.0) {
+        return T_INFINITY;
+    }
+    float t = dot(e2, qv) * inv_det;
+    bary = vec2(u, v);
+    return (t > 0.0 && t < t_max) ? t : T_INFINITY;
+}
+
+// Nearest positive root of |o + t d - c| = r within (0, t_max).
+float intersect_sphere(uint s, vec3 o, vec3 d, float t_max) {
+    vec4 cr = b_spheres.s[s].center_radius;
+    vec3 oc = o - cr.xyz;
+    float a = dot(d, d);
+    float b = dot(oc, d);
+    float c = dot(oc, oc) - cr.w * cr.w;
+    float disc = b * b - a * c;
+    if (disc < 0.0) {
+        return T_INFINITY;
+    }
+    float q = sqrt(disc);
+    float t = (-b - q) / a;
+    if (t <= 1e-5 * cr.w / sqrt(a)) {
+        t = (-b + q) / a;
+    }
+    return (t > 1e-5 * cr.w / sqrt(a) && t < t_max) ? t : T_INFINITY;
+}
+
+// Traverses one instance's BLAS in object space. Updates hit when closer; with any_hit, stops at
+// the first hit and returns true.
+bool traverse_blas(uint inst_index, Instance inst, vec3 o, vec3 d, bool any_hit, inout Hit hit) {
+    vec3 inv_dir = safe_inverse(d);
+    uint stack[BLAS_STACK];
+    uint sp = 0u;
+    uint node_index = inst.blas_root;
+    bool found = false;
+    while (true) {
+        BvhNode node = b_blas.n[node_index];
+        if (node.count > 0u) {
+            for (uint k = 0u; k < node.count; ++k) {
+                uint prim = node.left_or_first + k;
+                vec2 bary = vec2(0.0);
+                float t;
+                if (HAS_SPHERES && inst.kind == INSTANCE_SPHERES) {
+                    t = intersect_sphere(prim, o, d, hit.t);
+                } else {
+                    t = intersect_triangle(prim, o, d, hit.t, bary);
+                }
+                if (t < hit.t) {
+                    hit.t = t;
+                    hit.instance = inst_index;
+                    hit.primitive = prim;
+                    hit.bary = bary;
+                    found = true;
+                    if (any_hit) {
+                        return true;
+                    }
+                }
+            }
+        } else if (node.left_or_first != 0u) {
+            uint left = node.left_or_first;
+            float t_left = box_entry(b_blas.n[left], o, inv_dir, hit.t);
+            float t_right = box_entry(b_blas.n[left + 1u], o, inv_dir, hit.t);
+            uint near_child = t_left <= t_right ? left : left + 1u;
+            uint far_child = t_left <= t_right ? left + 1u : left;
+            float t_near = min(t_left, t_right);
+            float t_far = max(t_left, t_right);
+            if (t_near < T_INFINITY) {
+                if (t_far < T_INFINITY && sp < BLAS_STACK) {
+                    stack[sp++] = far_child;
+                }
+                node_index = near_child;
+                continue;
+            }
+        }
+        if (sp == 0u) {
+            break;
+        }
+        node_index = stack[--sp];
+    }
+    return found;
+}
+
+// Closest hit along origin + t * dir for t in (0, t_max). Returns false on a miss.
+bool trace_ray(vec3 origin, vec3 dir, float t_max, bool any_hit, out Hit hit) {
+    hit.t = t_max;
+    hit.instance = 0xffffffffu;
+    hit.primitive = 0u;
+    hit.bary = vec2(0.0);
+    if (b_scene.p.counts1.z == 0u) {
+        return false;
+    }
+    vec3 inv_dir = safe_inverse(dir);
+    uint stack[TLAS_STACK];
+    uint sp = 0u;
+    uint node_index = 0u;
+    bool found = false;
+    if (box_entry(b_tlas.n[0], origin, inv_dir, hit.t) == T_INFINITY) {
+        return false;
+    }
+    while (true) {
+        BvhNode node = b_tlas.n[node_index];
+        if (node.count > 0u) {
+            for (uint k = 0u; k < node.count; ++k) {
+                uint inst_index = node.left_or_first + k;
+                Instance inst = b_instances.i[inst_index];
+                vec3 o = transform_point(inst.world_to_object, origin);
+                vec3 d = transform_vector(inst.world_to_object, dir);
+                if (traverse_blas(inst_index, inst, o, d, any_hit, hit)) {
+                    found = true;
+                    if (any_hit) {
+                        return true;
+                    }
+                }
+            }
+        } else if (node.left_or_first != 0u) {
+            uint left = node.left_or_first;
+            float t_left = box_entry(b_tlas.n[left], origin, inv_dir, hit.t);
+            float t_right = box_entry(b_tlas.n[left + 1u], origin, inv_dir, hit.t);
+            uint near_child = t_left <= t_right ? left : left + 1u;
+            uint far_child = t_left <= t_right ? left + 1u : left;
+            float t_near = min(t_left, t_right);
+            float t_far = max(t_left, t_right);
+            if (t_near < T_INFINITY) {
+                if (t_far < T_INFINITY && sp < TLAS_STACK) {
+                    stack[sp++] = far_child;
+                }
+                node_index = near_child;
+                continue;
+            }
+        }
+        if (sp == 0u) {
+            break;
+        }
+        node_index = stack[--sp];
+    }
+    return found;
+}
+
+bool trace_closest(vec3 origin, vec3 dir, float t_max, out Hit hit) {
+    return trace_ray(origin, dir, t_max, false, hit);
+}
+
+bool trace_occluded(vec3 origin, vec3 dir, float t_max) {
+    Hit hit;
+    return trace_ray(origin, dir, t_max, true, hit);
+}
+
+#endif

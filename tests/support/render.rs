@@ -1,0 +1,26 @@
+//! Rendering helpers for frame-capture tests.
+
+use lucid_engine::capture::ImageData;
+use lucid_engine::scene::{builtin, Scene};
+use lucid_passes::renderer::{Renderer, Settings};
+
+/// Builds a built-in scene, panicking with the error if it cannot.
+pub fn scene(name: &str) -> Scene {
+    builtin::build(name).unwrap_or_else(|e| panic!("built-in scene {name}: {e}"))
+}
+
+/// Renders `frames` accumulated frames of `scene` at `size` with `settings` and returns the
+/// accumulated HDR image, checking that no validation message was produced.
+pub fn render_accumulated(scene: Scene, size: (u32, u32), settings: Settings, frames: u32) -> ImageData {
+    let ctx = crate::context(false);
+    let mut renderer = Renderer::new(&ctx, scene, size.0, size.1, Settings { accumulate: true, ..settings })
+        .expect("renderer");
+    for _ in 1..frames {
+        renderer.render().expect("frame");
+    }
+    let image = renderer.render_and_read().expect("last frame");
+    assert_eq!(renderer.stats().non_finite_samples, 0, "no NaN/Inf samples");
+    drop(renderer);
+    crate::assert_no_validation_messages(&ctx);
+    image
+}
