@@ -25,7 +25,10 @@ pub struct FrameConstants {
 pub fn add(g: &mut RenderGraph, constants: &FrameConstants) -> BufferHandle {
     let data = *constants;
     let mut p = g.add_pass("frame_constants");
-    let buffer = p.create_buffer("frame_constants", std::mem::size_of::<FrameConstants>() as u64);
+    let buffer = p.create_buffer(
+        "frame_constants",
+        std::mem::size_of::<FrameConstants>() as u64,
+    );
     let buffer = p.write(buffer, Access::TransferWrite);
     p.execute(move |ctx| ctx.update_buffer(buffer, bytemuck::bytes_of(&data)));
     buffer

@@ -7,6 +7,7 @@
 pub mod accumulate;
 pub mod frame_constants;
 pub mod path_trace;
+pub mod ray_query;
 pub mod renderer;
 pub mod scene_buffers;
 pub mod stats;

@@ -139,5 +139,7 @@ pub fn specialization(features: &SceneFeatures) -> Specialization {
         "HAS_TEXTURES",
     ]
     .into_iter()
-    .fold(Specialization::new(), |spec, name| spec.set(name, used(name)))
+    .fold(Specialization::new(), |spec, name| {
+        spec.set(name, used(name))
+    })
 }

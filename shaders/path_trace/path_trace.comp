@@ -1,8 +1,10 @@
 #version 460
+#extension GL_KHR_shader_subgroup_arithmetic : require
+#extension GL_KHR_shader_subgroup_basic : require
 // Unidirectional path tracing: next-event estimation and BSDF sampling combined with multiple
 // importance sampling (power heuristic), Russian roulette, `spp` samples per pixel. Writes the
 // noisy radiance and radiance demodulated by the first-hit albedo. Non-finite samples are dropped
-// and counted in b_stats.
+// and counted in b_stats, as are the rays traced (for rays/s figures).
 #include "common/math.glsl"
 #include "common/rng.glsl"
 #include "common/scene.glsl"
@@ -17,7 +19,9 @@ layout(local_size_x = 8, local_size_y = 8) in;
 
 layout(set = 0, binding = 16, rgba32f) uniform writeonly image2D u_radiance;
 layout(set = 0, binding = 17, rgba32f) uniform writeonly image2D u_demodulated;
-layout(set = 0, binding = 18, std430) buffer Stats { uint non_finite; uint samples; uint pad0; uint pad1; } b_stats;
+layout(set = 0, binding = 18, std430) buffer Stats { uint non_finite; uint rays; uint pad0; uint pad1; } b_stats;
+
+uint g_rays = 0u;
 
 vec3 trace_path(vec3 o, vec3 d, inout uint rng, uint max_depth, uint rr_depth, out vec3 first_albedo) {
     vec3 radiance = vec3(0.0);
@@ -28,6 +32,7 @@ vec3 trace_path(vec3 o, vec3 d, inout uint rng, uint max_depth, uint rr_depth, o
     first_albedo = vec3(1.0);
     for (uint depth = 0u; depth < max_depth; ++depth) {
         Hit hit;
+        g_rays += 1u;
         if (!trace_closest(o, d, T_INFINITY, hit)) {
             vec3 sun = sun_radiance(d);
             float w_sun = prev_delta ? 1.0 : power_heuristic(prev_pdf, sun_pdf());
@@ -61,6 +66,7 @@ vec3 trace_path(vec3 o, vec3 d, inout uint rng, uint max_depth, uint rr_depth, o
                 if (max3(f) > 0.0) {
                     vec3 origin = offset_origin(s.p, s.ng, ls.wi);
                     float t_max = ls.dist >= T_INFINITY ? T_INFINITY : ls.dist * (1.0 - 1e-3);
+                    g_rays += 1u;
                     if (!trace_occluded(origin, ls.wi, t_max)) {
                         float w = ls.delta ? 1.0 : power_heuristic(ls.pdf, bsdf_pdf);
                         radiance += beta * f * ls.radiance * (w / ls.pdf);
@@ -120,6 +126,10 @@ void main() {
     }
     if (dropped > 0u) {
         atomicAdd(b_stats.non_finite, dropped);
+    }
+    uint rays = subgroupAdd(g_rays);
+    if (subgroupElect()) {
+        atomicAdd(b_stats.rays, rays);
     }
     vec3 radiance = sum / float(spp);
     vec3 albedo = albedo_sum / float(spp);

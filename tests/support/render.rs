@@ -11,10 +11,24 @@ pub fn scene(name: &str) -> Scene {
 
 /// Renders `frames` accumulated frames of `scene` at `size` with `settings` and returns the
 /// accumulated HDR image, checking that no validation message was produced.
-pub fn render_accumulated(scene: Scene, size: (u32, u32), settings: Settings, frames: u32) -> ImageData {
+pub fn render_accumulated(
+    scene: Scene,
+    size: (u32, u32),
+    settings: Settings,
+    frames: u32,
+) -> ImageData {
     let ctx = crate::context(false);
-    let mut renderer = Renderer::new(&ctx, scene, size.0, size.1, Settings { accumulate: true, ..settings })
-        .expect("renderer");
+    let mut renderer = Renderer::new(
+        &ctx,
+        scene,
+        size.0,
+        size.1,
+        Settings {
+            accumulate: true,
+            ..settings
+        },
+    )
+    .expect("renderer");
     for _ in 1..frames {
         renderer.render().expect("frame");
     }

@@ -105,10 +105,10 @@ impl Extent {
     }
 }
 
-/// Per-axis bin contents.
+/// Per-axis bin contents: primitive bounds and counts.
 #[derive(Clone, Copy)]
 struct Bins {
-    extent: [[Extent; BINS]; 3],
+    bounds: [[Aabb; BINS]; 3],
     count: [[u32; BINS]; 3],
 }
 
@@ -117,31 +117,33 @@ struct Bins {
 struct Binner {
     origin: Vec3,
     scale: Vec3,
+    bins: usize,
 }
 
 impl Binner {
-    fn new(centroids: &Aabb) -> Self {
+    fn new(centroids: &Aabb, bins: usize) -> Self {
         let e = centroids.extent();
         let scale = Vec3::select(
             e.cmpgt(Vec3::ZERO),
-            Vec3::splat(BINS as f32) / e,
+            Vec3::splat(bins as f32) / e,
             Vec3::ZERO,
         );
         Self {
             origin: centroids.min,
             scale,
+            bins,
         }
     }
 
     fn bin(&self, c: Vec3, axis: usize) -> usize {
-        (((c[axis] - self.origin[axis]) * self.scale[axis]) as usize).min(BINS - 1)
+        (((c[axis] - self.origin[axis]) * self.scale[axis]) as usize).min(self.bins - 1)
     }
 }
 
 impl Bins {
     fn empty() -> Self {
         Self {
-            extent: [[Extent::EMPTY; BINS]; 3],
+            bounds: [[Aabb::EMPTY; BINS]; 3],
             count: [[0; BINS]; 3],
         }
     }
@@ -156,10 +158,11 @@ impl Bins {
         let mut bins = Bins::empty();
         for p in prims {
             let c = p.centroid();
+            let b = p.bounds();
             for axis in 0..3 {
-                let b = binner.bin(c, axis);
-                bins.extent[axis][b].add(p);
-                bins.count[axis][b] += 1;
+                let k = binner.bin(c, axis);
+                bins.bounds[axis][k] = bins.bounds[axis][k].union(b);
+                bins.count[axis][k] += 1;
             }
         }
         bins
@@ -168,7 +171,7 @@ impl Bins {
     fn merge(mut self, o: Bins) -> Bins {
         for axis in 0..3 {
             for b in 0..BINS {
-                self.extent[axis][b] = self.extent[axis][b].merge(o.extent[axis][b]);
+                self.bounds[axis][b] = self.bounds[axis][b].union(o.bounds[axis][b]);
                 self.count[axis][b] += o.count[axis][b];
             }
         }
@@ -182,39 +185,40 @@ struct Split {
     /// Primitives in bins `< bin` go left.
     bin: usize,
     cost: f32,
-    left: Extent,
-    right: Extent,
+    left: Aabb,
+    right: Aabb,
 }
 
 fn best_split(binner: &Binner, bins: &Bins, parent_area: f32) -> Option<Split> {
+    let nb = binner.bins;
     let mut best: Option<Split> = None;
     for axis in 0..3 {
         if binner.scale[axis] == 0.0 {
             continue;
         }
-        // Suffix sweep: right extents and counts for every split position.
-        let mut right = [Extent::EMPTY; BINS];
+        // Suffix sweep: right bounds, areas and counts for every split.
+        let mut right = [Aabb::EMPTY; BINS];
         let mut right_count = [0u32; BINS];
-        let mut acc = Extent::EMPTY;
+        let mut acc = Aabb::EMPTY;
         let mut n = 0;
-        for b in (1..BINS).rev() {
-            acc = acc.merge(bins.extent[axis][b]);
+        for b in (1..nb).rev() {
+            acc = acc.union(bins.bounds[axis][b]);
             n += bins.count[axis][b];
             right[b] = acc;
             right_count[b] = n;
         }
-        let mut left = Extent::EMPTY;
+        let mut left = Aabb::EMPTY;
         let mut left_count = 0;
-        for b in 1..BINS {
-            left = left.merge(bins.extent[axis][b - 1]);
+        for b in 1..nb {
+            left = left.union(bins.bounds[axis][b - 1]);
             left_count += bins.count[axis][b - 1];
             if left_count == 0 || right_count[b] == 0 {
                 continue;
             }
             let cost = TRAVERSAL_COST
                 + INTERSECTION_COST
-                    * (left.bounds.surface_area() * left_count as f32
-                        + right[b].bounds.surface_area() * right_count[b] as f32)
+                    * (left.surface_area() * left_count as f32
+                        + right[b].surface_area() * right_count[b] as f32)
                     / parent_area.max(f32::MIN_POSITIVE);
             if best.as_ref().is_none_or(|s| cost < s.cost) {
                 best = Some(Split {
@@ -242,13 +246,23 @@ fn decide(prims: &mut [PrimRef], extent: &Extent) -> Decision {
     if n <= 1 {
         return Decision::Leaf;
     }
-    let binner = Binner::new(&extent.centroids);
+    let binner = Binner::new(&extent.centroids, n.clamp(4, BINS));
     let bins = Bins::fill(&binner, prims);
     let leaf_cost = INTERSECTION_COST * n as f32;
     match best_split(&binner, &bins, extent.bounds.surface_area()) {
         Some(s) if s.cost < leaf_cost || n > MAX_LEAF => {
-            let mid = partition(prims, |p| binner.bin(p.centroid(), s.axis) < s.bin);
-            Decision::Split(mid, s.left, s.right)
+            let (mid, lc, rc) = partition(prims, |c| binner.bin(c, s.axis) < s.bin);
+            Decision::Split(
+                mid,
+                Extent {
+                    bounds: s.left,
+                    centroids: lc,
+                },
+                Extent {
+                    bounds: s.right,
+                    centroids: rc,
+                },
+            )
         }
         Some(_) => Decision::Leaf,
         None if n <= MAX_LEAF => Decision::Leaf,
@@ -260,18 +274,24 @@ fn decide(prims: &mut [PrimRef], extent: &Extent) -> Decision {
     }
 }
 
-fn partition(prims: &mut [PrimRef], goes_left: impl Fn(&PrimRef) -> bool) -> usize {
+/// Partitions by centroid, returning the split point and the centroid
+/// bounds of both sides.
+fn partition(prims: &mut [PrimRef], goes_left: impl Fn(Vec3) -> bool) -> (usize, Aabb, Aabb) {
+    let (mut lc, mut rc) = (Aabb::EMPTY, Aabb::EMPTY);
     let mut i = 0;
     let mut j = prims.len();
     while i < j {
-        if goes_left(&prims[i]) {
+        let c = prims[i].centroid();
+        if goes_left(c) {
+            lc = lc.grown_by_point(c);
             i += 1;
         } else {
+            rc = rc.grown_by_point(c);
             j -= 1;
             prims.swap(i, j);
         }
     }
-    i
+    (i, lc, rc)
 }
 
 /// Builds a BVH over `prims` (consumed; their order becomes the leaf order).

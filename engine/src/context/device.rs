@@ -25,6 +25,9 @@ pub struct DeviceInfo {
     pub shader_float16: bool,
     /// Whether a present-capable queue is in use (a window was given).
     pub present: bool,
+    /// Whether shaders may `atomicAdd` 32-bit floats in buffers and images
+    /// (`VK_EXT_shader_atomic_float`; light tracing splats with it).
+    pub float_atomics: bool,
 }
 
 /// The chosen physical device, its queue family and the created logical device.
@@ -175,7 +178,30 @@ pub(crate) fn create_device(
         .features(base)
         .push_next(&mut f12)
         .push_next(&mut f13);
+    let has_float_atomics_ext = device_extensions(instance, physical)
+        .iter()
+        .any(|e| e.as_bytes() == ash::ext::shader_atomic_float::NAME.to_bytes());
+    let mut supported_atomics = vk::PhysicalDeviceShaderAtomicFloatFeaturesEXT::default();
+    if has_float_atomics_ext {
+        let mut query = vk::PhysicalDeviceFeatures2::default().push_next(&mut supported_atomics);
+        // SAFETY: physical comes from this instance; the chain points at locals.
+        unsafe { instance.get_physical_device_features2(physical, &mut query) };
+    }
+    let float_atomics = has_float_atomics_ext
+        && supported_atomics.shader_buffer_float32_atomic_add == vk::TRUE
+        && supported_atomics.shader_image_float32_atomic_add == vk::TRUE;
+    let mut atomics = vk::PhysicalDeviceShaderAtomicFloatFeaturesEXT::default()
+        .shader_buffer_float32_atomics(float_atomics)
+        .shader_buffer_float32_atomic_add(float_atomics)
+        .shader_image_float32_atomics(float_atomics)
+        .shader_image_float32_atomic_add(float_atomics);
+    if float_atomics {
+        features = features.push_next(&mut atomics);
+    }
     let mut extensions = vec![ash::khr::push_descriptor::NAME.as_ptr()];
+    if float_atomics {
+        extensions.push(ash::ext::shader_atomic_float::NAME.as_ptr());
+    }
     if need_swapchain {
         extensions.push(ash::khr::swapchain::NAME.as_ptr());
     }
@@ -211,6 +237,7 @@ pub(crate) fn create_device(
         max_shared_memory: props.limits.max_compute_shared_memory_size,
         shader_float16,
         present: need_swapchain,
+        float_atomics,
     };
     tracing::info!(
         "Vulkan device: {} (Vulkan {}.{}.{})",

@@ -197,6 +197,7 @@ impl Context {
             max_shared_memory: props.limits.max_compute_shared_memory_size,
             shader_float16: false,
             present: false,
+            float_atomics: false,
         };
         Self::assemble(
             existing,

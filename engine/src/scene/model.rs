@@ -259,11 +259,12 @@ impl Scene {
             }
         }
         if let Some(s) = &self.sun {
-            if !(s.direction.is_normalized()
+            let ok = s.direction.is_normalized()
                 && s.irradiance.is_finite()
-                && s.irradiance.min_element() >= 0.0)
-                || !(s.angular_radius > 0.0 && s.angular_radius < 0.5)
-            {
+                && s.irradiance.min_element() >= 0.0
+                && s.angular_radius > 0.0
+                && s.angular_radius < 0.5;
+            if !ok {
                 return invalid("sun has out-of-range parameters".into());
             }
         }

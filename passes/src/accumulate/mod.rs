@@ -10,14 +10,24 @@ pub const HISTORY_KEY: &str = "accumulate.radiance";
 
 /// Adds accumulation of `input`: with `accumulated` = n frames already averaged (0 restarts), the
 /// result is the mean of the last n + 1 frames.
-pub fn add(g: &mut RenderGraph, input: ImageHandle, width: u32, height: u32, accumulated: u32) -> ImageHandle {
+pub fn add(
+    g: &mut RenderGraph,
+    input: ImageHandle,
+    width: u32,
+    height: u32,
+    accumulated: u32,
+) -> ImageHandle {
     let history = g.temporal_image(HISTORY_KEY, ImageDesc::rgba32f(width, height));
     let mut p = g.add_pass("accumulate");
     let input = p.read(input, Access::ComputeRead);
     let prev = p.read(history.prev, Access::ComputeRead);
     let cur = p.write(history.cur, Access::ComputeWrite);
     p.execute(move |ctx| {
-        let accumulated = if ctx.history_valid(prev) { accumulated } else { 0 };
+        let accumulated = if ctx.history_valid(prev) {
+            accumulated
+        } else {
+            0
+        };
         ctx.compute(&ACCUMULATE)
             .image("u_new", input)
             .image("u_prev", prev)

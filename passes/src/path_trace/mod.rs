@@ -14,7 +14,7 @@ pub struct Outputs {
     pub radiance: ImageHandle,
     /// Radiance divided by the first-hit albedo, for denoisers.
     pub demodulated: ImageHandle,
-    /// `[non-finite samples dropped, 0, 0, 0]` as u32.
+    /// `[non-finite samples dropped, rays traced, 0, 0]` as u32.
     pub stats: BufferHandle,
 }
 

@@ -22,11 +22,11 @@ pub use settings::{Algorithm, Settings};
 use crate::frame_constants::{self, FrameConstants};
 use crate::scene_buffers::{specialization, SceneBuffers};
 use crate::{accumulate, path_trace, tonemap};
+use lucid_engine::bvh::Bvh;
 use lucid_engine::capture::ImageData;
 use lucid_engine::graph::{Executor, FrameId, ImageHandle, ReadbackId, RenderGraph};
 use lucid_engine::scene::gpu::{self, GpuCamera, GpuScene};
 use lucid_engine::scene::{Camera, Scene};
-use lucid_engine::bvh::Bvh;
 use lucid_engine::shader::{ShaderLibrary, Specialization};
 use lucid_engine::{Context, EngineError, Result};
 
@@ -48,6 +48,8 @@ pub struct FrameImages {
 pub struct FrameStats {
     /// Samples dropped because they were NaN or infinite.
     pub non_finite_samples: u32,
+    /// Rays traced (closest-hit and shadow rays).
+    pub rays: u32,
 }
 
 /// Renders a scene frame after frame: owns the executor, the scene on the GPU, the camera and
@@ -73,7 +75,13 @@ pub struct Renderer {
 
 impl Renderer {
     /// Validates `scene`, builds its BVH, uploads it and prepares rendering at `width`×`height`.
-    pub fn new(ctx: &Context, mut scene: Scene, width: u32, height: u32, settings: Settings) -> Result<Self> {
+    pub fn new(
+        ctx: &Context,
+        mut scene: Scene,
+        width: u32,
+        height: u32,
+        settings: Settings,
+    ) -> Result<Self> {
         check_size(width, height)?;
         scene
             .validate()
@@ -172,7 +180,11 @@ impl Renderer {
     }
 
     /// Places instance `index` of the scene at `transform`: only the top level is rebuilt.
-    pub fn set_instance_transform(&mut self, index: usize, transform: glam::Affine3A) -> Result<()> {
+    pub fn set_instance_transform(
+        &mut self,
+        index: usize,
+        transform: glam::Affine3A,
+    ) -> Result<()> {
         let instance = self.scene.instances.get_mut(index).ok_or_else(|| {
             EngineError::InvalidArgument(format!("scene has no instance {index}"))
         })?;
@@ -201,7 +213,11 @@ impl Renderer {
     pub fn add_frame(&mut self, g: &mut RenderGraph) -> (FrameImages, ReadbackId) {
         let (w, h) = (self.width, self.height);
         let camera = gpu::camera(&self.camera);
-        let accumulated = if self.settings.accumulate { self.accumulated } else { 0 };
+        let accumulated = if self.settings.accumulate {
+            self.accumulated
+        } else {
+            0
+        };
         let constants = FrameConstants {
             camera,
             prev_camera: self.prev_camera,
@@ -240,15 +256,30 @@ impl Renderer {
         )
     }
 
+    /// The compiled plan of the next frame (passes, barriers, lifetimes, aliasing), without rendering
+    /// it or changing any state.
+    pub fn frame_plan(&mut self) -> Result<lucid_engine::graph::Plan> {
+        let saved = (self.prev_camera, self.frame_index, self.accumulated);
+        let mut g = RenderGraph::new();
+        self.add_frame(&mut g);
+        (self.prev_camera, self.frame_index, self.accumulated) = saved;
+        Ok(g.compile()?.plan)
+    }
+
     /// Records the stats of a finished frame.
-    pub fn collect_stats(&mut self, outputs: &lucid_engine::graph::FrameOutputs, stats: ReadbackId) -> Result<()> {
-        let bytes = outputs.bytes(stats)?;
-        let dropped = u32::from_le_bytes([bytes[0], bytes[1], bytes[2], bytes[3]]);
+    pub fn collect_stats(
+        &mut self,
+        outputs: &lucid_engine::graph::FrameOutputs,
+        stats: ReadbackId,
+    ) -> Result<()> {
+        let words: Vec<u32> = bytemuck::pod_collect_to_vec(outputs.bytes(stats)?);
+        let (dropped, rays) = (words[0], words[1]);
         if dropped > 0 {
             tracing::warn!("{dropped} non-finite samples dropped this frame");
         }
         self.stats = FrameStats {
             non_finite_samples: dropped,
+            rays,
         };
         Ok(())
     }

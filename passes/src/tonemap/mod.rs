@@ -7,7 +7,13 @@ use lucid_engine::graph::{Access, ImageHandle, RenderGraph};
 use lucid_engine::memory::ImageDesc;
 
 /// Adds tone mapping of `hdr` with `encoding`; returns the sRGB-encoded RGBA8 image.
-pub fn add(g: &mut RenderGraph, hdr: ImageHandle, width: u32, height: u32, encoding: PngEncoding) -> ImageHandle {
+pub fn add(
+    g: &mut RenderGraph,
+    hdr: ImageHandle,
+    width: u32,
+    height: u32,
+    encoding: PngEncoding,
+) -> ImageHandle {
     let curve: u32 = match encoding.tone {
         ToneCurve::Clamp => 0,
         ToneCurve::Aces => 1,

@@ -35,7 +35,10 @@ pub fn run(args: &InfoArgs) -> anyhow::Result<()> {
             info.api_version.0, info.api_version.1, info.api_version.2
         );
         println!("subgroup size: {}", info.subgroup_size);
-        println!("shared memory: {} bytes per workgroup", info.max_shared_memory);
+        println!(
+            "shared memory: {} bytes per workgroup",
+            info.max_shared_memory
+        );
         println!(
             "timestamps:    {} ({} ns per tick)",
             info.timestamps, info.timestamp_period_ns

@@ -1,31 +1,54 @@
 //! The `lucid` subcommands.
 
+mod bench;
 mod info;
+mod progress;
 mod render;
+mod render_options;
+mod scene_source;
+mod scenes;
 mod size;
+mod view;
 
 use clap::{Parser, Subcommand};
 
 /// Lucid: real-time physically based light transport with a temporal denoiser.
+///
+/// Without a subcommand it opens the sandbox window on the default scene.
 #[derive(Debug, Parser)]
-#[command(name = "lucid", version, about, arg_required_else_help = true)]
+#[command(name = "lucid", version, about)]
 pub struct Cli {
     #[command(subcommand)]
-    command: Command,
+    command: Option<Command>,
 }
 
 #[derive(Debug, Subcommand)]
 enum Command {
+    /// Open the interactive sandbox on a scene (the default without a subcommand).
+    View(view::ViewArgs),
     /// Show the Vulkan device Lucid would use, its limits and the validation level.
     Info(info::InfoArgs),
+    /// List the built-in scenes with their triangle counts and features.
+    Scenes(scenes::ScenesArgs),
     /// Render frames headless and write the result as EXR (HDR) or PNG (tone-mapped).
     Render(render::RenderArgs),
+    /// Measure GPU frame time, per-pass times, paths/s and rays/s.
+    Bench(bench::BenchArgs),
 }
 
 /// Runs the parsed command.
 pub fn run(cli: Cli) -> anyhow::Result<()> {
-    match cli.command {
+    let command = match cli.command {
+        Some(command) => command,
+        None => Cli::parse_from(["lucid", "view"])
+            .command
+            .expect("`lucid view` parses to a command"),
+    };
+    match command {
+        Command::View(args) => view::run(&args),
         Command::Info(args) => info::run(&args),
+        Command::Scenes(args) => scenes::run(&args),
         Command::Render(args) => render::run(&args),
+        Command::Bench(args) => bench::run(&args),
     }
 }

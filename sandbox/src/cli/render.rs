@@ -1,56 +1,78 @@
 //! `lucid render`: a headless render written to an image.
 
-use super::size::Size;
+use super::progress::Progress;
+use super::render_options::RenderOptions;
+use super::scene_source;
 use anyhow::{bail, Context as _};
 use clap::Args;
-use lucid_engine::capture;
-use lucid_engine::graph::{Executor, RenderGraph};
-use lucid_engine::shader::ShaderLibrary;
+use lucid_engine::capture::{self, ExrPrecision};
 use lucid_engine::{Context, ContextDesc};
-use lucid_passes::test_pattern;
+use lucid_passes::renderer::Renderer;
 use std::path::PathBuf;
 
 /// Options of `lucid render`.
 #[derive(Debug, Args)]
 pub struct RenderArgs {
-    /// What to render: `test-pattern` (a three-pass graph self-test).
-    #[arg(long, default_value = "test-pattern")]
-    scene: String,
-    /// Image size.
-    #[arg(long, default_value = "256x256")]
-    size: Size,
-    /// Output file: `.exr` (linear HDR) or `.png` (tone-mapped sRGB).
+    #[command(flatten)]
+    options: RenderOptions,
+    /// Frames to accumulate (the image averages frames × spp samples per pixel).
+    #[arg(long, default_value_t = 16, value_parser = clap::value_parser!(u32).range(1..))]
+    frames: u32,
+    /// Output file: `.exr` (linear HDR, 32-bit float) or `.png` (tone-mapped sRGB).
     #[arg(long, default_value = "lucid.png")]
     out: PathBuf,
-    /// Print the compiled render graph (passes, barriers, lifetimes, aliasing).
+    /// Print the compiled render graph of one frame.
     #[arg(long)]
     dump_graph: bool,
 }
 
 /// Renders and writes the image.
 pub fn run(args: &RenderArgs) -> anyhow::Result<()> {
-    if args.scene != "test-pattern" {
-        bail!("unknown scene {:?}; available: test-pattern", args.scene);
+    let extension = args
+        .out
+        .extension()
+        .map(|e| e.to_string_lossy().to_lowercase())
+        .unwrap_or_default();
+    if extension != "png" && extension != "exr" {
+        bail!("--out {} must end in .png or .exr", args.out.display());
     }
+    let scene = scene_source::load(&args.options.scene)?;
     let ctx = Context::new(&ContextDesc::from_env())?;
-    let library = ShaderLibrary::new(&ctx, None)?;
-    let mut executor = Executor::new(&ctx, library)?;
-    let (w, h) = (args.size.width, args.size.height);
-    let mut graph = RenderGraph::new();
-    let outputs = test_pattern::add(&mut graph, w, h, &test_pattern::Params::default());
-    let readback = graph.readback(outputs.pattern);
-    let compiled = graph.compile()?;
+    let (w, h) = (args.options.size.width, args.options.size.height);
+    let mut renderer = Renderer::new(&ctx, scene, w, h, args.options.settings(true))?;
     if args.dump_graph {
-        print!("{}", compiled.plan.dump());
+        print!("{}", renderer.frame_plan()?.dump());
     }
-    let frame = executor.execute(compiled)?;
-    let image = executor.wait(frame)?.image(readback)?;
-    capture::save(&args.out, &image).with_context(|| format!("writing {}", args.out.display()))?;
-    let total: f64 = executor.pass_timings().iter().map(|t| t.ms).sum();
-    println!(
-        "rendered {} {w}x{h} on {} in {total:.3} ms GPU time -> {}",
-        args.scene,
+    eprintln!(
+        "rendering {} ({} triangles) {w}x{h}, {} frames x {} spp on {}; specialization: {}",
+        renderer.scene().name,
+        renderer.scene().triangle_count(),
+        args.frames,
+        args.options.spp,
         ctx.info().name,
+        renderer.scene().features()
+    );
+    let progress = Progress::new(args.frames as u64, "frames");
+    let started = std::time::Instant::now();
+    for _ in 1..args.frames {
+        renderer.render()?;
+        progress.inc();
+    }
+    let image = renderer.render_and_read()?;
+    progress.finish();
+    let seconds = started.elapsed().as_secs_f64();
+    if extension == "exr" {
+        capture::save_exr(&args.out, &image, ExrPrecision::F32)
+    } else {
+        capture::save_png(&args.out, &image, &args.options.display())
+    }
+    .with_context(|| format!("writing {}", args.out.display()))?;
+    println!(
+        "{}: {} frames x {} spp in {seconds:.2} s, {} non-finite samples dropped -> {}",
+        renderer.scene().name,
+        args.frames,
+        args.options.spp,
+        renderer.stats().non_finite_samples,
         args.out.display()
     );
     Ok(())

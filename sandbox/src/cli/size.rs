@@ -36,7 +36,13 @@ mod tests {
 
     #[test]
     fn parses_and_rejects_sizes() {
-        assert_eq!("64x32".parse::<Size>(), Ok(Size { width: 64, height: 32 }));
+        assert_eq!(
+            "64x32".parse::<Size>(),
+            Ok(Size {
+                width: 64,
+                height: 32
+            })
+        );
         assert!("64".parse::<Size>().is_err());
         assert!("0x10".parse::<Size>().is_err());
         assert!("axb".parse::<Size>().is_err());

@@ -15,7 +15,12 @@ fn wood_texture() -> Texture {
         .map(|i| {
             let (x, y) = ((i % size) as f32, (i / size) as f32);
             let ring = ((x * 0.35 + (y * 0.21).sin() * 2.0).sin() * 0.5 + 0.5) * 40.0;
-            [(150.0 + ring) as u8, (100.0 + ring * 0.6) as u8, (60.0 + ring * 0.3) as u8, 255]
+            [
+                (150.0 + ring) as u8,
+                (100.0 + ring * 0.6) as u8,
+                (60.0 + ring * 0.3) as u8,
+                255,
+            ]
         })
         .collect();
     Texture {
@@ -40,45 +45,113 @@ pub fn build(options: &BuildOptions) -> Result<Scene, SceneError> {
     let mut wood = Material::diffuse("desk-wood", Vec3::ONE);
     wood.base_color_texture = Some(wood_tex);
     let wood = scene.add_material(wood);
-    let steel = scene.add_material(Material::conductor("steel", Vec3::new(0.63, 0.62, 0.6), 0.2));
-    let plastic = scene.add_material(Material::diffuse("chair-plastic", Vec3::new(0.1, 0.25, 0.55)));
-    let panel = scene.add_material(Material::emissive("ceiling-panel", Vec3::new(12.0, 11.5, 10.5)));
+    let steel = scene.add_material(Material::conductor(
+        "steel",
+        Vec3::new(0.63, 0.62, 0.6),
+        0.2,
+    ));
+    let plastic = scene.add_material(Material::diffuse(
+        "chair-plastic",
+        Vec3::new(0.1, 0.25, 0.55),
+    ));
+    let panel = scene.add_material(Material::emissive(
+        "ceiling-panel",
+        Vec3::new(12.0, 11.5, 10.5),
+    ));
 
     let mut room = MeshBuilder::new();
-    room.quad(Vec3::new(-6.0, 3.2, -5.0), Vec3::X * 12.0, Vec3::Z * 10.0, 1, 1);
-    room.quad(Vec3::new(6.0, 0.0, -5.0), Vec3::Z * 10.0, Vec3::Y * 3.2, 1, 1);
-    room.quad(Vec3::new(6.0, 0.0, 5.0), Vec3::NEG_X * 12.0, Vec3::Y * 3.2, 1, 1);
-    room.quad(Vec3::new(-6.0, 0.0, -5.0), Vec3::X * 12.0, Vec3::Y * 3.2, 1, 1);
+    room.quad(
+        Vec3::new(-6.0, 3.2, -5.0),
+        Vec3::X * 12.0,
+        Vec3::Z * 10.0,
+        1,
+        1,
+    );
+    room.quad(
+        Vec3::new(6.0, 0.0, -5.0),
+        Vec3::Z * 10.0,
+        Vec3::Y * 3.2,
+        1,
+        1,
+    );
+    room.quad(
+        Vec3::new(6.0, 0.0, 5.0),
+        Vec3::NEG_X * 12.0,
+        Vec3::Y * 3.2,
+        1,
+        1,
+    );
+    room.quad(
+        Vec3::new(-6.0, 0.0, -5.0),
+        Vec3::X * 12.0,
+        Vec3::Y * 3.2,
+        1,
+        1,
+    );
     wall_with_openings(
         &mut room,
         Vec3::new(-6.0, 0.0, 5.0),
         Vec3::NEG_Z * 10.0,
         Vec3::Y * 3.2,
-        &[[0.1, 0.3, 0.28, 0.85], [0.41, 0.3, 0.59, 0.85], [0.72, 0.3, 0.9, 0.85]],
+        &[
+            [0.1, 0.3, 0.28, 0.85],
+            [0.41, 0.3, 0.59, 0.85],
+            [0.72, 0.3, 0.9, 0.85],
+        ],
     );
     scene.add_mesh_instance(room.build("room", wall));
     let mut floor = MeshBuilder::new();
-    floor.quad(Vec3::new(-6.0, 0.0, 5.0), Vec3::X * 12.0, Vec3::NEG_Z * 10.0, 1, 1);
+    floor.quad(
+        Vec3::new(-6.0, 0.0, 5.0),
+        Vec3::X * 12.0,
+        Vec3::NEG_Z * 10.0,
+        1,
+        1,
+    );
     scene.add_mesh_instance(floor.build("floor", floor_mat));
     let mut blackboard = MeshBuilder::new();
     blackboard.cuboid(Vec3::new(-3.0, 0.9, -5.0), Vec3::new(3.0, 2.3, -4.97), 1);
     scene.add_mesh_instance(blackboard.build("blackboard", board));
 
     let mut top = MeshBuilder::new();
-    top.cuboid(Vec3::new(-0.6, 0.72, -0.3), Vec3::new(0.6, 0.76, 0.3), res(24.0, 1));
+    top.cuboid(
+        Vec3::new(-0.6, 0.72, -0.3),
+        Vec3::new(0.6, 0.76, 0.3),
+        res(24.0, 1),
+    );
     let desk_top = scene.add_mesh(top.build("desk-top", wood));
     let mut legs = MeshBuilder::new();
     for (x, z) in [(-0.55, -0.25), (0.55, -0.25), (-0.55, 0.25), (0.55, 0.25)] {
-        legs.cylinder(Vec3::new(x, 0.0, z), 0.025, 0.72, res(40.0, 6), res(20.0, 1));
+        legs.cylinder(
+            Vec3::new(x, 0.0, z),
+            0.025,
+            0.72,
+            res(40.0, 6),
+            res(20.0, 1),
+        );
     }
     let desk_legs = scene.add_mesh(legs.build("desk-legs", steel));
     let mut seat = MeshBuilder::new();
-    seat.cuboid(Vec3::new(-0.22, 0.42, -0.22), Vec3::new(0.22, 0.46, 0.22), res(16.0, 1));
-    seat.cuboid(Vec3::new(-0.22, 0.46, 0.19), Vec3::new(0.22, 0.9, 0.22), res(16.0, 1));
+    seat.cuboid(
+        Vec3::new(-0.22, 0.42, -0.22),
+        Vec3::new(0.22, 0.46, 0.22),
+        res(16.0, 1),
+    );
+    seat.cuboid(
+        Vec3::new(-0.22, 0.46, 0.19),
+        Vec3::new(0.22, 0.9, 0.22),
+        res(16.0, 1),
+    );
     let chair_seat = scene.add_mesh(seat.build("chair-seat", plastic));
     let mut chair_legs = MeshBuilder::new();
     for (x, z) in [(-0.19, -0.19), (0.19, -0.19), (-0.19, 0.19), (0.19, 0.19)] {
-        chair_legs.cylinder(Vec3::new(x, 0.0, z), 0.018, 0.42, res(32.0, 6), res(16.0, 1));
+        chair_legs.cylinder(
+            Vec3::new(x, 0.0, z),
+            0.018,
+            0.42,
+            res(32.0, 6),
+            res(16.0, 1),
+        );
     }
     let chair_legs = scene.add_mesh(chair_legs.build("chair-legs", steel));
 
@@ -95,7 +168,11 @@ pub fn build(options: &BuildOptions) -> Result<Scene, SceneError> {
             scene.add_instance(chair_legs, chair, None);
         }
     }
-    let teacher = Affine3A::from_scale_rotation_translation(Vec3::new(1.4, 1.0, 1.2), Quat::IDENTITY, Vec3::new(0.0, 0.0, -3.8));
+    let teacher = Affine3A::from_scale_rotation_translation(
+        Vec3::new(1.4, 1.0, 1.2),
+        Quat::IDENTITY,
+        Vec3::new(0.0, 0.0, -3.8),
+    );
     scene.add_instance(desk_top, teacher, None);
     scene.add_instance(desk_legs, teacher, None);
 
@@ -124,7 +201,13 @@ pub fn build(options: &BuildOptions) -> Result<Scene, SceneError> {
     let eye = Vec3::new(5.0, 1.7, 4.6);
     let target = Vec3::new(-1.5, 1.0, -3.0);
     scene.camera = Camera::look_at(eye, target, Vec3::Y, 55.0);
-    scene.camera_path = Some(paths::dolly(eye, Vec3::new(-4.5, 1.8, 4.4), target, 55.0, 8.0));
+    scene.camera_path = Some(paths::dolly(
+        eye,
+        Vec3::new(-4.5, 1.8, 4.4),
+        target,
+        55.0,
+        8.0,
+    ));
     scene.validate()?;
     Ok(scene)
 }

@@ -68,7 +68,15 @@ pub fn room(scene: &mut Scene) -> Room {
     let cube = scene.add_mesh(shapes::cube("cube", white));
     let one = Vec3::ONE;
     let placements = [
-        (trs(Vec3::new(0.0, 0.99, 0.01), Vec3::X, 90.0, Vec3::new(0.23, 0.19, 0.19)), light),
+        (
+            trs(
+                Vec3::new(0.0, 0.99, 0.01),
+                Vec3::X,
+                90.0,
+                Vec3::new(0.23, 0.19, 0.19),
+            ),
+            light,
+        ),
         (trs(Vec3::new(0.0, -1.0, 0.0), Vec3::X, -90.0, one), white),
         (trs(Vec3::new(0.0, 1.0, 0.0), Vec3::X, 90.0, one), white),
         (trs(Vec3::new(0.0, 0.0, -1.0), Vec3::X, 0.0, one), white),
@@ -79,7 +87,11 @@ pub fn room(scene: &mut Scene) -> Room {
         scene.add_instance(rect, m, Some(mat));
     }
     scene.camera = Camera::look_at(Vec3::new(0.0, 0.0, 3.9), Vec3::ZERO, Vec3::Y, FOV_DEGREES);
-    scene.camera_path = Some(paths::sway(Vec3::new(0.0, 0.0, 3.9), Vec3::ZERO, FOV_DEGREES));
+    scene.camera_path = Some(paths::sway(
+        Vec3::new(0.0, 0.0, 3.9),
+        Vec3::ZERO,
+        FOV_DEGREES,
+    ));
     Room { white, cube }
 }
 
@@ -89,12 +101,22 @@ pub fn build() -> Result<Scene, SceneError> {
     let room = room(&mut scene);
     scene.add_instance(
         room.cube,
-        trs(Vec3::new(0.335, -0.7, 0.38), Vec3::Y, -17.0, Vec3::splat(0.3)),
+        trs(
+            Vec3::new(0.335, -0.7, 0.38),
+            Vec3::Y,
+            -17.0,
+            Vec3::splat(0.3),
+        ),
         None,
     );
     scene.add_instance(
         room.cube,
-        trs(Vec3::new(-0.33, -0.4, -0.28), Vec3::Y, 18.25, Vec3::new(0.3, 0.61, 0.3)),
+        trs(
+            Vec3::new(-0.33, -0.4, -0.28),
+            Vec3::Y,
+            18.25,
+            Vec3::new(0.3, 0.61, 0.3),
+        ),
         None,
     );
     scene.validate()?;

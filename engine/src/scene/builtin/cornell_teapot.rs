@@ -12,9 +12,16 @@ use crate::scene::{Material, Scene, SceneError};
 pub fn build(options: &BuildOptions) -> Result<Scene, SceneError> {
     let mut scene = Scene::new("cornell-teapot");
     cornell_box::room(&mut scene);
-    let diffuse = scene.add_material(Material::diffuse("teapot-diffuse", Vec3::new(0.8, 0.78, 0.7)));
+    let diffuse = scene.add_material(Material::diffuse(
+        "teapot-diffuse",
+        Vec3::new(0.8, 0.78, 0.7),
+    ));
     let glass = scene.add_material(Material::dielectric("teapot-glass", 1.5, 0.0));
-    let metal = scene.add_material(Material::conductor("teapot-copper", Vec3::new(0.955, 0.638, 0.538), 0.05));
+    let metal = scene.add_material(Material::conductor(
+        "teapot-copper",
+        Vec3::new(0.955, 0.638, 0.538),
+        0.05,
+    ));
     let divs = ((16.0 * options.detail.sqrt()).round() as u32).clamp(2, 64);
     let pot = scene.add_mesh(teapot::teapot("teapot", diffuse, divs));
     let place = |x: f32, z: f32, degrees: f32| {

@@ -9,7 +9,10 @@ use crate::scene::Mesh;
 
 /// Radial displacement factor of the unit direction `d`.
 fn displacement(d: Vec3) -> f32 {
-    1.0 + 0.08 * (12.0 * d.x + 3.0 * (5.0 * d.y).sin()).sin() * (10.0 * d.y).sin() * (11.0 * d.z + 2.0).sin()
+    1.0 + 0.08
+        * (12.0 * d.x + 3.0 * (5.0 * d.y).sin()).sin()
+        * (10.0 * d.y).sin()
+        * (11.0 * d.z + 2.0).sin()
         + 0.015 * (41.0 * d.x).sin() * (43.0 * d.y).sin() * (47.0 * d.z).sin()
 }
 
@@ -63,17 +66,20 @@ pub fn displaced_sphere(name: &str, material: u32, radius: f32, n: u32) -> Mesh 
         });
     let quads = (n * n) as usize;
     let mut indices = vec![UVec3::ZERO; 6 * quads * 2];
-    indices.par_chunks_mut(2 * n as usize).enumerate().for_each(|(r, out)| {
-        let face = r / n as usize;
-        let j = (r % n as usize) as u32;
-        let base = (face * per_face) as u32;
-        let row = n + 1;
-        for i in 0..n {
-            let a = base + j * row + i;
-            out[2 * i as usize] = UVec3::new(a, a + 1, a + row + 1);
-            out[2 * i as usize + 1] = UVec3::new(a, a + row + 1, a + row);
-        }
-    });
+    indices
+        .par_chunks_mut(2 * n as usize)
+        .enumerate()
+        .for_each(|(r, out)| {
+            let face = r / n as usize;
+            let j = (r % n as usize) as u32;
+            let base = (face * per_face) as u32;
+            let row = n + 1;
+            for i in 0..n {
+                let a = base + j * row + i;
+                out[2 * i as usize] = UVec3::new(a, a + 1, a + row + 1);
+                out[2 * i as usize + 1] = UVec3::new(a, a + row + 1, a + row);
+            }
+        });
     Mesh {
         name: name.to_owned(),
         positions,

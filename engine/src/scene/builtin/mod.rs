@@ -14,7 +14,6 @@ pub mod shapes;
 mod teapot;
 mod teapot_data;
 
-pub use covered_light::FULL_TRIANGLES as COVERED_LIGHT_TRIANGLES;
 pub use teapot::teapot;
 
 use super::{Scene, SceneError};

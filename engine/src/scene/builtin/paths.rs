@@ -9,16 +9,25 @@ use crate::scene::{CameraKey, CameraPath, PathInterpolation};
 /// start.
 pub fn sway(eye: Vec3, target: Vec3, vfov_degrees: f32) -> CameraPath {
     let offset = eye - target;
-    let keys = [(0.0, 0.0, 0.0), (1.0, 12.0, 0.05), (2.0, 0.0, 0.0), (3.0, -12.0, -0.05), (4.0, 0.0, 0.0)]
-        .into_iter()
-        .map(|(time, degrees, bob): (f32, f32, f32)| CameraKey {
-            time,
-            position: target + Quat::from_rotation_y(degrees.to_radians()) * offset + Vec3::Y * bob * offset.length(),
-            target,
-            vfov_degrees,
-        })
-        .collect();
-    CameraPath::new(keys, PathInterpolation::CatmullRom).expect("sway keys are valid by construction")
+    let keys = [
+        (0.0, 0.0, 0.0),
+        (1.0, 12.0, 0.05),
+        (2.0, 0.0, 0.0),
+        (3.0, -12.0, -0.05),
+        (4.0, 0.0, 0.0),
+    ]
+    .into_iter()
+    .map(|(time, degrees, bob): (f32, f32, f32)| CameraKey {
+        time,
+        position: target
+            + Quat::from_rotation_y(degrees.to_radians()) * offset
+            + Vec3::Y * bob * offset.length(),
+        target,
+        vfov_degrees,
+    })
+    .collect();
+    CameraPath::new(keys, PathInterpolation::CatmullRom)
+        .expect("sway keys are valid by construction")
 }
 
 /// A linear walk from `from` to `to` over `seconds`, looking at `target`.
@@ -29,6 +38,9 @@ pub fn dolly(from: Vec3, to: Vec3, target: Vec3, vfov_degrees: f32, seconds: f32
         target,
         vfov_degrees,
     };
-    CameraPath::new(vec![key(0.0, from), key(seconds, to)], PathInterpolation::Linear)
-        .expect("dolly keys are valid by construction")
+    CameraPath::new(
+        vec![key(0.0, from), key(seconds, to)],
+        PathInterpolation::Linear,
+    )
+    .expect("dolly keys are valid by construction")
 }

@@ -91,7 +91,11 @@ impl MeshBuilder {
 
     /// An axis-aligned box from its minimum and maximum corners.
     pub fn cuboid(&mut self, min: Vec3, max: Vec3, s: u32) {
-        let m = Affine3A::from_scale_rotation_translation((max - min) * 0.5, glam::Quat::IDENTITY, (min + max) * 0.5);
+        let m = Affine3A::from_scale_rotation_translation(
+            (max - min) * 0.5,
+            glam::Quat::IDENTITY,
+            (min + max) * 0.5,
+        );
         self.cube(&m, s);
     }
 
@@ -110,30 +114,35 @@ impl MeshBuilder {
             for k in 0..segments {
                 let a = k as f32 / segments as f32 * tau;
                 let d = Vec3::new(a.cos(), 0.0, a.sin());
-                self.vertex(base + d * radius + Vec3::Y * y, n, Vec2::new(d.x, d.z) * 0.5 + 0.5);
+                self.vertex(
+                    base + d * radius + Vec3::Y * y,
+                    n,
+                    Vec2::new(d.x, d.z) * 0.5 + 0.5,
+                );
             }
             for k in 0..segments {
                 let (i, j) = (first + k, first + (k + 1) % segments);
-                let tri = if n.y > 0.0 { UVec3::new(c, j, i) } else { UVec3::new(c, i, j) };
+                let tri = if n.y > 0.0 {
+                    UVec3::new(c, j, i)
+                } else {
+                    UVec3::new(c, i, j)
+                };
                 self.indices.push(tri);
             }
         }
-    }
-
-    /// Appends another builder's triangles.
-    pub fn append(&mut self, other: MeshBuilder) {
-        let base = self.positions.len() as u32;
-        self.positions.extend(other.positions);
-        self.normals.extend(other.normals);
-        self.uvs.extend(other.uvs);
-        self.indices.extend(other.indices.into_iter().map(|i| i + base));
     }
 }
 
 /// Mitsuba's `rectangle`: `[-1, 1]²` in the `z = 0` plane facing `+Z`.
 pub fn rectangle(name: &str, material: u32) -> Mesh {
     let mut b = MeshBuilder::new();
-    b.quad(Vec3::new(-1.0, -1.0, 0.0), Vec3::X * 2.0, Vec3::Y * 2.0, 1, 1);
+    b.quad(
+        Vec3::new(-1.0, -1.0, 0.0),
+        Vec3::X * 2.0,
+        Vec3::Y * 2.0,
+        1,
+        1,
+    );
     b.build(name, material)
 }
 
@@ -147,7 +156,13 @@ pub fn cube(name: &str, material: u32) -> Mesh {
 /// A rectangular wall `origin + u*e1 + v*e2` (`u, v` in `[0, 1]`) with
 /// rectangular openings `(u0, v0, u1, v1)` cut out; the openings must not
 /// overlap. The wall faces `e1 x e2`.
-pub fn wall_with_openings(b: &mut MeshBuilder, origin: Vec3, e1: Vec3, e2: Vec3, openings: &[[f32; 4]]) {
+pub fn wall_with_openings(
+    b: &mut MeshBuilder,
+    origin: Vec3,
+    e1: Vec3,
+    e2: Vec3,
+    openings: &[[f32; 4]],
+) {
     let mut us: Vec<f32> = vec![0.0, 1.0];
     us.extend(openings.iter().flat_map(|o| [o[0], o[2]]));
     us.sort_by(f32::total_cmp);
@@ -164,7 +179,13 @@ pub fn wall_with_openings(b: &mut MeshBuilder, origin: Vec3, e1: Vec3, e2: Vec3,
         let mut v = 0.0;
         for hole in vs.iter().chain([&[1.0, 1.0]]) {
             if hole[0] > v {
-                b.quad(origin + e1 * u0 + e2 * v, e1 * (u1 - u0), e2 * (hole[0] - v), 1, 1);
+                b.quad(
+                    origin + e1 * u0 + e2 * v,
+                    e1 * (u1 - u0),
+                    e2 * (hole[0] - v),
+                    1,
+                    1,
+                );
             }
             v = v.max(hole[1]);
         }

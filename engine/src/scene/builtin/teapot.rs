@@ -13,7 +13,12 @@ fn bernstein(t: f32) -> [f32; 4] {
 
 fn bernstein_derivative(t: f32) -> [f32; 4] {
     let s = 1.0 - t;
-    [-3.0 * s * s, 3.0 * s * s - 6.0 * t * s, 6.0 * t * s - 3.0 * t * t, 3.0 * t * t]
+    [
+        -3.0 * s * s,
+        3.0 * s * s - 6.0 * t * s,
+        6.0 * t * s - 3.0 * t * t,
+        3.0 * t * t,
+    ]
 }
 
 /// Evaluates `Σ a[i] b[j] cp[4i + j]`.

@@ -22,12 +22,12 @@ mod layout;
 mod params;
 
 pub use encode::{decode_normal, encode_normal, encode_uv};
-pub use params::camera;
 pub use layout::{
     light_kind, material_kind, texture_format, GpuAliasEntry, GpuCamera, GpuEnvironment,
     GpuInstance, GpuLight, GpuMaterial, GpuSceneParams, GpuSphere, GpuSun, GpuTextureRecord,
     GpuVertex,
 };
+pub use params::camera;
 
 use std::mem::size_of;
 

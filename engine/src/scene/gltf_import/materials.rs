@@ -1,0 +1,159 @@
+//! glTF metallic-roughness materials mapped onto Lucid's material kinds,
+//! and base-colour textures.
+//!
+//! Mapping:
+//! - `KHR_materials_transmission` with a factor > 0 → dielectric with the
+//!   `KHR_materials_ior` index (default 1.5), tinted by the base colour;
+//! - otherwise metallic > 0.5 → conductor with the base colour as metal
+//!   colour;
+//! - otherwise → Lambertian diffuse with the base colour as albedo.
+//!
+//! Roughness maps to GGX `alpha = roughness²`. Emission is
+//! `emissiveFactor × KHR_materials_emissive_strength`. The base-colour
+//! texture (sRGB, `TEXCOORD_0`) is kept for every kind.
+
+use std::collections::HashMap;
+use std::path::Path;
+
+use glam::Vec3;
+use gltf::Document;
+
+use super::uri;
+use crate::scene::{Material, MaterialKind, Scene, TexelData, Texture};
+
+/// Converts materials and the textures they use.
+pub struct MaterialImporter<'a> {
+    doc: &'a Document,
+    buffers: &'a [Vec<u8>],
+    base: Option<&'a Path>,
+    /// Scene texture index of each decoded glTF image.
+    images: HashMap<usize, u32>,
+}
+
+impl<'a> MaterialImporter<'a> {
+    /// An importer over a validated document and its loaded buffers.
+    pub fn new(doc: &'a Document, buffers: &'a [Vec<u8>], base: Option<&'a Path>) -> Self {
+        Self {
+            doc,
+            buffers,
+            base,
+            images: HashMap::new(),
+        }
+    }
+
+    /// Adds glTF material `index` to the scene and returns its index.
+    pub fn import(&mut self, scene: &mut Scene, index: usize) -> Result<u32, String> {
+        let m = self
+            .doc
+            .materials()
+            .nth(index)
+            .ok_or_else(|| format!("material {index} does not exist"))?;
+        let name = m
+            .name()
+            .map_or_else(|| format!("material {index}"), str::to_owned);
+        let pbr = m.pbr_metallic_roughness();
+        let [r, g, b, _] = pbr.base_color_factor();
+        let ext = self
+            .doc
+            .as_json()
+            .materials
+            .get(index)
+            .and_then(|j| j.extensions.as_ref());
+        let transmission = ext
+            .and_then(|e| e.transmission.as_ref())
+            .map_or(0.0, |t| t.transmission_factor.0);
+        let ior = ext.and_then(|e| e.ior.as_ref()).map_or(1.5, |i| i.ior.0);
+        let strength = ext
+            .and_then(|e| e.emissive_strength.as_ref())
+            .map_or(1.0, |s| s.emissive_strength.0);
+        let kind = if transmission > 0.0 {
+            MaterialKind::Dielectric
+        } else if pbr.metallic_factor() > 0.5 {
+            MaterialKind::Conductor
+        } else {
+            MaterialKind::Diffuse
+        };
+        let roughness = pbr.roughness_factor();
+        let texture = match pbr.base_color_texture() {
+            Some(info) => {
+                if info.tex_coord() != 0 {
+                    scene.warnings.push(format!(
+                        "material `{name}`: base colour texture uses TEXCOORD_{}; TEXCOORD_0 is used instead",
+                        info.tex_coord()
+                    ));
+                }
+                Some(self.image(scene, info.texture().source().index())?)
+            }
+            None => None,
+        };
+        Ok(scene.add_material(Material {
+            name,
+            kind,
+            base_color: Vec3::new(r, g, b),
+            base_color_texture: texture,
+            alpha: roughness * roughness,
+            ior,
+            emission: Vec3::from(m.emissive_factor()) * strength,
+        }))
+    }
+
+    /// Decodes glTF image `index` once and returns its scene texture.
+    fn image(&mut self, scene: &mut Scene, index: usize) -> Result<u32, String> {
+        if let Some(&t) = self.images.get(&index) {
+            return Ok(t);
+        }
+        // Read the raw JSON: `gltf::Image::source` panics on an image with
+        // neither (or both) of `uri` and `bufferView`.
+        let json = self
+            .doc
+            .as_json()
+            .images
+            .get(index)
+            .ok_or_else(|| format!("image {index} does not exist"))?;
+        let (label, bytes) = match (&json.uri, json.buffer_view) {
+            (Some(u), None) => (
+                format!("image {index} (`{}`)", uri::shorten(u)),
+                uri::read(u, self.base).map_err(|e| format!("image {index}: {e}"))?,
+            ),
+            (None, Some(v)) => {
+                let view = self.doc.views().nth(v.value()).ok_or_else(|| {
+                    format!("image {index}: buffer view {} does not exist", v.value())
+                })?;
+                let buf = &self.buffers[view.buffer().index()];
+                let bytes = view
+                    .offset()
+                    .checked_add(view.length())
+                    .and_then(|end| buf.get(view.offset()..end))
+                    .ok_or_else(|| {
+                        format!(
+                            "image {index}: buffer view {} lies outside its buffer",
+                            view.index()
+                        )
+                    })?;
+                (format!("image {index}"), bytes.to_vec())
+            }
+            _ => {
+                return Err(format!(
+                    "image {index}: needs exactly one of `uri` and `bufferView`"
+                ))
+            }
+        };
+        let decoded =
+            image::load_from_memory(&bytes).map_err(|e| format!("{label}: cannot decode: {e}"))?;
+        let rgba = decoded.to_rgba8();
+        let (width, height) = rgba.dimensions();
+        let texels = rgba.pixels().map(|p| p.0).collect();
+        let t = scene.add_texture(Texture {
+            name: json
+                .name
+                .clone()
+                .unwrap_or_else(|| format!("image {index}")),
+            width,
+            height,
+            srgb: true,
+            texels: TexelData::Rgba8(texels),
+        });
+        self.images.insert(index, t);
+        Ok(t)
+    }
+}

@@ -1,0 +1,223 @@
+//! The packed GPU layout: tracing the raw buffers (as a shader would)
+//! agrees with the CPU BVH, lights and their table, textures, params and
+//! memory per triangle.
+
+use glam::{Affine3A, Vec2, Vec3, Vec4};
+use lucid_engine::bvh::{ray_sphere, ray_triangle, Bvh, BvhNode};
+use lucid_engine::scene::builtin::{self, BuildOptions};
+use lucid_engine::scene::gpu::{light_kind, texture_format, GpuScene};
+use lucid_engine::scene::{luminance, Scene};
+
+const REDUCED: BuildOptions = BuildOptions { detail: 0.01 };
+
+/// Stack walk over `nodes` from `root`, calling `leaf(first, count)`.
+fn walk(nodes: &[BvhNode], root: u32, o: Vec3, d: Vec3, mut leaf: impl FnMut(u32, u32)) {
+    let inv = d.recip();
+    let mut stack = vec![root];
+    while let Some(i) = stack.pop() {
+        let n = nodes[i as usize];
+        if n.bounds()
+            .intersect_ray(o, inv, 0.0, f32::INFINITY)
+            .is_none()
+        {
+            continue;
+        }
+        if n.is_leaf() {
+            leaf(n.left_or_first, n.count);
+        } else if n.left_or_first != 0 {
+            stack.push(n.left_or_first);
+            stack.push(n.left_or_first + 1);
+        }
+    }
+}
+
+fn apply(rows: &[[f32; 4]; 3], p: Vec4) -> Vec3 {
+    Vec3::new(
+        Vec4::from(rows[0]).dot(p),
+        Vec4::from(rows[1]).dot(p),
+        Vec4::from(rows[2]).dot(p),
+    )
+}
+
+/// Closest hit distance using only the GPU buffers.
+fn gpu_trace(g: &GpuScene, o: Vec3, d: Vec3) -> Option<f32> {
+    let mut best = f32::INFINITY;
+    if g.instances.is_empty() {
+        return None;
+    }
+    walk(&g.tlas_nodes, 0, o, d, |first, count| {
+        for inst in &g.instances[first as usize..(first + count) as usize] {
+            let lo = apply(&inst.world_to_object, o.extend(1.0));
+            let ld = apply(&inst.world_to_object, d.extend(0.0));
+            walk(&g.blas_nodes, inst.blas_root, lo, ld, |f, c| {
+                for k in f..f + c {
+                    if inst.kind == 0 {
+                        let v = |j: usize| {
+                            Vec3::from(g.vertices[g.indices[3 * k as usize + j] as usize].position)
+                        };
+                        if let Some((t, _, _)) = ray_triangle(lo, ld, v(0), v(1), v(2), 0.0, best) {
+                            best = t;
+                        }
+                    } else {
+                        let s = g.spheres[k as usize].center_radius;
+                        if let Some(t) =
+                            ray_sphere(lo, ld, Vec3::new(s[0], s[1], s[2]), s[3], 0.0, best)
+                        {
+                            best = t;
+                        }
+                    }
+                }
+            });
+        }
+    });
+    best.is_finite().then_some(best)
+}
+
+fn compare(scene: &Scene, bvh: &Bvh, g: &GpuScene) {
+    let mut hits = 0;
+    for i in 0..400 {
+        let u = Vec2::new(
+            (i % 20) as f32 / 19.0 * 2.0 - 1.0,
+            (i / 20) as f32 / 19.0 * 2.0 - 1.0,
+        );
+        let ray = scene.camera.generate_ray(u * 0.95, 1.0, Vec2::splat(0.5));
+        let cpu = bvh.intersect(scene, &ray).map(|h| h.t);
+        let gpu = gpu_trace(g, ray.origin, ray.dir);
+        match (cpu, gpu) {
+            (Some(a), Some(b)) => {
+                hits += 1;
+                assert!(
+                    (a - b).abs() <= 1e-4 * a.max(1.0),
+                    "{}: {a} vs {b}",
+                    scene.name
+                );
+            }
+            (None, None) => {}
+            other => panic!("{}: {other:?}", scene.name),
+        }
+    }
+    assert!(hits > 100, "{}: {hits}", scene.name);
+}
+
+#[test]
+fn gpu_buffers_trace_like_the_cpu_bvh() {
+    for name in [
+        "cornell-box",
+        "cornell-teapot",
+        "caustics",
+        "classroom",
+        "furnace",
+        "covered-light",
+    ] {
+        let scene = builtin::build_with(name, &REDUCED).unwrap();
+        let bvh = Bvh::build(&scene);
+        let g = GpuScene::new(&scene, &bvh);
+        assert_eq!(g.indices.len() / 3, scene.unique_triangle_count());
+        compare(&scene, &bvh, &g);
+    }
+}
+
+#[test]
+fn moving_an_instance_updates_the_top_level_only() {
+    let mut scene = builtin::build_with("cornell-teapot", &REDUCED).unwrap();
+    let mut bvh = Bvh::build(&scene);
+    let mut g = GpuScene::new(&scene, &bvh);
+    let (blas, vertices) = (g.blas_nodes.clone(), g.vertices.clone());
+    let last = scene.instances.len() - 1;
+    scene.instances[last].transform =
+        Affine3A::from_translation(Vec3::new(0.1, 0.2, 0.0)) * scene.instances[last].transform;
+    bvh.rebuild_top_level(&scene).unwrap();
+    g.update_top_level(&scene, &bvh);
+    assert_eq!(g.blas_nodes, blas);
+    assert_eq!(g.vertices, vertices);
+    compare(&scene, &bvh, &g);
+}
+
+#[test]
+fn cornell_light_table_is_power_proportional() {
+    let scene = builtin::build("cornell-box").unwrap();
+    let g = GpuScene::new(&scene, &Bvh::build(&scene));
+    assert_eq!(g.lights.len(), 2, "the light quad is two triangles");
+    let area = 0.46 * 0.38;
+    let power = std::f32::consts::PI * area * luminance(Vec3::new(18.387, 13.9873, 6.75357));
+    assert!((g.params.light[0] - power).abs() < 1e-3 * power);
+    for (l, e) in g.lights.iter().zip(&g.light_table) {
+        assert_eq!(l.kind, light_kind::TRIANGLE);
+        assert!((l.p0[3] - area / 2.0).abs() < 1e-5);
+        assert!((e.pdf - 0.5).abs() < 1e-5);
+        for p in [l.p0, l.p1, l.p2] {
+            assert!((p[1] - 0.99).abs() < 1e-5);
+        }
+        // The light's triangle index addresses its vertices in the GPU buffers.
+        let inst = &g.instances[l.instance as usize];
+        let v0 = Vec3::from(g.vertices[g.indices[3 * l.index as usize] as usize].position);
+        let w0 = apply(&inst.object_to_world, v0.extend(1.0));
+        assert!([l.p0, l.p1, l.p2]
+            .iter()
+            .any(|p| (Vec3::new(p[0], p[1], p[2]) - w0).length() < 1e-5));
+    }
+    assert_eq!(g.light_table.last().unwrap().cdf, 1.0);
+}
+
+#[test]
+fn spheres_and_punctual_lights_pack() {
+    let mut scene = builtin::build("caustics").unwrap();
+    let glow = scene.add_material(lucid_engine::scene::Material::emissive("glow", Vec3::ONE));
+    scene.add_sphere(Vec3::new(1.0, 0.2, 1.0), 0.2, glow);
+    scene
+        .punctual_lights
+        .push(lucid_engine::scene::PunctualLight::Point {
+            position: Vec3::new(0.0, 3.0, 0.0),
+            intensity: Vec3::splat(5.0),
+        });
+    scene.validate().unwrap();
+    let g = GpuScene::new(&scene, &Bvh::build(&scene));
+    let kinds: Vec<u32> = g.lights.iter().map(|l| l.kind).collect();
+    assert!(kinds.contains(&light_kind::SPHERE) && kinds.contains(&light_kind::POINT));
+    let sphere_light = g
+        .lights
+        .iter()
+        .find(|l| l.kind == light_kind::SPHERE)
+        .unwrap();
+    assert_eq!(g.spheres[sphere_light.index as usize].scene_sphere, 1);
+    let sum: f32 = g.light_table.iter().map(|e| e.pdf).sum();
+    assert!((sum - 1.0).abs() < 1e-5);
+    assert!(g.features.delta_lights && g.features.spheres);
+}
+
+#[test]
+fn textures_and_params_pack() {
+    let scene = builtin::build_with("classroom", &REDUCED).unwrap();
+    let g = GpuScene::new(&scene, &Bvh::build(&scene));
+    assert_eq!(g.textures.len(), 1);
+    assert_eq!(g.textures[0].format, texture_format::RGBA8_SRGB);
+    assert_eq!(g.texels.len(), 64 * 64);
+    assert_eq!(g.params.environment.kind, 1);
+    assert_eq!(g.params.sun.radiance_enabled[3], 1.0);
+    let cam = scene.camera;
+    assert!((g.params.camera.up_tan_half_fov[3] - (cam.vfov * 0.5).tan()).abs() < 1e-6);
+    assert_eq!(g.params.counts0[0] as usize, scene.unique_triangle_count());
+    assert!(g.total_bytes() > g.geometry_bytes() + g.bvh_bytes());
+}
+
+#[test]
+fn memory_per_triangle_is_under_100_bytes() {
+    let scene = builtin::build_with("covered-light", &REDUCED).unwrap();
+    let g = GpuScene::new(&scene, &Bvh::build(&scene));
+    let bpt = g.bytes_per_triangle();
+    assert!(bpt > 30.0 && bpt < 100.0, "{bpt}");
+}
+
+#[test]
+fn furnace_packs_a_single_sphere_instance() {
+    let scene = builtin::build("furnace").unwrap();
+    let g = GpuScene::new(&scene, &Bvh::build(&scene));
+    assert_eq!(g.instances.len(), 1);
+    assert_eq!(g.instances[0].kind, 1);
+    assert!(g.lights.is_empty() && g.indices.is_empty());
+    assert_eq!(g.bytes_per_triangle(), 0.0);
+    assert_eq!(
+        gpu_trace(&g, Vec3::new(0.0, 0.0, 4.0), Vec3::NEG_Z),
+        Some(3.0)
+    );
+}

@@ -1,0 +1,62 @@
+//! Batch ray queries on the GPU (`shaders/ray_query/ray_query.comp`): closest hit and occlusion
+//! for a buffer of rays. Tests check the GPU traversal against the CPU BVH with it; the sandbox can
+//! pick with it.
+
+use crate::scene_buffers::SceneHandles;
+use crate::shaders::ray_query::RAY_QUERY;
+use bytemuck::{Pod, Zeroable};
+use lucid_engine::graph::{Access, BufferHandle, RenderGraph};
+
+/// One query ray (std430 `RayIn`).
+#[repr(C)]
+#[derive(Clone, Copy, Debug, Default, PartialEq, Pod, Zeroable)]
+pub struct QueryRay {
+    /// Origin (xyz) and the farthest distance (w).
+    pub origin_tmax: [f32; 4],
+    /// Direction (xyz), need not be unit length; w unused.
+    pub dir: [f32; 4],
+}
+
+/// One result (std430 `HitOut`).
+#[repr(C)]
+#[derive(Clone, Copy, Debug, Default, PartialEq, Pod, Zeroable)]
+pub struct QueryHit {
+    /// Distance to the closest hit in units of the ray direction, or -1 on a miss.
+    pub t: f32,
+    /// Scene instance index, or `0x8000_0000 | sphere index`; `u32::MAX` on a miss.
+    pub object_id: u32,
+    /// 1 when anything lies within `t_max`.
+    pub occluded: u32,
+    /// Padding.
+    pub pad: u32,
+}
+
+/// Object id of a sphere in [`QueryHit::object_id`].
+pub const SPHERE_BIT: u32 = 0x8000_0000;
+
+/// Adds a pass answering `count` rays from `rays`; returns the buffer of [`QueryHit`]s.
+pub fn add(
+    g: &mut RenderGraph,
+    scene: &SceneHandles,
+    rays: BufferHandle,
+    count: u32,
+) -> BufferHandle {
+    let mut p = g.add_pass("ray_query");
+    scene.read(&mut p);
+    let rays = p.read(rays, Access::ComputeRead);
+    let hits = p.create_buffer(
+        "ray_query.hits",
+        (count.max(1) as u64) * std::mem::size_of::<QueryHit>() as u64,
+    );
+    let hits = p.write(hits, Access::ComputeWrite);
+    let scene = *scene;
+    p.execute(move |ctx| {
+        let dispatch = ctx
+            .compute(&RAY_QUERY)
+            .buffer("b_rays", rays)
+            .buffer("b_hits", hits)
+            .push(&count);
+        scene.bind(dispatch).dispatch_threads([count, 1, 1])
+    });
+    hits
+}

@@ -1,0 +1,140 @@
+//! The end of every frame's render graph: tone-map the frame source's output and copy it into the
+//! swapchain image (or clear it when there is no output), draw the UI over it, optionally read
+//! back the HDR output and the final image, and leave the image ready to present.
+
+use super::overlay::{Overlay, OverlayFrame};
+use super::settings::DisplaySettings;
+use super::tonemap;
+use ash::vk;
+use lucid_engine::graph::{Access, ImageHandle, ReadbackId, RenderGraph, ResourceState};
+use lucid_engine::memory::{color_range, Image};
+use std::sync::Arc;
+
+/// Colour of the window where there is no frame to show.
+const EMPTY: [f32; 4] = [0.05, 0.05, 0.06, 1.0];
+
+/// What to add beyond showing the frame.
+#[derive(Clone, Copy, Debug, Default)]
+pub struct Extras {
+    /// Read back the HDR output (an F12 capture).
+    pub capture_hdr: bool,
+    /// Read back the final image, UI included (`--screenshot-after`).
+    pub screenshot: bool,
+}
+
+/// The readbacks a frame carries.
+#[derive(Clone, Copy, Debug, Default)]
+pub struct Readbacks {
+    /// The HDR output.
+    pub hdr: Option<ReadbackId>,
+    /// The final swapchain image.
+    pub screen: Option<ReadbackId>,
+}
+
+/// The stage at which a frame waits for its swapchain image: that of its first access.
+pub fn acquire_wait_stage() -> vk::PipelineStageFlags2 {
+    Access::TransferWrite.info().stage
+}
+
+/// The swapchain image to draw on.
+pub struct Target<'a> {
+    /// The acquired image.
+    pub image: &'a Arc<Image>,
+    /// Its index in the swapchain.
+    pub index: u32,
+}
+
+/// Adds the passes that put `hdr` (or an empty background) and the UI on `target` and end it in
+/// the present layout.
+pub fn add(
+    graph: &mut RenderGraph,
+    hdr: Option<ImageHandle>,
+    target: Target<'_>,
+    overlay: &Overlay,
+    ui: OverlayFrame,
+    display: &DisplaySettings,
+    extras: Extras,
+) -> anyhow::Result<Readbacks> {
+    // The acquire semaphore is waited on at this stage, and the contents are discarded.
+    target.image.set_tracked_state(ResourceState {
+        layout: vk::ImageLayout::UNDEFINED,
+        stage: acquire_wait_stage(),
+        access: vk::AccessFlags2::NONE,
+    });
+    let desc = target.image.desc();
+    let swap = graph.import_image("swapchain", target.image.clone());
+    let mut readbacks = Readbacks::default();
+    let swap = match hdr {
+        Some(hdr) => {
+            let bgra = desc.format == vk::Format::B8G8R8A8_UNORM;
+            let ldr = tonemap::add(graph, hdr, [desc.width, desc.height], display, bgra);
+            if extras.capture_hdr {
+                readbacks.hdr = Some(graph.readback(hdr));
+            }
+            copy(graph, ldr, swap)
+        }
+        None => clear(graph, swap),
+    };
+    let swap = overlay.add_pass(graph, swap, target.index, ui)?;
+    if extras.screenshot {
+        readbacks.screen = Some(graph.readback(swap));
+    }
+    let mut p = graph.add_pass("sandbox.present");
+    p.read(swap, Access::Present);
+    p.side_effect();
+    p.execute(|_| Ok(()));
+    Ok(readbacks)
+}
+
+fn copy(graph: &mut RenderGraph, src: ImageHandle, dst: ImageHandle) -> ImageHandle {
+    let mut p = graph.add_pass("sandbox.copy_to_window");
+    let src = p.read(src, Access::TransferRead);
+    let dst = p.write(dst, Access::TransferWrite);
+    p.execute(move |pcx| {
+        let (from, to) = (pcx.image(src)?, pcx.image(dst)?);
+        let layers = vk::ImageSubresourceLayers {
+            aspect_mask: vk::ImageAspectFlags::COLOR,
+            mip_level: 0,
+            base_array_layer: 0,
+            layer_count: 1,
+        };
+        let region = vk::ImageCopy::default()
+            .src_subresource(layers)
+            .dst_subresource(layers)
+            .extent(to.desc().extent());
+        // SAFETY: cmd is recording; the graph put both images in the transfer layouts and they
+        // have the same size and texel size.
+        unsafe {
+            pcx.context().device().cmd_copy_image(
+                pcx.command_buffer(),
+                from.raw(),
+                vk::ImageLayout::TRANSFER_SRC_OPTIMAL,
+                to.raw(),
+                vk::ImageLayout::TRANSFER_DST_OPTIMAL,
+                &[region],
+            )
+        };
+        Ok(())
+    });
+    dst
+}
+
+fn clear(graph: &mut RenderGraph, target: ImageHandle) -> ImageHandle {
+    let mut p = graph.add_pass("sandbox.clear_window");
+    let target = p.write(target, Access::TransferWrite);
+    p.execute(move |pcx| {
+        let image = pcx.image(target)?;
+        // SAFETY: cmd is recording; the graph put the image in TRANSFER_DST_OPTIMAL.
+        unsafe {
+            pcx.context().device().cmd_clear_color_image(
+                pcx.command_buffer(),
+                image.raw(),
+                vk::ImageLayout::TRANSFER_DST_OPTIMAL,
+                &vk::ClearColorValue { float32: EMPTY },
+                &[color_range()],
+            )
+        };
+        Ok(())
+    });
+    target
+}

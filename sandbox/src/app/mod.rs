@@ -1,0 +1,60 @@
+//! `lucid_sandbox`: the interactive sandbox behind `lucid` and `lucid view`: a window showing the frame source's output through a fly camera,
+//! with egui panels for the scene, renderer and display settings and live statistics.
+//!
+//! The renderer plugs in through [`frame_source::FrameSource`]; today the engine's test pattern
+//! stands in for it.
+
+mod camera;
+mod capture;
+mod compose;
+mod display;
+mod frame;
+mod frame_source;
+mod gpu;
+mod handler;
+mod input;
+mod options;
+mod overlay;
+mod pending;
+mod scene;
+mod session;
+mod settings;
+mod state;
+mod stats;
+mod tonemap;
+mod ui;
+
+pub use options::{AppOptions, Screenshot};
+pub use scene::DEFAULT_SCENE;
+
+use anyhow::Context as _;
+use lucid_engine::Validation;
+use winit::event_loop::EventLoop;
+
+/// Opens the sandbox window and runs until it is closed (or the screenshot is taken). Fails when
+/// there is no display, on errors the app cannot show, and when validation is on and reported
+/// anything.
+pub fn run(options: AppOptions) -> anyhow::Result<()> {
+    display::check()?;
+    let event_loop = EventLoop::new().map_err(|e| {
+        anyhow::anyhow!("cannot open the display ({e}): use `lucid render` for headless output")
+    })?;
+    let mut app = handler::App::new(options);
+    let ran = event_loop.run_app(&mut app);
+    let (result, ctx) = app.finish();
+    ran.context("the window event loop failed")?;
+    result?;
+    let Some(ctx) = ctx else {
+        return Ok(());
+    };
+    let messages = ctx.validation_log().take();
+    if ctx.validation() != Validation::Off && !messages.is_empty() {
+        let text: Vec<String> = messages.iter().map(|m| m.to_string()).collect();
+        anyhow::bail!(
+            "{} Vulkan validation message(s):\n{}",
+            messages.len(),
+            text.join("\n")
+        );
+    }
+    Ok(())
+}

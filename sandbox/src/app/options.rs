@@ -1,0 +1,25 @@
+//! How the sandbox was asked to start.
+
+use std::path::PathBuf;
+
+/// Read back the window after some frames, save it and exit.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct Screenshot {
+    /// The frame (counting from 1) to save.
+    pub after_frames: u64,
+    /// The PNG file to write.
+    pub path: PathBuf,
+}
+
+/// Start-up options of the interactive sandbox.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct AppOptions {
+    /// A built-in scene name or a `.gltf` / `.glb` file.
+    pub scene: String,
+    /// Initial window size in pixels.
+    pub size: [u32; 2],
+    /// Where F12 captures go.
+    pub capture_dir: PathBuf,
+    /// Take one screenshot and exit.
+    pub screenshot: Option<Screenshot>,
+}

@@ -1,0 +1,229 @@
+//! A running sandbox window: the window, its GPU objects, the frame source and the app state,
+//! and how window events change them.
+
+use super::frame_source::{FrameSource, TestPatternSource};
+use super::gpu::{create_context, FrameRing, Swapchain};
+use super::input::{Action, Input};
+use super::options::AppOptions;
+use super::overlay::Overlay;
+use super::pending::Pending;
+use super::state::{AppState, PathMode};
+use super::stats::FrameStats;
+use super::{scene, ui};
+use anyhow::Context as _;
+use glam::Vec2;
+use lucid_engine::graph::Executor;
+use lucid_engine::shader::ShaderLibrary;
+use lucid_engine::Context;
+use std::sync::Arc;
+use std::time::Instant;
+use winit::dpi::PhysicalSize;
+use winit::event::{ElementState, MouseScrollDelta, WindowEvent};
+use winit::event_loop::ActiveEventLoop;
+use winit::keyboard::PhysicalKey;
+use winit::window::Window;
+
+/// Pixels of a touchpad scroll that count as one wheel step.
+const PIXELS_PER_WHEEL_STEP: f32 = 50.0;
+
+/// Whether the app goes on after an event or frame.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Flow {
+    /// Keep running.
+    Continue,
+    /// Close the window and exit.
+    Exit,
+}
+
+/// Everything that lives as long as the window. Fields drop in order: GPU users before the
+/// swapchain, the swapchain (and surface) before the context, the window last.
+pub struct Session {
+    pub(super) state: AppState,
+    pub(super) input: Input,
+    pub(super) stats: FrameStats,
+    pub(super) source: Box<dyn FrameSource>,
+    pub(super) ring: FrameRing<Pending>,
+    pub(super) overlay: Overlay,
+    pub(super) swapchain: Swapchain,
+    pub(super) executor: Executor,
+    pub(super) ctx: Context,
+    pub(super) window: Arc<Window>,
+    pub(super) options: AppOptions,
+    pub(super) clock: Instant,
+    pub(super) last_frame: f64,
+    pub(super) frames_presented: u64,
+    pub(super) failures_in_a_row: u32,
+    pub(super) needs_recreate: bool,
+    pub(super) capture_requested: bool,
+    pub(super) exit: bool,
+}
+
+impl Session {
+    /// Opens the window and sets up Vulkan, the UI and the scene.
+    pub fn new(event_loop: &ActiveEventLoop, options: &AppOptions) -> anyhow::Result<Self> {
+        let attributes = Window::default_attributes()
+            .with_title(format!("Lucid — {}", options.scene))
+            .with_inner_size(PhysicalSize::new(options.size[0], options.size[1]));
+        let window = Arc::new(
+            event_loop
+                .create_window(attributes)
+                .context("opening the window")?,
+        );
+        let (ctx, surface) = create_context(&window)?;
+        let size = window.inner_size();
+        let swapchain = Swapchain::new(&ctx, surface, [size.width, size.height])?;
+        let mut overlay = Overlay::new(&ctx, &window, swapchain.format())?;
+        overlay.set_targets(swapchain.format(), swapchain.views(), swapchain.extent())?;
+        let executor = Executor::new(&ctx, ShaderLibrary::new(&ctx, None)?)?;
+        let state = AppState::new(&options.scene, scene::load(&options.scene));
+        Ok(Self {
+            state,
+            input: Input::default(),
+            stats: FrameStats::default(),
+            source: Box::new(TestPatternSource::default()),
+            ring: FrameRing::new(&ctx)?,
+            overlay,
+            swapchain,
+            executor,
+            ctx,
+            window,
+            options: options.clone(),
+            clock: Instant::now(),
+            last_frame: 0.0,
+            frames_presented: 0,
+            failures_in_a_row: 0,
+            needs_recreate: false,
+            capture_requested: false,
+            exit: false,
+        })
+    }
+
+    /// The context (for the validation check after the session ends).
+    pub fn context(&self) -> &Context {
+        &self.ctx
+    }
+
+    /// The window.
+    pub fn window(&self) -> &Window {
+        &self.window
+    }
+
+    /// Whether there is nothing to draw on (zero-size window).
+    pub fn is_minimized(&self) -> bool {
+        !self.swapchain.is_usable()
+    }
+
+    /// Handles one window event (except redraws).
+    pub fn window_event(&mut self, event: &WindowEvent) -> Flow {
+        let consumed = self.overlay.on_window_event(&self.window, event);
+        match event {
+            WindowEvent::CloseRequested | WindowEvent::Destroyed => return Flow::Exit,
+            WindowEvent::Resized(_) | WindowEvent::ScaleFactorChanged { .. } => {
+                self.needs_recreate = true;
+            }
+            WindowEvent::Focused(false) => self.input.release_all(),
+            WindowEvent::ModifiersChanged(m) => self.input.set_shift(m.state().shift_key()),
+            WindowEvent::KeyboardInput { event, .. } => {
+                let PhysicalKey::Code(code) = event.physical_key else {
+                    return Flow::Continue;
+                };
+                let pressed = event.state == ElementState::Pressed;
+                if !pressed || !(consumed || self.overlay.wants_keyboard()) {
+                    if let Some(action) = self.input.key(code, pressed, event.repeat) {
+                        self.act(action);
+                    }
+                }
+            }
+            WindowEvent::MouseInput { state, button, .. } => {
+                let pressed = *state == ElementState::Pressed;
+                if !pressed || !self.overlay.wants_pointer() {
+                    self.input.mouse_button(*button, pressed);
+                }
+            }
+            WindowEvent::CursorMoved { position, .. } => {
+                self.input
+                    .cursor(Vec2::new(position.x as f32, position.y as f32));
+            }
+            WindowEvent::MouseWheel { delta, .. } if !self.overlay.wants_pointer() => {
+                self.input.wheel(match delta {
+                    MouseScrollDelta::LineDelta(_, y) => *y,
+                    MouseScrollDelta::PixelDelta(p) => p.y as f32 / PIXELS_PER_WHEEL_STEP,
+                });
+            }
+            _ => {}
+        }
+        Flow::Continue
+    }
+
+    fn act(&mut self, action: Action) {
+        match action {
+            Action::Capture => self.capture_requested = true,
+            Action::Store(key) => {
+                self.state.bookmarks.store(key, self.state.camera.pose);
+                self.state.message = Some(format!("stored the camera in bookmark {key}"));
+            }
+            Action::Recall(key) => match self.state.bookmarks.recall(key) {
+                Some(pose) => {
+                    self.state.camera.pose = pose;
+                    self.state.path = PathMode::Idle;
+                }
+                None => {
+                    self.state.message =
+                        Some(format!("bookmark {key} is empty: Shift+{key} stores one"))
+                }
+            },
+        }
+    }
+
+    /// Acts on the panel's buttons.
+    pub(super) fn handle_requests(&mut self, requests: ui::Requests, now: f64) {
+        if let Some(spec) = requests.load_scene {
+            let loaded = scene::load(&spec);
+            self.state.set_scene(loaded);
+            self.window.set_title(&format!("Lucid — {spec}"));
+        }
+        self.capture_requested |= requests.capture;
+        if requests.record {
+            self.state.path = PathMode::Recording(Default::default(), now);
+            self.state.message = Some("recording the camera path".into());
+        }
+        if requests.replay {
+            match super::camera::PathPlayer::load(self.state.path_file.as_ref()) {
+                Ok(player) => self.state.path = PathMode::Replaying(player, now),
+                Err(e) => self.state.message = Some(format!("{e:#}")),
+            }
+        }
+        if requests.stop {
+            let mode = std::mem::replace(&mut self.state.path, PathMode::Idle);
+            if let PathMode::Recording(recorder, _) = mode {
+                let file = self.state.path_file.clone();
+                self.state.message = Some(match recorder.save(file.as_ref()) {
+                    Ok(()) => format!("saved camera path {file}"),
+                    Err(e) => format!("{e:#}"),
+                });
+            }
+        }
+    }
+
+    /// Moves the camera by input, or along the replayed path, and records it if recording.
+    pub(super) fn update_camera(&mut self, now: f64, dt: f64) {
+        let input = self.input.take();
+        let replayed = match &self.state.path {
+            PathMode::Replaying(player, start) => Some(player.sample((now - start) as f32)),
+            _ => None,
+        };
+        match replayed {
+            Some(Some(pose)) => self.state.camera.pose = pose,
+            Some(None) => {
+                self.state.path = PathMode::Idle;
+                self.state.message = Some("camera path replay finished".into());
+            }
+            None => {
+                self.state.camera.update(&input, dt as f32);
+            }
+        }
+        if let PathMode::Recording(recorder, start) = &mut self.state.path {
+            recorder.record((now - *start) as f32, &self.state.camera.pose);
+        }
+    }
+}

@@ -1,0 +1,140 @@
+//! What the panels edit: renderer settings (handed to the frame source) and display settings
+//! (applied by the app's tone-mapping pass).
+
+use lucid_engine::capture::{PngEncoding, ToneCurve};
+
+/// The light-transport algorithm.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub enum Algorithm {
+    /// Unidirectional path tracing with next-event estimation.
+    #[default]
+    PathTracing,
+    /// Bidirectional path tracing.
+    Bidirectional,
+}
+
+impl Algorithm {
+    /// Every algorithm, in the order the panel lists them.
+    pub const ALL: [Self; 2] = [Self::PathTracing, Self::Bidirectional];
+
+    /// The name shown in the panel.
+    pub fn label(self) -> &'static str {
+        match self {
+            Self::PathTracing => "path tracing",
+            Self::Bidirectional => "bidirectional",
+        }
+    }
+}
+
+/// The denoiser applied to the noisy frame.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub enum Denoiser {
+    /// The raw estimate.
+    None,
+    /// Spatiotemporal variance-guided filtering.
+    #[default]
+    Svgf,
+}
+
+impl Denoiser {
+    /// Every denoiser, in the order the panel lists them.
+    pub const ALL: [Self; 2] = [Self::None, Self::Svgf];
+
+    /// The name shown in the panel.
+    pub fn label(self) -> &'static str {
+        match self {
+            Self::None => "none",
+            Self::Svgf => "SVGF",
+        }
+    }
+}
+
+/// What the renderer is asked to do each frame.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct RenderSettings {
+    /// The light-transport algorithm.
+    pub algorithm: Algorithm,
+    /// Samples per pixel per frame.
+    pub spp: u32,
+    /// Maximum number of path vertices after the camera.
+    pub max_depth: u32,
+    /// The denoiser.
+    pub denoiser: Denoiser,
+    /// Whether samples accumulate over frames while nothing changes.
+    pub accumulate: bool,
+}
+
+impl Default for RenderSettings {
+    fn default() -> Self {
+        Self {
+            algorithm: Algorithm::default(),
+            spp: 1,
+            max_depth: 8,
+            denoiser: Denoiser::default(),
+            accumulate: true,
+        }
+    }
+}
+
+/// The tone curve of the display transform.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub enum ToneMapper {
+    /// The ACES filmic fit.
+    #[default]
+    Aces,
+    /// AgX.
+    AgX,
+    /// Clamp to `[0, 1]`.
+    Clamp,
+}
+
+impl ToneMapper {
+    /// Every tone mapper, in the order the panel lists them.
+    pub const ALL: [Self; 3] = [Self::Aces, Self::AgX, Self::Clamp];
+
+    /// The name shown in the panel.
+    pub fn label(self) -> &'static str {
+        match self {
+            Self::Aces => "ACES",
+            Self::AgX => "AgX",
+            Self::Clamp => "clamp",
+        }
+    }
+
+    /// The index the tone-mapping shader switches on.
+    pub fn shader_index(self) -> u32 {
+        match self {
+            Self::Clamp => 0,
+            Self::Aces => 1,
+            Self::AgX => 2,
+        }
+    }
+
+    /// The engine's curve of the same name (used for PNG captures).
+    pub fn curve(self) -> ToneCurve {
+        match self {
+            Self::Aces => ToneCurve::Aces,
+            Self::AgX => ToneCurve::AgX,
+            Self::Clamp => ToneCurve::Clamp,
+        }
+    }
+}
+
+/// How the HDR output becomes display pixels.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct DisplaySettings {
+    /// Exposure in stops.
+    pub exposure: f32,
+    /// The tone curve.
+    pub tone_mapper: ToneMapper,
+}
+
+impl DisplaySettings {
+    /// The same transform as the engine's PNG encoding (for captures).
+    pub fn png_encoding(&self) -> PngEncoding {
+        PngEncoding {
+            exposure: self.exposure,
+            tone: self.tone_mapper.curve(),
+        }
+    }
+}

@@ -1,0 +1,159 @@
+//! The editable sections: scene, renderer, display and camera.
+
+use super::Requests;
+use crate::settings::{Algorithm, Denoiser, ToneMapper};
+use crate::state::{AppState, PathMode};
+use lucid_engine::scene::SceneFeatures;
+
+/// Shows the sections.
+pub fn show(ui: &mut egui::Ui, state: &mut AppState, requests: &mut Requests) {
+    egui::CollapsingHeader::new("Scene")
+        .default_open(true)
+        .show(ui, |ui| scene(ui, state, requests));
+    egui::CollapsingHeader::new("Renderer")
+        .default_open(true)
+        .show(ui, |ui| renderer(ui, state));
+    egui::CollapsingHeader::new("Display")
+        .default_open(true)
+        .show(ui, |ui| display(ui, state, requests));
+    egui::CollapsingHeader::new("Camera")
+        .default_open(false)
+        .show(ui, |ui| camera(ui, state, requests));
+}
+
+fn scene(ui: &mut egui::Ui, state: &mut AppState, requests: &mut Requests) {
+    ui.horizontal(|ui| {
+        let field = ui.text_edit_singleline(&mut state.scene_field);
+        let enter = field.lost_focus() && ui.input(|i| i.key_pressed(egui::Key::Enter));
+        if ui.button("Load").clicked() || enter {
+            requests.load_scene = Some(state.scene_field.trim().to_string());
+        }
+    });
+    match &state.scene {
+        Ok(info) => {
+            ui.label(format!("{} ({})", info.name, info.source));
+            ui.label(format!(
+                "{} triangles, {} materials",
+                info.triangles, info.materials
+            ));
+            for warning in &info.warnings {
+                ui.colored_label(egui::Color32::YELLOW, warning);
+            }
+            ui.label("Features:");
+            ui.indent("features", |ui| {
+                for (name, used) in feature_list(&info.features) {
+                    ui.label(format!("{} {name}", if used { "☑" } else { "☐" }));
+                }
+            });
+        }
+        Err(e) => {
+            ui.colored_label(egui::Color32::LIGHT_RED, e);
+        }
+    }
+}
+
+/// The scene features with their names, in a fixed order.
+fn feature_list(f: &SceneFeatures) -> [(&'static str, bool); 10] {
+    [
+        ("diffuse", f.diffuse),
+        ("conductor", f.conductor),
+        ("smooth dielectric", f.dielectric_smooth),
+        ("rough dielectric", f.dielectric_rough),
+        ("emissive", f.emissive),
+        ("spheres", f.spheres),
+        ("textures", f.textures),
+        ("environment", f.environment),
+        ("sun", f.sun),
+        ("point/spot lights", f.delta_lights),
+    ]
+}
+
+fn renderer(ui: &mut egui::Ui, state: &mut AppState) {
+    let r = &mut state.render;
+    egui::ComboBox::from_label("algorithm")
+        .selected_text(r.algorithm.label())
+        .show_ui(ui, |ui| {
+            for a in Algorithm::ALL {
+                ui.selectable_value(&mut r.algorithm, a, a.label());
+            }
+        });
+    ui.add(
+        egui::DragValue::new(&mut r.spp)
+            .range(1..=1024)
+            .prefix("samples per pixel: "),
+    );
+    ui.add(
+        egui::DragValue::new(&mut r.max_depth)
+            .range(1..=64)
+            .prefix("max path length: "),
+    );
+    egui::ComboBox::from_label("denoiser")
+        .selected_text(r.denoiser.label())
+        .show_ui(ui, |ui| {
+            for d in Denoiser::ALL {
+                ui.selectable_value(&mut r.denoiser, d, d.label());
+            }
+        });
+    ui.checkbox(&mut r.accumulate, "accumulate");
+}
+
+fn display(ui: &mut egui::Ui, state: &mut AppState, requests: &mut Requests) {
+    let d = &mut state.display;
+    ui.add(egui::Slider::new(&mut d.exposure, -10.0..=10.0).text("exposure (EV)"));
+    egui::ComboBox::from_label("tone mapper")
+        .selected_text(d.tone_mapper.label())
+        .show_ui(ui, |ui| {
+            for t in ToneMapper::ALL {
+                ui.selectable_value(&mut d.tone_mapper, t, t.label());
+            }
+        });
+    if ui.button("Capture EXR + PNG (F12)").clicked() {
+        requests.capture = true;
+    }
+}
+
+fn camera(ui: &mut egui::Ui, state: &mut AppState, requests: &mut Requests) {
+    let pose = state.camera.pose;
+    ui.label(format!(
+        "position {:.2} {:.2} {:.2}",
+        pose.position.x, pose.position.y, pose.position.z
+    ));
+    ui.label(format!(
+        "yaw {:.1}°, pitch {:.1}°, fov {:.1}°",
+        pose.yaw.to_degrees(),
+        pose.pitch.to_degrees(),
+        pose.vfov_degrees
+    ));
+    ui.add(
+        egui::DragValue::new(&mut state.camera.speed)
+            .range(1e-3..=1e4)
+            .speed(0.05)
+            .prefix("speed: ")
+            .suffix(" /s"),
+    );
+    ui.label("WASD move, Q/E down/up, right mouse look, wheel speed");
+    let stored = state.bookmarks.stored_keys();
+    ui.label(if stored.is_empty() {
+        "bookmarks: Shift+1..9 stores, 1..9 recalls".to_string()
+    } else {
+        format!("bookmarks: {stored:?}")
+    });
+    ui.horizontal(|ui| {
+        ui.label("path file");
+        ui.text_edit_singleline(&mut state.path_file);
+    });
+    ui.horizontal(|ui| match &state.path {
+        PathMode::Idle => {
+            requests.record = ui.button("Record").clicked();
+            requests.replay = ui.button("Replay").clicked();
+        }
+        PathMode::Recording(recorder, _) => {
+            ui.label(format!("recording ({} keys)", recorder.len()));
+            requests.stop = ui.button("Stop and save").clicked();
+        }
+        PathMode::Replaying(..) => {
+            ui.label("replaying");
+            requests.stop = ui.button("Stop").clicked();
+        }
+    });
+}

@@ -1,0 +1,111 @@
+//! `lucid bench`: GPU frame times (timestamps per pass), paths/s and rays/s for one scene and
+//! algorithm, printed and written as JSON.
+
+use super::progress::Progress;
+use super::render_options::RenderOptions;
+use super::scene_source;
+use anyhow::Context as _;
+use clap::Args;
+use lucid_engine::{Context, ContextDesc};
+use lucid_passes::renderer::Renderer;
+use std::collections::BTreeMap;
+use std::path::PathBuf;
+
+/// Options of `lucid bench`.
+#[derive(Debug, Args)]
+pub struct BenchArgs {
+    #[command(flatten)]
+    options: RenderOptions,
+    /// Frames measured (after the warm-up).
+    #[arg(long, default_value_t = 100, value_parser = clap::value_parser!(u32).range(1..))]
+    frames: u32,
+    /// Frames rendered first and not measured (pipeline creation, caches, clocks).
+    #[arg(long, default_value_t = 10)]
+    warmup: u32,
+    /// Also write the results as JSON to this file.
+    #[arg(long)]
+    json: Option<PathBuf>,
+}
+
+/// Mean, standard deviation, median, minimum and maximum of a sample.
+fn summary(values: &[f64]) -> serde_json::Value {
+    let n = values.len().max(1) as f64;
+    let mean = values.iter().sum::<f64>() / n;
+    let var = values.iter().map(|v| (v - mean) * (v - mean)).sum::<f64>() / (n - 1.0).max(1.0);
+    let mut sorted = values.to_vec();
+    sorted.sort_by(f64::total_cmp);
+    serde_json::json!({
+        "mean": mean,
+        "std": var.sqrt(),
+        "median": sorted.get(sorted.len() / 2).copied().unwrap_or(0.0),
+        "min": sorted.first().copied().unwrap_or(0.0),
+        "max": sorted.last().copied().unwrap_or(0.0),
+    })
+}
+
+/// Runs the benchmark.
+pub fn run(args: &BenchArgs) -> anyhow::Result<()> {
+    let scene = scene_source::load(&args.options.scene)?;
+    let ctx = Context::new(&ContextDesc::from_env())?;
+    if !ctx.info().timestamps {
+        anyhow::bail!(
+            "{} has no timestamp queries on its compute queue: cannot time passes",
+            ctx.info().name
+        );
+    }
+    let (w, h) = (args.options.size.width, args.options.size.height);
+    let settings = args.options.settings(false);
+    let mut renderer = Renderer::new(&ctx, scene, w, h, settings)?;
+    for _ in 0..args.warmup {
+        let frame = renderer.render()?;
+        renderer.executor_mut().wait(frame)?;
+    }
+    renderer.finish()?;
+    let progress = Progress::new(args.frames as u64, "frames");
+    let mut frame_ms = Vec::new();
+    let mut rays = Vec::new();
+    let mut passes: BTreeMap<String, Vec<f64>> = BTreeMap::new();
+    let wall = std::time::Instant::now();
+    for _ in 0..args.frames {
+        let mut g = lucid_engine::graph::RenderGraph::new();
+        let (_, stats) = renderer.add_frame(&mut g);
+        let frame = renderer.executor_mut().execute(g.compile()?)?;
+        let outputs = renderer.executor_mut().wait(frame)?;
+        renderer.collect_stats(&outputs, stats)?;
+        frame_ms.push(outputs.timings.iter().map(|t| t.ms).sum());
+        for t in &outputs.timings {
+            passes.entry(t.name.clone()).or_default().push(t.ms);
+        }
+        rays.push(renderer.stats().rays as f64);
+        progress.inc();
+    }
+    progress.finish();
+    let wall_s = wall.elapsed().as_secs_f64();
+    let mean_ms = frame_ms.iter().sum::<f64>() / frame_ms.len() as f64;
+    let paths = w as f64 * h as f64 * args.options.spp as f64;
+    let mean_rays = rays.iter().sum::<f64>() / rays.len() as f64;
+    let report = serde_json::json!({
+        "command": std::env::args().collect::<Vec<_>>().join(" "),
+        "device": ctx.info().name,
+        "scene": renderer.scene().name,
+        "triangles": renderer.scene().triangle_count(),
+        "algorithm": settings.algorithm.short_name(),
+        "size": [w, h],
+        "spp": args.options.spp,
+        "max_depth": args.options.max_depth,
+        "frames": args.frames,
+        "frame_ms": summary(&frame_ms),
+        "passes_ms": passes.iter().map(|(k, v)| (k.clone(), summary(v))).collect::<BTreeMap<_, _>>(),
+        "paths_per_second": paths / (mean_ms / 1e3),
+        "rays_per_frame": mean_rays,
+        "rays_per_second": mean_rays / (mean_ms / 1e3),
+        "wall_fps": args.frames as f64 / wall_s,
+        "non_finite_samples_last_frame": renderer.stats().non_finite_samples,
+    });
+    println!("{}", serde_json::to_string_pretty(&report)?);
+    if let Some(path) = &args.json {
+        std::fs::write(path, serde_json::to_string_pretty(&report)?)
+            .with_context(|| format!("writing {}", path.display()))?;
+    }
+    Ok(())
+}

@@ -1,0 +1,75 @@
+// Shared by the bidirectional path tracing passes: parameters, the light-vertex-cache record, the
+// MIS heuristic and small helpers. Mirrors lucid_passes::bdpt (Params, LIGHT_VERTEX_BYTES).
+//
+// MIS follows the recursive formulation of SmallVCM / "Implementing Vertex Connection and Merging"
+// (Georgiev 2012) restricted to vertex connection: each subpath vertex carries dvcm and dvc, partial
+// sums of pdf ratios, from which every strategy's weight 1 / (1 + w_light + w_camera) follows in
+// O(1). Area conversions use geometric normals; Russian roulette is left out of the pdfs (the
+// weights still sum to one, so the estimate stays unbiased). Requires math.glsl, bsdf.glsl.
+#ifndef LUCID_BDPT_GLSL
+#define LUCID_BDPT_GLSL
+
+// Power heuristic (exponent 2) when true, balance heuristic otherwise.
+layout(constant_id = 120) const bool MIS_POWER = true;
+
+layout(push_constant) uniform Params {
+    uint light_paths;  // light subpaths traced this frame
+    uint capacity;     // light vertices the cache holds
+    uint connections;  // cached light vertices each camera vertex connects to
+    uint stride;       // light-pass invocations per dispatch row
+    float light_ratio; // light subpaths per camera sample
+    float splat_scale; // pixels / light subpaths
+} pc;
+
+// A light subpath vertex on a non-delta surface, 64 bytes.
+struct LightVertex {
+    vec3 p;
+    uint material;
+    vec3 throughput; // emission / pdf, including every BSDF factor up to (not at) this vertex
+    float dvcm;
+    vec3 wi;         // unit direction towards the previous vertex of the light subpath
+    float dvc;
+    uint ng;         // geometric normal, octahedral (decode_normal)
+    uint ns;         // shading normal, octahedral
+    uint uv;         // packHalf2x16
+    uint length;     // segments from the light
+};
+
+float mis(float x) {
+    return MIS_POWER ? x * x : x;
+}
+
+// The two-strategy weight of a (MIS-exponentiated) over b.
+float mis_pair(float a, float b) {
+    float ma = mis(a);
+    float mb = mis(b);
+    return ma + mb > 0.0 ? ma / (ma + mb) : 0.0;
+}
+
+// Octahedral encoding of a unit vector (the inverse of decode_normal).
+uint encode_normal(vec3 n) {
+    vec2 e = n.xy / (abs(n.x) + abs(n.y) + abs(n.z));
+    if (n.z < 0.0) {
+        vec2 s = vec2(e.x >= 0.0 ? 1.0 : -1.0, e.y >= 0.0 ? 1.0 : -1.0);
+        e = (1.0 - abs(e.yx)) * s;
+    }
+    return packSnorm2x16(e);
+}
+
+// f(wo -> wi) / f(wi -> wo) in the local frame: eta^2 across a dielectric refraction, 1 otherwise.
+// Multiplying a BSDF sample drawn from wo by it gives the importance-transport (adjoint) weight.
+float adjoint_scale(BsdfParams m, vec3 wo, vec3 wi) {
+    if (m.kind != MATERIAL_DIELECTRIC || wo.z * wi.z >= 0.0) {
+        return 1.0;
+    }
+    float eta = wo.z > 0.0 ? m.ior : 1.0 / m.ior;
+    return eta * eta;
+}
+
+// Area of the film of a pinhole camera at unit distance.
+float film_area(Camera c, float aspect) {
+    float tan_half = c.up_tan_half_fov.w;
+    return 4.0 * tan_half * tan_half * aspect;
+}
+
+#endif

@@ -1,0 +1,50 @@
+#version 460
+// Batch ray queries against the scene BVH: closest hit (distance, object id) and occlusion, one
+// invocation per ray. Used to check the GPU traversal against the CPU one, and for picking.
+#include "common/math.glsl"
+#include "common/scene.glsl"
+#include "common/traverse.glsl"
+
+layout(local_size_x = 64) in;
+
+struct RayIn {
+    vec4 origin_tmax;
+    vec4 dir;
+};
+
+struct HitOut {
+    float t;         // distance, or -1 on a miss
+    uint object_id;  // scene instance, or 0x80000000 | sphere; ~0 on a miss
+    uint occluded;   // any-hit result within t_max
+    uint pad;
+};
+
+layout(set = 0, binding = 16, std430) readonly buffer Rays { RayIn r[]; } b_rays;
+layout(set = 0, binding = 17, std430) writeonly buffer Hits { HitOut h[]; } b_hits;
+
+layout(push_constant) uniform Params {
+    uint count;
+} params;
+
+void main() {
+    uint index = gl_GlobalInvocationID.x;
+    if (index >= params.count) {
+        return;
+    }
+    RayIn ray = b_rays.r[index];
+    Hit hit;
+    HitOut result;
+    result.pad = 0u;
+    if (trace_closest(ray.origin_tmax.xyz, ray.dir.xyz, ray.origin_tmax.w, hit)) {
+        result.t = hit.t;
+        Instance inst = b_instances.i[hit.instance];
+        result.object_id = inst.kind == INSTANCE_SPHERES
+            ? (0x80000000u | b_spheres.s[hit.primitive].scene_sphere)
+            : inst.scene_instance;
+    } else {
+        result.t = -1.0;
+        result.object_id = 0xffffffffu;
+    }
+    result.occluded = trace_occluded(ray.origin_tmax.xyz, ray.dir.xyz, ray.origin_tmax.w) ? 1u : 0u;
+    b_hits.h[index] = result;
+}

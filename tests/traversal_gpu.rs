@@ -1,0 +1,147 @@
+//! The GPU BVH traversal returns the same hits as the CPU traversal, on random rays through every
+//! built-in scene (reduced tessellation for the large ones).
+
+use ash::vk;
+use glam::Vec3;
+use lucid_engine::bvh::{Bvh, HitKind, Ray};
+use lucid_engine::graph::{Executor, RenderGraph};
+use lucid_engine::memory::Buffer;
+use lucid_engine::scene::builtin::{self, BuildOptions};
+use lucid_engine::scene::gpu::GpuScene;
+use lucid_engine::shader::ShaderLibrary;
+use lucid_passes::ray_query::{self, QueryHit, QueryRay, SPHERE_BIT};
+use lucid_passes::scene_buffers::SceneBuffers;
+use lucid_tests::{assert_no_validation_messages, context};
+use std::sync::Arc;
+
+/// A small deterministic generator (xorshift), so every run checks the same rays.
+struct Rng(u64);
+
+impl Rng {
+    fn next(&mut self) -> f32 {
+        self.0 ^= self.0 << 13;
+        self.0 ^= self.0 >> 7;
+        self.0 ^= self.0 << 17;
+        (self.0 >> 40) as f32 / (1u64 << 24) as f32
+    }
+
+    fn direction(&mut self) -> Vec3 {
+        let z = 2.0 * self.next() - 1.0;
+        let phi = std::f32::consts::TAU * self.next();
+        let r = (1.0 - z * z).max(0.0).sqrt();
+        Vec3::new(r * phi.cos(), r * phi.sin(), z)
+    }
+}
+
+fn check_scene(name: &str, rays_per_scene: usize) {
+    let options = BuildOptions { detail: 0.02 };
+    let mut scene = builtin::build_with(name, &options).unwrap();
+    scene.validate().unwrap();
+    let bvh = Bvh::build(&scene);
+    let gpu = GpuScene::new(&scene, &bvh);
+    let ctx = context(false);
+    let buffers = SceneBuffers::upload(&ctx, &gpu).unwrap();
+    let mut executor = Executor::new(&ctx, ShaderLibrary::new(&ctx, None).unwrap()).unwrap();
+
+    let bounds = scene.bounds();
+    let extent = bounds.max - bounds.min;
+    let mut rng = Rng(0x9e3779b97f4a7c15 ^ name.len() as u64);
+    let mut rays = Vec::with_capacity(rays_per_scene);
+    for i in 0..rays_per_scene {
+        // Half the rays start inside the bounds, half at the camera (the rays that matter most).
+        let origin = if i % 2 == 0 {
+            bounds.min + extent * Vec3::new(rng.next(), rng.next(), rng.next())
+        } else {
+            scene.camera.position
+        };
+        let t_max = if i % 3 == 0 {
+            extent.length() * rng.next()
+        } else {
+            1e30
+        };
+        rays.push(Ray {
+            origin,
+            dir: rng.direction(),
+            t_min: 0.0,
+            t_max,
+        });
+    }
+    let query: Vec<QueryRay> = rays
+        .iter()
+        .map(|r| QueryRay {
+            origin_tmax: r.origin.extend(r.t_max).to_array(),
+            dir: r.dir.extend(0.0).to_array(),
+        })
+        .collect();
+    let ray_buffer = Arc::new(
+        Buffer::with_data(
+            &ctx,
+            "rays",
+            "test",
+            vk::BufferUsageFlags::STORAGE_BUFFER,
+            bytemuck::cast_slice(&query),
+        )
+        .unwrap(),
+    );
+    let mut g = RenderGraph::new();
+    let scene_handles = buffers.import(&mut g);
+    let rays_handle = g.import_buffer("rays", ray_buffer);
+    let hits = ray_query::add(&mut g, &scene_handles, rays_handle, rays.len() as u32);
+    let readback = g.readback(hits);
+    let frame = executor.execute(g.compile().unwrap()).unwrap();
+    let outputs = executor.wait(frame).unwrap();
+    let gpu_hits: Vec<QueryHit> = bytemuck::pod_collect_to_vec(outputs.bytes(readback).unwrap());
+
+    let mut mismatches = Vec::new();
+    let mut hits_seen = 0;
+    for (i, (ray, got)) in rays.iter().zip(&gpu_hits).enumerate() {
+        let want = bvh.intersect(&scene, ray);
+        let occluded = bvh.occluded(&scene, ray);
+        if want.is_some() {
+            hits_seen += 1;
+        }
+        let same = match (&want, got.t >= 0.0) {
+            (None, false) => true,
+            (Some(h), true) => {
+                let object = match h.kind {
+                    HitKind::Triangle { instance, .. } => instance,
+                    HitKind::Sphere { sphere } => SPHERE_BIT | sphere,
+                };
+                let t_close = (h.t - got.t).abs() <= 1e-3 * h.t.max(1.0);
+                t_close && (object == got.object_id || (h.t - got.t).abs() <= 1e-5 * h.t.max(1.0))
+            }
+            _ => false,
+        };
+        if !same || occluded != (got.occluded == 1) {
+            mismatches.push(format!(
+                "ray {i}: cpu {want:?} occluded {occluded}, gpu {got:?}"
+            ));
+        }
+    }
+    // Rays grazing an edge or a silhouette may round differently: allow one in a thousand.
+    assert!(
+        mismatches.len() * 1000 <= rays.len(),
+        "{name}: {} of {} rays differ:\n{}",
+        mismatches.len(),
+        rays.len(),
+        mismatches
+            .iter()
+            .take(10)
+            .cloned()
+            .collect::<Vec<_>>()
+            .join("\n")
+    );
+    assert!(
+        hits_seen * 10 > rays.len(),
+        "{name}: a tenth of the rays should hit something ({hits_seen})"
+    );
+    drop((executor, buffers));
+    assert_no_validation_messages(&ctx);
+}
+
+#[test]
+fn gpu_traversal_matches_cpu_on_every_builtin_scene() {
+    for name in builtin::names() {
+        check_scene(name, 4000);
+    }
+}
