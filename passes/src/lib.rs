@@ -5,7 +5,9 @@
 //! and returns typed outputs.
 
 pub mod accumulate;
+pub mod bdpt;
 pub mod frame_constants;
+pub mod gbuffer;
 pub mod path_trace;
 pub mod ray_query;
 pub mod renderer;

@@ -108,23 +108,32 @@ impl<'a> PassContext<'a> {
     }
 
     /// Writes `data` at the start of a buffer the pass declared with `Access::TransferWrite`, inline in
-    /// the command buffer (at most 65536 bytes, a multiple of 4): per-frame constants need no staging.
+    /// the command buffer (in chunks of 64 KiB; the length must be a multiple of 4): per-frame
+    /// constants need no staging buffer.
     pub fn update_buffer(&self, handle: BufferHandle, data: &[u8]) -> Result<()> {
         self.require_transfer_write(handle, "update_buffer")?;
-        if data.is_empty() || data.len() % 4 != 0 || data.len() > 65536 {
+        let buffer = self.buffer(handle)?;
+        if data.is_empty() || data.len() % 4 != 0 || data.len() as u64 > buffer.size() {
             return Err(EngineError::InvalidArgument(format!(
-                "pass {}: update_buffer takes 4..=65536 bytes in multiples of 4, not {}",
+                "pass {}: update_buffer takes a non-empty multiple of 4 bytes that fits {} ({} bytes), not {}",
                 self.pass_name,
+                buffer.name(),
+                buffer.size(),
                 data.len()
             )));
         }
-        let buffer = self.buffer(handle)?;
-        // SAFETY: cmd is recording; the buffer is alive for the frame and in transfer-write state.
-        unsafe {
-            self.ctx
-                .device()
-                .cmd_update_buffer(self.cmd, buffer.raw(), 0, data)
-        };
+        for (i, chunk) in data.chunks(65536).enumerate() {
+            // SAFETY: cmd is recording; the buffer is alive for the frame and in transfer-write state;
+            // the chunk lies within the buffer (checked above).
+            unsafe {
+                self.ctx.device().cmd_update_buffer(
+                    self.cmd,
+                    buffer.raw(),
+                    (i * 65536) as u64,
+                    chunk,
+                )
+            };
+        }
         Ok(())
     }
 

@@ -20,8 +20,9 @@ mod settings;
 pub use settings::{Algorithm, Settings};
 
 use crate::frame_constants::{self, FrameConstants};
+use crate::gbuffer::{self, GBuffer};
 use crate::scene_buffers::{specialization, SceneBuffers};
-use crate::{accumulate, path_trace, tonemap};
+use crate::{accumulate, bdpt, path_trace, tonemap};
 use lucid_engine::bvh::Bvh;
 use lucid_engine::capture::ImageData;
 use lucid_engine::graph::{Executor, FrameId, ImageHandle, ReadbackId, RenderGraph};
@@ -41,6 +42,8 @@ pub struct FrameImages {
     pub hdr: ImageHandle,
     /// Tone-mapped sRGB RGBA8.
     pub ldr: ImageHandle,
+    /// Primary visibility for denoisers and debug views (culled when nothing reads it).
+    pub gbuffer: GBuffer,
 }
 
 /// Counts from the last completed frame.
@@ -64,6 +67,7 @@ pub struct Renderer {
     spec: Specialization,
     camera: Camera,
     prev_camera: GpuCamera,
+    prev_transforms: Vec<[[f32; 4]; 3]>,
     settings: Settings,
     width: u32,
     height: u32,
@@ -96,6 +100,7 @@ impl Renderer {
             ctx: ctx.clone(),
             executor: Executor::new(ctx, library)?,
             prev_camera: gpu::camera(&camera),
+            prev_transforms: transform_rows(&scene),
             camera,
             scene,
             bvh,
@@ -232,13 +237,32 @@ impl Renderer {
         };
         let frame = frame_constants::add(g, &constants);
         let scene = self.buffers.import(g);
+        let prev_transforms = add_prev_transforms(g, &self.prev_transforms);
+        let gbuffer = gbuffer::add(g, &scene, frame, prev_transforms, &self.spec, w, h);
         let traced = match self.settings.algorithm {
             Algorithm::PathTracing => path_trace::add(g, &scene, frame, &self.spec, w, h),
+            Algorithm::Bidirectional => {
+                let sampling = bdpt::Frame {
+                    width: w,
+                    height: h,
+                    samples_per_pixel: self.settings.samples_per_pixel.max(1),
+                    max_depth: self.settings.max_depth,
+                };
+                bdpt::add(
+                    g,
+                    &scene,
+                    frame,
+                    &self.spec,
+                    sampling,
+                    &bdpt::Config::default(),
+                )
+            }
         };
         let hdr = accumulate::add(g, traced.radiance, w, h, accumulated);
         let ldr = tonemap::add(g, hdr, w, h, self.settings.display);
         let stats = g.readback(traced.stats);
         self.prev_camera = camera;
+        self.prev_transforms = transform_rows(&self.scene);
         self.frame_index = self.frame_index.wrapping_add(1);
         self.accumulated = if self.settings.accumulate {
             accumulated.saturating_add(1)
@@ -251,6 +275,7 @@ impl Renderer {
                 demodulated: traced.demodulated,
                 hdr,
                 ldr,
+                gbuffer,
             },
             stats,
         )
@@ -259,10 +284,20 @@ impl Renderer {
     /// The compiled plan of the next frame (passes, barriers, lifetimes, aliasing), without rendering
     /// it or changing any state.
     pub fn frame_plan(&mut self) -> Result<lucid_engine::graph::Plan> {
-        let saved = (self.prev_camera, self.frame_index, self.accumulated);
+        let saved = (
+            self.prev_camera,
+            self.prev_transforms.clone(),
+            self.frame_index,
+            self.accumulated,
+        );
         let mut g = RenderGraph::new();
         self.add_frame(&mut g);
-        (self.prev_camera, self.frame_index, self.accumulated) = saved;
+        (
+            self.prev_camera,
+            self.prev_transforms,
+            self.frame_index,
+            self.accumulated,
+        ) = saved;
         Ok(g.compile()?.plan)
     }
 
@@ -321,6 +356,40 @@ impl Renderer {
         }
         self.executor.wait_all()
     }
+}
+
+/// Object-to-world rows of every scene instance (what the G-buffer needs of last frame).
+fn transform_rows(scene: &Scene) -> Vec<[[f32; 4]; 3]> {
+    scene
+        .instances
+        .iter()
+        .map(|i| {
+            let m = glam::Mat4::from(i.transform);
+            [
+                m.row(0).to_array(),
+                m.row(1).to_array(),
+                m.row(2).to_array(),
+            ]
+        })
+        .collect()
+}
+
+/// A pass writing last frame's instance transforms into a transient buffer (culled with the
+/// G-buffer when nothing reads it).
+fn add_prev_transforms(
+    g: &mut RenderGraph,
+    rows: &[[[f32; 4]; 3]],
+) -> lucid_engine::graph::BufferHandle {
+    let data: Vec<u8> = if rows.is_empty() {
+        vec![0; 48]
+    } else {
+        bytemuck::cast_slice(rows).to_vec()
+    };
+    let mut p = g.add_pass("prev_transforms");
+    let buffer = p.create_buffer("prev_transforms", data.len() as u64);
+    let buffer = p.write(buffer, lucid_engine::graph::Access::TransferWrite);
+    p.execute(move |ctx| ctx.update_buffer(buffer, &data));
+    buffer
 }
 
 fn check_size(width: u32, height: u32) -> Result<()> {

@@ -8,16 +8,19 @@ pub enum Algorithm {
     /// Unidirectional path tracing with NEE and MIS.
     #[default]
     PathTracing,
+    /// Bidirectional path tracing with a light vertex cache.
+    Bidirectional,
 }
 
 impl Algorithm {
     /// Every algorithm, for menus and argument parsing.
-    pub const ALL: [Algorithm; 1] = [Algorithm::PathTracing];
+    pub const ALL: [Algorithm; 2] = [Algorithm::PathTracing, Algorithm::Bidirectional];
 
-    /// The short name used on the command line (`pt`).
+    /// The short name used on the command line (`pt`, `bdpt`).
     pub fn short_name(self) -> &'static str {
         match self {
             Algorithm::PathTracing => "pt",
+            Algorithm::Bidirectional => "bdpt",
         }
     }
 

@@ -1,0 +1,154 @@
+//! The G-buffer: depth, normals and ids are sane, and motion vectors follow the camera and moved
+//! instances (reprojection lands on the same object).
+
+use glam::{Affine3A, Vec3};
+use lucid_engine::capture::ImageData;
+use lucid_engine::graph::RenderGraph;
+use lucid_passes::renderer::{Renderer, Settings};
+use lucid_tests::render::scene;
+use lucid_tests::{assert_no_validation_messages, context};
+
+struct Frame {
+    depth: ImageData,
+    normal: ImageData,
+    ids: ImageData,
+    motion: ImageData,
+}
+
+fn gbuffer_frame(renderer: &mut Renderer) -> Frame {
+    let mut g = RenderGraph::new();
+    let (images, _) = renderer.add_frame(&mut g);
+    let ids = [
+        g.readback(images.gbuffer.depth),
+        g.readback(images.gbuffer.normal_roughness),
+        g.readback(images.gbuffer.ids),
+        g.readback(images.gbuffer.motion),
+    ];
+    let executor = renderer.executor_mut();
+    let frame = executor.execute(g.compile().unwrap()).unwrap();
+    let out = executor.wait(frame).unwrap();
+    Frame {
+        depth: out.image(ids[0]).unwrap(),
+        normal: out.image(ids[1]).unwrap(),
+        ids: out.image(ids[2]).unwrap(),
+        motion: out.image(ids[3]).unwrap(),
+    }
+}
+
+const SIZE: u32 = 48;
+
+#[test]
+fn static_frames_have_zero_motion_and_sane_geometry() {
+    let ctx = context(false);
+    let mut renderer =
+        Renderer::new(&ctx, scene("cornell-box"), SIZE, SIZE, Settings::default()).unwrap();
+    gbuffer_frame(&mut renderer);
+    let f = gbuffer_frame(&mut renderer);
+    for (i, m) in f.motion.pixels.iter().enumerate() {
+        assert!(
+            m[0].abs() < 1e-2 && m[1].abs() < 1e-2,
+            "pixel {i} moved without motion: {m:?}"
+        );
+    }
+    let hits = f.ids.pixels.iter().filter(|p| p[3] == 1.0).count();
+    assert!(
+        hits as u32 > SIZE * SIZE * 9 / 10,
+        "the Cornell box fills the view: {hits}"
+    );
+    for (d, n) in f
+        .depth
+        .pixels
+        .iter()
+        .zip(&f.normal.pixels)
+        .filter(|(d, _)| d[0] > 0.0)
+    {
+        let len = (n[0] * n[0] + n[1] * n[1] + n[2] * n[2]).sqrt();
+        assert!((len - 1.0).abs() < 1e-2, "unit normals: {n:?}");
+        assert!(d[0] > 1.0 && d[0] < 10.0, "depth in the box: {d:?}");
+    }
+    drop(renderer);
+    assert_no_validation_messages(&ctx);
+}
+
+#[test]
+fn a_moved_instance_has_motion_and_the_rest_does_not() {
+    let ctx = context(false);
+    let cornell = scene("cornell-box");
+    let mut renderer = Renderer::new(&ctx, cornell, SIZE, SIZE, Settings::default()).unwrap();
+    let before = gbuffer_frame(&mut renderer);
+    // The instance seen at the image centre (one of the boxes) moves right by 0.1.
+    let centre = before.ids.get(SIZE / 2, SIZE * 3 / 4).unwrap()[0] as usize;
+    let transform = renderer.scene().instances[centre].transform;
+    renderer
+        .set_instance_transform(
+            centre,
+            Affine3A::from_translation(Vec3::new(0.1, 0.0, 0.0)) * transform,
+        )
+        .unwrap();
+    let after = gbuffer_frame(&mut renderer);
+    let mut moved = 0;
+    for (i, (id, m)) in after
+        .ids
+        .pixels
+        .iter()
+        .zip(&after.motion.pixels)
+        .enumerate()
+    {
+        if id[3] != 1.0 {
+            continue;
+        }
+        if id[0] as usize == centre {
+            // Moving right on screen means last frame's position is to the left.
+            assert!(m[0] < -0.5, "pixel {i} of the moved box: {m:?}");
+            moved += 1;
+        } else {
+            assert!(
+                m[0].abs() < 1e-2 && m[1].abs() < 1e-2,
+                "pixel {i} of a static object: {m:?}"
+            );
+        }
+    }
+    assert!(moved > 10, "the moved box covers pixels: {moved}");
+    drop(renderer);
+    assert_no_validation_messages(&ctx);
+}
+
+#[test]
+fn camera_motion_reprojects_onto_the_same_objects() {
+    let ctx = context(false);
+    let mut renderer =
+        Renderer::new(&ctx, scene("cornell-box"), SIZE, SIZE, Settings::default()).unwrap();
+    let before = gbuffer_frame(&mut renderer);
+    let mut camera = renderer.camera();
+    camera.position += Vec3::new(0.15, 0.05, 0.0);
+    renderer.set_camera(camera);
+    let after = gbuffer_frame(&mut renderer);
+    let (mut landed, mut same, mut moved) = (0, 0, 0);
+    for y in 0..SIZE {
+        for x in 0..SIZE {
+            let m = after.motion.get(x, y).unwrap();
+            let id = after.ids.get(x, y).unwrap();
+            if id[3] != 1.0 {
+                continue;
+            }
+            moved += usize::from(m[0].abs() > 0.5);
+            let (px, py) = ((x as f32 + m[0]).round(), (y as f32 + m[1]).round());
+            if px < 0.0 || py < 0.0 || px >= SIZE as f32 || py >= SIZE as f32 {
+                continue;
+            }
+            landed += 1;
+            let prev_id = before.ids.get(px as u32, py as u32).unwrap();
+            same += usize::from(prev_id[0] == id[0]);
+        }
+    }
+    assert!(
+        moved > (SIZE * SIZE / 2) as usize,
+        "a camera move shows in the motion vectors: {moved}"
+    );
+    assert!(
+        same * 100 >= landed * 95,
+        "{same} of {landed} reprojected pixels land on the same object"
+    );
+    drop(renderer);
+    assert_no_validation_messages(&ctx);
+}
