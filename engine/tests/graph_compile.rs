@@ -41,6 +41,13 @@ fn hazards(plan: &Plan) -> Vec<String> {
                     s.reads = vk::PipelineStageFlags2::empty();
                 }
                 BarrierSrc::Earlier { stage, access } => {
+                    let transition = b.old_layout.is_some_and(|old| old != b.new_layout);
+                    if transition && !stage.contains(s.reads) {
+                        found.push(format!(
+                            "{}: layout transition races earlier reads",
+                            pass.name
+                        ));
+                    }
                     if let Some((ws, wa)) = s.pending_write {
                         if stage.contains(ws) && access.contains(wa) {
                             s.visible.push((b.dst_stage, b.dst_access));
@@ -494,4 +501,38 @@ fn dumps_name_every_pass_and_resource() {
         dot.starts_with("digraph") && dot.contains("\"tonemap\""),
         "{dot}"
     );
+}
+
+#[test]
+fn a_layout_transition_waits_for_reads_in_other_stages() {
+    // Written by compute, copied out (transfer read), then sampled: the transition to
+    // SHADER_READ_ONLY must wait for the copy too, not only for the write.
+    let mut g = RenderGraph::new();
+    let out = g.import_image_desc("out", desc());
+    let mut p = g.add_pass("write");
+    let a = p.create_image("a", desc());
+    let a = p.write(a, Access::ComputeWrite);
+    noop(p);
+    let mut p = g.add_pass("copy_out");
+    p.read(a, Access::TransferRead);
+    p.side_effect();
+    noop(p);
+    let mut p = g.add_pass("sample");
+    p.read(a, Access::ComputeSampled);
+    p.write(out, Access::ComputeWrite);
+    noop(p);
+    let plan = g.compile().unwrap().plan;
+    let id = plan.resource_id("a").unwrap();
+    let b = plan
+        .pass("sample")
+        .unwrap()
+        .barriers
+        .iter()
+        .find(|b| b.resource == id)
+        .unwrap();
+    assert!(
+        matches!(b.src, BarrierSrc::Earlier { stage, .. } if stage.contains(vk::PipelineStageFlags2::COPY)),
+        "{b:?}"
+    );
+    assert!(hazards(&plan).is_empty(), "{:?}", hazards(&plan));
 }

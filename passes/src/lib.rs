@@ -13,6 +13,7 @@ pub mod ray_query;
 pub mod renderer;
 pub mod scene_buffers;
 pub mod stats;
+pub mod svgf;
 pub mod test_pattern;
 pub mod tonemap;
 

@@ -32,7 +32,7 @@ struct LightVertex {
     uint ng;         // geometric normal, octahedral (decode_normal)
     uint ns;         // shading normal, octahedral
     uint uv;         // packHalf2x16
-    uint length;     // segments from the light
+    uint segments;   // segments from the light
 };
 
 float mis(float x) {

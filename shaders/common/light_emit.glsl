@@ -62,7 +62,7 @@ bool sample_emission(vec3 u, vec2 v, out EmitSample e) {
             float su = sqrt(u.y);
             vec2 bary = vec2(1.0 - su, u.z * su);
             e.p = bary.x * light.p0.xyz + bary.y * light.p1.xyz + (1.0 - bary.x - bary.y) * light.p2.xyz;
-            e.n = triangle_front_normal(light.instance, light.index, light.p0.xyz, light.p1.xyz, light.p2.xyz);
+            e.n = triangle_front_normal(light);
             area = light.p0.w;
         } else {
             float z = 1.0 - 2.0 * u.y;
@@ -151,7 +151,7 @@ bool light_sample_emission(vec3 p, vec3 u, LightSample ls, out float pdf_dir, ou
     uint index = pick_light(min(u_pick, 0.99999994), b_scene.p.counts0.w);
     Light light = b_lights.l[index];
     if (light.kind == LIGHT_TRIANGLE) {
-        vec3 front = triangle_front_normal(light.instance, light.index, light.p0.xyz, light.p1.xyz, light.p2.xyz);
+        vec3 front = triangle_front_normal(light);
         cos_light = max(0.0, -dot(front, ls.wi));
         pdf_dir = emitter_selection(light.emission.rgb, light.p0.w) / light.p0.w * cos_light * INV_PI;
     } else if (light.kind == LIGHT_SPHERE) {

@@ -53,15 +53,9 @@ float sun_pdf() {
     return sun_selection() / (2.0 * PI * max(1.0 - cos_max, 1e-7));
 }
 
-// The emitting side of a triangle: its geometric normal turned towards the shading normals.
-vec3 triangle_front_normal(uint instance, uint tri, vec3 p0, vec3 p1, vec3 p2) {
-    vec3 ng = normalize(cross(p1 - p0, p2 - p0));
-    Instance inst = b_instances.i[instance];
-    vec3 ns = decode_normal(b_vertices.v[b_indices.i[3u * tri]].normal)
-            + decode_normal(b_vertices.v[b_indices.i[3u * tri + 1u]].normal)
-            + decode_normal(b_vertices.v[b_indices.i[3u * tri + 2u]].normal);
-    ns = transform_normal(inst.world_to_object, ns);
-    return dot(ng, ns) < 0.0 ? -ng : ng;
+// The emitting side of a triangle light: its winding normal times the side packed in p1.w.
+vec3 triangle_front_normal(Light light) {
+    return normalize(cross(light.p1.xyz - light.p0.xyz, light.p2.xyz - light.p0.xyz)) * light.p1.w;
 }
 
 float emitter_power(vec3 emission, float area) {
@@ -132,7 +126,7 @@ bool sample_light(vec3 p, vec3 u, out LightSample ls) {
         float su = sqrt(u.y);
         vec2 bary = vec2(1.0 - su, u.z * su);
         vec3 q = bary.x * light.p0.xyz + bary.y * light.p1.xyz + (1.0 - bary.x - bary.y) * light.p2.xyz;
-        vec3 front = triangle_front_normal(light.instance, light.index, light.p0.xyz, light.p1.xyz, light.p2.xyz);
+        vec3 front = triangle_front_normal(light);
         vec3 d = q - p;
         float dist2 = dot(d, d);
         ls.dist = sqrt(dist2);

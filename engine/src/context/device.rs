@@ -165,7 +165,9 @@ pub(crate) fn create_device(
         .scalar_block_layout(supported12.scalar_block_layout == vk::TRUE)
         .shader_float16(shader_float16)
         .host_query_reset(supported12.host_query_reset == vk::TRUE);
-    let mut f13 = vk::PhysicalDeviceVulkan13Features::default().synchronization2(true);
+    let mut f13 = vk::PhysicalDeviceVulkan13Features::default()
+        .synchronization2(true)
+        .dynamic_rendering(true);
     let base = vk::PhysicalDeviceFeatures::default()
         .shader_int64(base_supported.shader_int64 == vk::TRUE)
         .shader_storage_image_write_without_format(

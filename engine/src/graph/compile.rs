@@ -157,14 +157,16 @@ fn next_barrier(
         let covered = track.write_stage.is_empty()
             || (track.visible_stage.contains(info.stage)
                 && track.visible_access.contains(info.access));
+        // A layout transition writes the image: it must also wait for the reads since the last write.
+        let stage = if layout_change {
+            track.write_stage | track.read_stage
+        } else {
+            track.write_stage
+        };
         let b = (layout_change || !covered).then(|| Barrier {
             resource: id,
             src: BarrierSrc::Earlier {
-                stage: if track.write_stage.is_empty() {
-                    track.read_stage | info.stage
-                } else {
-                    track.write_stage
-                },
+                stage: if stage.is_empty() { info.stage } else { stage },
                 access: track.write_access,
             },
             dst_stage: info.stage,
@@ -175,6 +177,9 @@ fn next_barrier(
         if b.is_some() {
             track.visible_stage |= info.stage;
             track.visible_access |= info.access;
+        }
+        if layout_change {
+            track.read_stage = vk::PipelineStageFlags2::NONE;
         }
         track.read_stage |= info.stage;
         b

@@ -96,6 +96,8 @@ pub struct Executor {
     transients: TransientPool,
     temporal: TemporalStore<Arc<Image>, ImageDesc>,
     last_timings: Vec<PassTiming>,
+    /// Outputs of frames that completed before their owner asked for them.
+    completed: HashMap<u64, FrameOutputs>,
 }
 
 impl Executor {
@@ -120,6 +122,7 @@ impl Executor {
             transients: TransientPool::default(),
             temporal: TemporalStore::default(),
             last_timings: Vec::new(),
+            completed: HashMap::new(),
         };
         for i in 0..ctx.frames_in_flight() {
             executor.slots.push(FrameSlot::new(ctx, i)?);
@@ -176,11 +179,15 @@ impl Executor {
         })
     }
 
-    /// Waits for every submitted frame.
+    /// Waits for every submitted frame; their outputs stay available to [`Executor::wait`].
     pub fn wait_all(&mut self) -> Result<()> {
         self.wait_value(self.submitted, "waiting for all frames")?;
         for i in 0..self.slots.len() {
-            self.collect(i)?;
+            let (value, fresh) = (self.slots[i].value, !self.slots[i].collected);
+            let outputs = self.collect(i)?;
+            if fresh {
+                self.completed.insert(value, outputs);
+            }
         }
         Ok(())
     }
@@ -230,6 +237,9 @@ impl Executor {
     /// Waits for `frame` and returns its outputs (readbacks, pass timings). Each frame's outputs can
     /// be taken once; a frame whose slot was reused since is an error.
     pub fn wait(&mut self, frame: FrameId) -> Result<FrameOutputs> {
+        if let Some(outputs) = self.completed.remove(&frame.0) {
+            return Ok(outputs);
+        }
         let slot = self
             .slots
             .iter()
@@ -241,6 +251,12 @@ impl Executor {
                     self.slots.len()
                 ))
             })?;
+        if self.slots[slot].collected {
+            return Err(EngineError::InvalidArgument(format!(
+                "the outputs of frame {} were already taken",
+                frame.0
+            )));
+        }
         self.wait_value(frame.0, "waiting for a frame")?;
         self.collect(slot)
     }
@@ -259,8 +275,14 @@ impl Executor {
         let slot_index = self.next_slot;
         let previous = self.slots[slot_index].value;
         self.wait_value(previous, "waiting for a free frame slot")?;
-        // A previous frame in this slot whose outputs were never taken: collect (and drop) them.
-        self.collect(slot_index)?;
+        // A previous frame in this slot whose outputs were not taken yet: keep them for `wait`.
+        if !self.slots[slot_index].collected {
+            let outputs = self.collect(slot_index)?;
+            self.completed.insert(previous, outputs);
+        }
+        // Outputs nobody asked for within a few frames are dropped.
+        let oldest_kept = self.submitted.saturating_sub(4 * self.slots.len() as u64);
+        self.completed.retain(|&value, _| value > oldest_kept);
 
         if !self.transients.matches(&graph.plan) {
             self.wait_all()?;

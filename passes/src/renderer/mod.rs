@@ -17,17 +17,17 @@
 
 mod settings;
 
-pub use settings::{Algorithm, Settings};
+pub use settings::{Algorithm, Denoiser, Settings};
 
 use crate::frame_constants::{self, FrameConstants};
 use crate::gbuffer::{self, GBuffer};
 use crate::scene_buffers::{specialization, SceneBuffers};
-use crate::{accumulate, bdpt, path_trace, tonemap};
+use crate::{accumulate, bdpt, path_trace, svgf, tonemap};
 use lucid_engine::bvh::Bvh;
 use lucid_engine::capture::ImageData;
 use lucid_engine::graph::{Executor, FrameId, ImageHandle, ReadbackId, RenderGraph};
 use lucid_engine::scene::gpu::{self, GpuCamera, GpuScene};
-use lucid_engine::scene::{Camera, Scene};
+use lucid_engine::scene::{Camera, Material, Scene};
 use lucid_engine::shader::{ShaderLibrary, Specialization};
 use lucid_engine::{Context, EngineError, Result};
 
@@ -75,6 +75,7 @@ pub struct Renderer {
     frame_index: u32,
     pending_stats: Option<(FrameId, ReadbackId)>,
     stats: FrameStats,
+    svgf_schedule: svgf::Schedule,
 }
 
 impl Renderer {
@@ -114,6 +115,7 @@ impl Renderer {
             frame_index: 0,
             pending_stats: None,
             stats: FrameStats::default(),
+            svgf_schedule: svgf::Schedule::default(),
         })
     }
 
@@ -203,6 +205,19 @@ impl Renderer {
         Ok(())
     }
 
+    /// Replaces material `index` of the scene (e.g. switches a light off); restarts accumulation.
+    pub fn set_material(&mut self, index: usize, material: Material) -> Result<()> {
+        let slot = self.scene.materials.get_mut(index).ok_or_else(|| {
+            EngineError::InvalidArgument(format!("scene has no material {index}"))
+        })?;
+        *slot = material;
+        self.gpu = GpuScene::new(&self.scene, &self.bvh);
+        self.buffers.update_materials(&self.ctx, &self.gpu)?;
+        self.spec = specialization(&self.gpu.features);
+        self.accumulated = 0;
+        Ok(())
+    }
+
     /// Frames averaged into the current output.
     pub fn accumulated_frames(&self) -> u32 {
         self.accumulated
@@ -259,6 +274,25 @@ impl Renderer {
             }
         };
         let hdr = accumulate::add(g, traced.radiance, w, h, accumulated);
+        let hdr = match self.settings.denoiser {
+            Denoiser::None => hdr,
+            Denoiser::Svgf => {
+                let spp = self.settings.samples_per_pixel;
+                let params = self.settings.svgf;
+                let apply = self.svgf_schedule.decide(params.mode, accumulated, spp);
+                let inputs = svgf::FrameInputs {
+                    radiance: traced.radiance,
+                    accumulated: hdr,
+                    gbuffer,
+                    scene: &scene,
+                    frame,
+                    spec: &self.spec,
+                    width: w,
+                    height: h,
+                };
+                svgf::add(g, &inputs, &params, apply)
+            }
+        };
         let ldr = tonemap::add(g, hdr, w, h, self.settings.display);
         let stats = g.readback(traced.stats);
         self.prev_camera = camera;

@@ -1,5 +1,6 @@
 //! What a frame renders: algorithm, samples, depth, accumulation and display settings.
 
+use crate::svgf::SvgfParams;
 use lucid_engine::capture::{PngEncoding, ToneCurve};
 
 /// The light-transport algorithm, switchable per frame.
@@ -30,6 +31,16 @@ impl Algorithm {
     }
 }
 
+/// The denoiser applied after tracing.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
+pub enum Denoiser {
+    /// The (accumulated) radiance as traced.
+    #[default]
+    None,
+    /// SVGF, in the mode of [`SvgfParams::mode`].
+    Svgf,
+}
+
 /// Render settings. Changing anything but exposure and tone curve restarts accumulation.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Settings {
@@ -47,6 +58,10 @@ pub struct Settings {
     pub accumulate: bool,
     /// Exposure (stops) and tone curve of the displayed image.
     pub display: PngEncoding,
+    /// The denoiser.
+    pub denoiser: Denoiser,
+    /// The SVGF denoiser's parameters.
+    pub svgf: SvgfParams,
 }
 
 impl Default for Settings {
@@ -62,6 +77,8 @@ impl Default for Settings {
                 exposure: 0.0,
                 tone: ToneCurve::Aces,
             },
+            denoiser: Denoiser::None,
+            svgf: SvgfParams::default(),
         }
     }
 }

@@ -11,13 +11,15 @@ pub fn capture_stem(unix_seconds: u64, frame: u64) -> String {
     format!("lucid-{unix_seconds}-f{frame}")
 }
 
-/// Saves an F12 capture as `<dir>/<stem>.exr` and `<dir>/<stem>.png`; returns both paths.
+/// Saves an F12 capture as `<dir>/<stem>.exr` and `<dir>/<stem>.png` (creating `dir`); returns
+/// both paths.
 pub fn save_capture(
     dir: &Path,
     stem: &str,
     hdr: &ImageData,
     display: &DisplaySettings,
 ) -> anyhow::Result<[PathBuf; 2]> {
+    std::fs::create_dir_all(dir).with_context(|| format!("creating {}", dir.display()))?;
     let exr = dir.join(format!("{stem}.exr"));
     let png = dir.join(format!("{stem}.png"));
     capture::save_exr(&exr, hdr, ExrPrecision::F32)
@@ -52,7 +54,6 @@ mod tests {
     fn names_and_writes_captures() {
         assert_eq!(capture_stem(1700000000, 42), "lucid-1700000000-f42");
         let dir = std::env::temp_dir().join(format!("lucid-capture-test-{}", std::process::id()));
-        std::fs::create_dir_all(&dir).unwrap();
         let image = ImageData {
             width: 2,
             height: 1,

@@ -28,7 +28,7 @@ impl Session {
         if !self.swapchain.is_usable() {
             return Ok(Flow::Continue);
         }
-        if let Some((outputs, pending)) = self.ring.wait_next(&mut self.executor)? {
+        if let Some((outputs, pending)) = self.ring.wait_next(self.source.executor())? {
             self.deliver(pending.finish(&outputs)?);
         }
         let index = match self
@@ -45,10 +45,10 @@ impl Session {
             }
             Acquired::NotReady => return Ok(self.flow()),
         };
-        let screenshot = match self.submit(index, now) {
-            Ok(screenshot) => {
+        let reads_back = match self.submit(index, now) {
+            Ok(reads_back) => {
                 self.failures_in_a_row = 0;
-                screenshot
+                reads_back
             }
             Err(e) => {
                 self.ring.consume_acquire()?;
@@ -67,7 +67,9 @@ impl Session {
         }
         self.frames_presented += 1;
         self.stats.push(now, dt);
-        if screenshot {
+        if reads_back {
+            // The executor drops the outputs of earlier frames when a later frame's graph has a
+            // different plan, so a frame with readbacks is waited for at once.
             self.finish_all()?;
         }
         Ok(self.flow())
@@ -81,7 +83,7 @@ impl Session {
         }
     }
 
-    fn deliver(&mut self, finished: super::pending::Finished) {
+    pub(super) fn deliver(&mut self, finished: super::pending::Finished) {
         if let Some(message) = finished.message {
             self.state.message = Some(message);
         }
@@ -90,7 +92,7 @@ impl Session {
 
     /// Waits for every frame in flight and delivers what they read back.
     fn finish_all(&mut self) -> anyhow::Result<()> {
-        for (outputs, pending) in self.ring.drain(&mut self.executor)? {
+        for (outputs, pending) in self.ring.drain(self.source.executor())? {
             self.deliver(pending.finish(&outputs)?);
         }
         Ok(())
@@ -116,15 +118,16 @@ impl Session {
     }
 
     /// Runs the UI, records and submits the frame for swapchain image `index`; returns whether it
-    /// carries the screenshot.
+    /// reads anything back.
     fn submit(&mut self, index: u32, now: f64) -> anyhow::Result<bool> {
         let extent = self.swapchain.extent();
         let size = [extent.width, extent.height];
         let memory = self.ctx.memory_report();
+        let pass_timings = self.source.executor().pass_timings().to_vec();
         let readouts = ui::Readouts {
             fps: self.stats.fps(now),
             frame_times_ms: self.stats.frame_times_ms().collect(),
-            pass_timings: self.executor.pass_timings(),
+            pass_timings: &pass_timings,
             samples: self.source.samples_accumulated(),
             memory,
             source: self.source.name(),
@@ -168,7 +171,7 @@ impl Session {
             time: now as f32,
         };
         let mut graph = RenderGraph::new();
-        let hdr = match self.source.render(&mut graph, &mut self.executor, &request) {
+        let hdr = match self.source.render(&mut graph, &request) {
             Ok(hdr) => Some(hdr),
             Err(e) => {
                 self.state.message = Some(format!("{} failed: {e:#}", self.source.name()));
@@ -210,9 +213,9 @@ impl Session {
             wait: vec![(self.ring.acquire_semaphore(), compose::acquire_wait_stage())],
             signal: vec![self.swapchain.render_finished(index)],
         };
-        let frame = self.executor.execute_with(compiled, &submit)?;
-        let screenshot = pending.screenshot.is_some();
+        let frame = self.source.executor().execute_with(compiled, &submit)?;
+        let reads_back = pending.capture.is_some() || pending.screenshot.is_some();
         self.ring.submitted(frame, pending);
-        Ok(screenshot)
+        Ok(reads_back)
     }
 }

@@ -25,6 +25,8 @@ pub struct SceneInfo {
     pub camera: Camera,
     /// Import warnings.
     pub warnings: Vec<String>,
+    /// The validated scene itself, for the renderer.
+    pub scene: std::sync::Arc<Scene>,
 }
 
 /// Loads `spec`: a `.gltf` / `.glb` file, or a built-in scene name.
@@ -46,6 +48,7 @@ pub fn load(spec: &str) -> anyhow::Result<SceneInfo> {
         features: SceneFeatures::from_scene(&scene),
         camera: scene.camera,
         warnings: scene.warnings.clone(),
+        scene: std::sync::Arc::new(scene),
     })
 }
 

@@ -1,7 +1,7 @@
 //! A running sandbox window: the window, its GPU objects, the frame source and the app state,
 //! and how window events change them.
 
-use super::frame_source::{FrameSource, TestPatternSource};
+use super::frame_source::{FrameSource, RendererSource, TestPatternSource};
 use super::gpu::{create_context, FrameRing, Swapchain};
 use super::input::{Action, Input};
 use super::options::AppOptions;
@@ -12,8 +12,6 @@ use super::stats::FrameStats;
 use super::{scene, ui};
 use anyhow::Context as _;
 use glam::Vec2;
-use lucid_engine::graph::Executor;
-use lucid_engine::shader::ShaderLibrary;
 use lucid_engine::Context;
 use std::sync::Arc;
 use std::time::Instant;
@@ -45,7 +43,6 @@ pub struct Session {
     pub(super) ring: FrameRing<Pending>,
     pub(super) overlay: Overlay,
     pub(super) swapchain: Swapchain,
-    pub(super) executor: Executor,
     pub(super) ctx: Context,
     pub(super) window: Arc<Window>,
     pub(super) options: AppOptions,
@@ -74,17 +71,17 @@ impl Session {
         let swapchain = Swapchain::new(&ctx, surface, [size.width, size.height])?;
         let mut overlay = Overlay::new(&ctx, &window, swapchain.format())?;
         overlay.set_targets(swapchain.format(), swapchain.views(), swapchain.extent())?;
-        let executor = Executor::new(&ctx, ShaderLibrary::new(&ctx, None)?)?;
         let state = AppState::new(&options.scene, scene::load(&options.scene));
+        let extent = swapchain.extent();
+        let source = frame_source_for(&ctx, &state, [extent.width, extent.height])?;
         Ok(Self {
             state,
             input: Input::default(),
             stats: FrameStats::default(),
-            source: Box::new(TestPatternSource::default()),
+            source,
             ring: FrameRing::new(&ctx)?,
             overlay,
             swapchain,
-            executor,
             ctx,
             window,
             options: options.clone(),
@@ -175,12 +172,25 @@ impl Session {
         }
     }
 
+    /// Renders the newly loaded scene: waits for the frames of the old source first.
+    fn replace_source(&mut self) -> anyhow::Result<()> {
+        for (outputs, pending) in self.ring.drain(self.source.executor())? {
+            self.deliver(pending.finish(&outputs)?);
+        }
+        let extent = self.swapchain.extent();
+        self.source = frame_source_for(&self.ctx, &self.state, [extent.width, extent.height])?;
+        Ok(())
+    }
+
     /// Acts on the panel's buttons.
     pub(super) fn handle_requests(&mut self, requests: ui::Requests, now: f64) {
         if let Some(spec) = requests.load_scene {
             let loaded = scene::load(&spec);
             self.state.set_scene(loaded);
             self.window.set_title(&format!("Lucid — {spec}"));
+            if let Err(e) = self.replace_source() {
+                self.state.message = Some(format!("{e:#}"));
+            }
         }
         self.capture_requested |= requests.capture;
         if requests.record {
@@ -226,4 +236,17 @@ impl Session {
             recorder.record((now - *start) as f32, &self.state.camera.pose);
         }
     }
+}
+
+/// The renderer on the loaded scene, or the test pattern while no scene could be loaded (the
+/// panel shows why).
+fn frame_source_for(
+    ctx: &Context,
+    state: &AppState,
+    extent: [u32; 2],
+) -> anyhow::Result<Box<dyn FrameSource>> {
+    Ok(match &state.scene {
+        Ok(info) => Box::new(RendererSource::new(ctx, (*info.scene).clone(), extent)?),
+        Err(_) => Box::new(TestPatternSource::new(ctx)?),
+    })
 }

@@ -69,7 +69,7 @@ mod tests {
     fn fps_covers_the_last_second() {
         let mut stats = FrameStats::default();
         stats.push(0.1, 0.5);
-        let mut t = 1.0;
+        let mut t = 1.5;
         for d in [0.01, 0.02, 0.01, 0.02] {
             t += d;
             stats.push(t, d);

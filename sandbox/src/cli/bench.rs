@@ -57,8 +57,7 @@ pub fn run(args: &BenchArgs) -> anyhow::Result<()> {
     let settings = args.options.settings(false);
     let mut renderer = Renderer::new(&ctx, scene, w, h, settings)?;
     for _ in 0..args.warmup {
-        let frame = renderer.render()?;
-        renderer.executor_mut().wait(frame)?;
+        renderer.render()?;
     }
     renderer.finish()?;
     let progress = Progress::new(args.frames as u64, "frames");

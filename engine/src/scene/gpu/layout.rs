@@ -129,7 +129,7 @@ pub mod light_kind {
 ///     uint instance;  // triangle: index in instances; otherwise ~0u
 ///     uint pad;
 ///     vec4 p0;        // triangle: world v0, area | sphere: centre, radius | point/spot: position, 0
-///     vec4 p1;        // triangle: world v1 | spot: unit direction, cos(outer angle)
+///     vec4 p1;        // triangle: world v1, emitting side (+1: winding normal, -1: opposite) | spot: unit direction, cos(outer angle)
 ///     vec4 p2;        // triangle: world v2 | spot: cos(inner angle), 0, 0, 0
 ///     vec4 emission;  // rgb radiance (area) or intensity (W/sr, delta); w = power
 /// };

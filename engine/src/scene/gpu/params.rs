@@ -5,9 +5,10 @@ use super::layout::{
     GpuMaterial, GpuSun, GpuTextureRecord,
 };
 use crate::scene::{
-    Camera, Environment, LightDistribution, LightSource, MaterialKind, PunctualLight, Scene, Sun,
-    TexelData,
+    Camera, Environment, Instance, LightDistribution, LightSource, MaterialKind, Mesh,
+    PunctualLight, Scene, Sun, TexelData,
 };
+use glam::{Vec3, Vec3A};
 
 /// Converts the scene materials.
 pub fn materials(scene: &Scene) -> Vec<GpuMaterial> {
@@ -90,14 +91,17 @@ pub fn lights(
                     let [a, b, c] = mesh
                         .triangle(triangle as usize)
                         .map(|p| inst.transform.transform_point3(p));
-                    let area = 0.5 * (b - a).cross(c - a).length();
+                    let geometric = (b - a).cross(c - a);
+                    let area = 0.5 * geometric.length();
                     GpuLight {
                         kind: light_kind::TRIANGLE,
                         index: (remap.triangle)(inst.mesh, triangle),
                         instance: remap.instance[instance as usize],
                         pad: 0,
                         p0: a.extend(area).to_array(),
-                        p1: b.extend(0.0).to_array(),
+                        p1: b
+                            .extend(emitting_side(mesh, inst, triangle, geometric))
+                            .to_array(),
                         p2: c.extend(0.0).to_array(),
                         emission,
                     }
@@ -155,6 +159,22 @@ pub fn lights(
         })
         .collect();
     (lights, table)
+}
+
+/// +1 when the emitting (front) side of a triangle is that of its winding normal `geometric`
+/// (world space), -1 otherwise: the front is the side its shading normals point to.
+fn emitting_side(mesh: &Mesh, inst: &Instance, triangle: u32, geometric: Vec3) -> f32 {
+    let Some(idx) = mesh.indices.get(triangle as usize) else {
+        return 1.0;
+    };
+    let normal = |i: u32| mesh.normals.get(i as usize).copied().unwrap_or(Vec3::ZERO);
+    let shading = normal(idx.x) + normal(idx.y) + normal(idx.z);
+    let world = inst.transform.matrix3.inverse().transpose() * Vec3A::from(shading);
+    if Vec3::from(world).dot(geometric) < 0.0 {
+        -1.0
+    } else {
+        1.0
+    }
 }
 
 /// Converts the camera.

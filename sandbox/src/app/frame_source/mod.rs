@@ -2,8 +2,10 @@
 //! of one frame to the app's render graph and returns its HDR output. The app tone-maps it,
 //! draws the UI over it and presents it.
 
+mod renderer;
 mod test_pattern;
 
+pub use renderer::RendererSource;
 pub use test_pattern::TestPatternSource;
 
 use super::settings::RenderSettings;
@@ -30,13 +32,16 @@ pub trait FrameSource {
 
     /// Adds this frame's passes to `graph` and returns the linear HDR output (any float format,
     /// `request.extent` in size); the app reads it with `Access::ComputeSampled` and, for captures,
-    /// `Access::TransferRead`. `executor` is the one that will run the graph (for history resets).
+    /// `Access::TransferWrite` then `Access::TransferRead` (an imported image needs those usages).
     fn render(
         &mut self,
         graph: &mut RenderGraph,
-        executor: &mut Executor,
         request: &FrameRequest<'_>,
     ) -> anyhow::Result<ImageHandle>;
+
+    /// The executor the app runs each frame's graph on (the source owns it, as the renderer
+    /// owns its executor with its temporal history).
+    fn executor(&mut self) -> &mut Executor;
 
     /// Samples per pixel accumulated in the current output.
     fn samples_accumulated(&self) -> u64;

@@ -5,13 +5,26 @@ use super::{FrameRequest, FrameSource};
 use crate::settings::RenderSettings;
 use lucid_engine::graph::{Executor, ImageHandle, RenderGraph};
 use lucid_engine::scene::Camera;
+use lucid_engine::shader::ShaderLibrary;
+use lucid_engine::Context;
 use lucid_passes::test_pattern;
 
 /// The test pattern as a [`FrameSource`].
-#[derive(Default)]
 pub struct TestPatternSource {
+    executor: Executor,
     accumulated: u64,
     last: Option<(Camera, RenderSettings, [u32; 2])>,
+}
+
+impl TestPatternSource {
+    /// A source rendering on `ctx`.
+    pub fn new(ctx: &Context) -> anyhow::Result<Self> {
+        Ok(Self {
+            executor: Executor::new(ctx, ShaderLibrary::new(ctx, None)?)?,
+            accumulated: 0,
+            last: None,
+        })
+    }
 }
 
 impl FrameSource for TestPatternSource {
@@ -22,7 +35,6 @@ impl FrameSource for TestPatternSource {
     fn render(
         &mut self,
         graph: &mut RenderGraph,
-        _executor: &mut Executor,
         request: &FrameRequest<'_>,
     ) -> anyhow::Result<ImageHandle> {
         let state = (*request.camera, *request.settings, request.extent);
@@ -34,6 +46,10 @@ impl FrameSource for TestPatternSource {
         let params = pattern_params(request);
         let [w, h] = request.extent;
         Ok(test_pattern::add(graph, w, h, &params).combined)
+    }
+
+    fn executor(&mut self) -> &mut Executor {
+        &mut self.executor
     }
 
     fn samples_accumulated(&self) -> u64 {

@@ -1,0 +1,167 @@
+//! Bidirectional path tracing with a light vertex cache (Davidovic et al. 2014, "Progressive Light
+//! Transport Simulation on the GPU"), in two passes:
+//!
+//! - **light** (`shaders/bdpt/light.comp`): light subpaths from emitters picked by power, stored
+//!   vertex by vertex in a light vertex cache and connected to the camera (light tracing), whose
+//!   contributions are splatted with float atomics;
+//! - **camera** (`shaders/bdpt/camera.comp`): camera subpaths with emission hits, next-event
+//!   estimation and connections to light vertices drawn uniformly from the cache, all combined
+//!   with SmallVCM's recursive MIS weights; adds the splats and writes the frame's radiance.
+//!
+//! The sun and the environment emit no light subpaths: the paths they light are found by the
+//! camera subpaths' BSDF sampling and NEE, weighted between the two as the path tracer does. Light
+//! tracing needs a pinhole camera; with a lens its strategy is dropped from the weights.
+
+mod params;
+
+pub use params::{Params, LIGHT_VERTEX_BYTES};
+
+use crate::path_trace::Outputs;
+use crate::scene_buffers::SceneHandles;
+use crate::shaders::bdpt::{CAMERA, LIGHT, LIGHT_CAS};
+use lucid_engine::graph::{Access, BufferHandle, RenderGraph};
+use lucid_engine::memory::ImageDesc;
+use lucid_engine::shader::Specialization;
+
+/// The multiple-importance-sampling heuristic combining the strategies.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub enum MisHeuristic {
+    /// Balance heuristic (SmallVCM's choice).
+    Balance,
+    /// Power heuristic with exponent 2 (the path tracer's choice).
+    #[default]
+    Power,
+}
+
+/// BDPT tuning.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Config {
+    /// Light subpaths per camera sample (fewer when the cache budget cannot hold them).
+    pub light_paths_per_sample: u32,
+    /// Cached light vertices each camera vertex connects to.
+    pub connections: u32,
+    /// The MIS heuristic.
+    pub heuristic: MisHeuristic,
+    /// Most bytes the light vertex cache may take; 128 MiB is the storage-buffer range every
+    /// Vulkan device supports.
+    pub cache_bytes: u64,
+}
+
+impl Default for Config {
+    fn default() -> Self {
+        Self {
+            light_paths_per_sample: 1,
+            connections: 1,
+            heuristic: MisHeuristic::Power,
+            cache_bytes: 128 << 20,
+        }
+    }
+}
+
+/// The image and sampling of a frame.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct Frame {
+    /// Width in pixels.
+    pub width: u32,
+    /// Height in pixels.
+    pub height: u32,
+    /// Camera samples per pixel.
+    pub samples_per_pixel: u32,
+    /// Longest path in segments (Mitsuba's convention).
+    pub max_depth: u32,
+}
+
+/// Adds the light and camera passes, reading the scene and the frame constants; the outputs are
+/// those of the path tracer.
+pub fn add(
+    g: &mut RenderGraph,
+    scene: &SceneHandles,
+    frame_constants: BufferHandle,
+    spec: &Specialization,
+    frame: Frame,
+    config: &Config,
+) -> Outputs {
+    let (width, height) = (frame.width, frame.height);
+    let params = Params::new(
+        config,
+        width * height,
+        frame.samples_per_pixel,
+        frame.max_depth,
+    );
+    let spec = spec
+        .clone()
+        .set("MIS_POWER", config.heuristic == MisHeuristic::Power);
+    let stats = crate::stats::add_counter(g, "bdpt.stats");
+    let count = crate::stats::add_counter(g, "bdpt.cache_count");
+    let splat = add_splat_clear(g, u64::from(width * height) * 12);
+
+    let mut p = g.add_pass("bdpt.light");
+    scene.read(&mut p);
+    let constants = p.read(frame_constants, Access::ComputeRead);
+    let cache = p.create_buffer("bdpt.cache", params.cache_bytes());
+    let cache = p.write(cache, Access::ComputeWrite);
+    let count = p.write(count, Access::ComputeReadWrite);
+    let splat = p.write(splat, Access::ComputeReadWrite);
+    let stats = p.write(stats, Access::ComputeReadWrite);
+    let (light_scene, light_spec) = (*scene, spec.clone());
+    p.execute(move |ctx| {
+        let shader = if ctx.context().info().float_atomics {
+            &LIGHT
+        } else {
+            &LIGHT_CAS
+        };
+        let dispatch = ctx
+            .compute(shader)
+            .specialization(&light_spec)
+            .push(&params)
+            .buffer("b_frame", constants)
+            .buffer("b_stats", stats)
+            .buffer("b_lvc", cache)
+            .buffer("b_lvc_count", count)
+            .buffer("b_splat", splat);
+        light_scene
+            .bind(dispatch)
+            .dispatch_threads(params.light_threads())
+    });
+
+    let mut p = g.add_pass("bdpt.camera");
+    scene.read(&mut p);
+    let constants = p.read(frame_constants, Access::ComputeRead);
+    let cache = p.read(cache, Access::ComputeRead);
+    let count = p.read(count, Access::ComputeRead);
+    let splat = p.read(splat, Access::ComputeRead);
+    let stats = p.write(stats, Access::ComputeReadWrite);
+    let radiance = p.create_image("bdpt.radiance", ImageDesc::rgba32f(width, height));
+    let radiance = p.write(radiance, Access::ComputeWrite);
+    let demodulated = p.create_image("bdpt.demodulated", ImageDesc::rgba32f(width, height));
+    let demodulated = p.write(demodulated, Access::ComputeWrite);
+    let scene = *scene;
+    p.execute(move |ctx| {
+        let dispatch = ctx
+            .compute(&CAMERA)
+            .specialization(&spec)
+            .push(&params)
+            .buffer("b_frame", constants)
+            .buffer("b_stats", stats)
+            .buffer("b_lvc", cache)
+            .buffer("b_lvc_count", count)
+            .buffer("b_splat", splat)
+            .image("u_radiance", radiance)
+            .image("u_demodulated", demodulated);
+        scene.bind(dispatch).dispatch_threads([width, height, 1])
+    });
+    Outputs {
+        radiance,
+        demodulated,
+        stats,
+    }
+}
+
+/// Adds a pass creating the zeroed light-tracing splat buffer (RGB floats per pixel).
+fn add_splat_clear(g: &mut RenderGraph, bytes: u64) -> BufferHandle {
+    let mut p = g.add_pass("bdpt.splat.clear");
+    let splat = p.create_buffer("bdpt.splat", bytes);
+    let splat = p.write(splat, Access::TransferWrite);
+    p.execute(move |ctx| ctx.fill_buffer(splat, 0));
+    splat
+}

@@ -1,0 +1,109 @@
+//! How many light subpaths a frame traces and how big its light vertex cache is, and the push
+//! constants both BDPT passes share (`Params` in `shaders/bdpt/bdpt.glsl`).
+
+use super::Config;
+use bytemuck::{Pod, Zeroable};
+
+/// Bytes of one cached light vertex (`LightVertex` in `shaders/bdpt/bdpt.glsl`).
+pub const LIGHT_VERTEX_BYTES: u64 = 64;
+
+/// Light-pass invocations per dispatch row (the light pass is one-dimensional).
+pub const STRIDE: u32 = 4096;
+
+/// Mirrors `Params` in `shaders/bdpt/bdpt.glsl` (push constants, 24 bytes).
+#[repr(C)]
+#[derive(Clone, Copy, Debug, Default, PartialEq, Pod, Zeroable)]
+pub struct Params {
+    /// Light subpaths traced this frame.
+    pub light_paths: u32,
+    /// Light vertices the cache holds.
+    pub capacity: u32,
+    /// Cached light vertices each camera vertex connects to.
+    pub connections: u32,
+    /// Light-pass invocations per dispatch row.
+    pub stride: u32,
+    /// Light subpaths per camera sample.
+    pub light_ratio: f32,
+    /// Pixels per light subpath (scales the light-tracing splats).
+    pub splat_scale: f32,
+}
+
+impl Params {
+    /// Sizes a frame of `pixels` pixels with `spp` camera samples each and paths of at most
+    /// `max_depth` segments. A light subpath stores at most `max_depth - 2` vertices (the last
+    /// one is only connected to the camera), so the light subpaths are as many as `config` asks
+    /// for but no more than the cache can hold in the worst case: the cache never overflows.
+    pub fn new(config: &Config, pixels: u32, spp: u32, max_depth: u32) -> Self {
+        let samples = u64::from(pixels) * u64::from(spp.max(1));
+        let wanted = samples * u64::from(config.light_paths_per_sample);
+        let per_path = u64::from(max_depth.saturating_sub(2));
+        let budget = config.cache_bytes / LIGHT_VERTEX_BYTES;
+        let light_paths = if max_depth < 2 {
+            0
+        } else if per_path == 0 {
+            wanted
+        } else {
+            wanted.min(budget / per_path)
+        };
+        let light_paths = light_paths.min(u64::from(u32::MAX / 2)) as u32;
+        Self {
+            light_paths,
+            capacity: (u64::from(light_paths) * per_path) as u32,
+            connections: config.connections,
+            stride: STRIDE,
+            light_ratio: (light_paths as f64 / samples as f64) as f32,
+            splat_scale: if light_paths == 0 {
+                0.0
+            } else {
+                (f64::from(pixels) / f64::from(light_paths)) as f32
+            },
+        }
+    }
+
+    /// Bytes of the light vertex cache buffer (never empty).
+    pub fn cache_bytes(&self) -> u64 {
+        (u64::from(self.capacity) * LIGHT_VERTEX_BYTES).max(LIGHT_VERTEX_BYTES)
+    }
+
+    /// Light-pass threads to dispatch, as `[x, y, 1]`.
+    pub fn light_threads(&self) -> [u32; 3] {
+        [
+            self.light_paths.min(self.stride),
+            self.light_paths.div_ceil(self.stride),
+            1,
+        ]
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn one_light_path_per_sample_when_it_fits() {
+        let p = Params::new(&Config::default(), 64 * 64, 4, 8);
+        assert_eq!(p.light_paths, 64 * 64 * 4);
+        assert_eq!(p.capacity, 64 * 64 * 4 * 6);
+        assert_eq!(p.light_ratio, 1.0);
+        assert_eq!(p.splat_scale, 0.25);
+        assert_eq!(p.light_threads(), [4096, 4, 1]);
+    }
+
+    #[test]
+    fn the_cache_budget_limits_light_paths() {
+        let config = Config {
+            cache_bytes: 6 * 64 * 1000,
+            ..Config::default()
+        };
+        let p = Params::new(&config, 1920 * 1080, 1, 8);
+        assert_eq!(p.light_paths, 1000);
+        assert!(p.cache_bytes() <= config.cache_bytes);
+    }
+
+    #[test]
+    fn no_light_paths_below_two_segments() {
+        let p = Params::new(&Config::default(), 16, 1, 1);
+        assert_eq!((p.light_paths, p.splat_scale), (0, 0.0));
+        assert_eq!(p.cache_bytes(), LIGHT_VERTEX_BYTES);
+    }
+}

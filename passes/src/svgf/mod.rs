@@ -1,0 +1,154 @@
+//! Spatiotemporal variance-guided filtering (Schied et al. 2017) with A-SVGF's temporal gradients
+//! (Schied et al. 2018), in compute passes over the G-buffer (`shaders/svgf/`).
+//!
+//! Temporal mode, per frame:
+//! 1. **Gradients** ([`gradient`]): per 3x3 stratum, one pixel's path of last frame is re-traced in
+//!    the current scene with last frame's camera and random numbers and compared with what the path
+//!    tracer produced for it; the differences are spread over 7x7 strata. Where only the camera
+//!    moved they are exactly zero; where a light or an object changed they measure the share of
+//!    shading that changed.
+//! 2. **Temporal accumulation** ([`temporal`]): demodulate `(radiance - emission) / albedo`,
+//!    reproject the history with the motion vectors (bilinear taps validated by depth, normal and
+//!    object id, else a 3x3 search, else a disocclusion), blend colour and the first two luminance
+//!    moments with moving averages whose weight the gradient raises, count the history length.
+//! 3. **Filter** ([`filter`]): variance from the moments (spatial 7x7 estimate while the history
+//!    is shorter than 4 frames), `iterations` a-trous iterations with depth, normal and
+//!    luminance-variance edge stopping; the first iteration's output is the next frame's colour
+//!    history; re-modulation by albedo plus emission.
+//!
+//! The histories are the render graph's keyed temporal images ([`COLOR_KEY`], [`MOMENTS_KEY`],
+//! [`SURFACE_KEY`]): a resize or [`Executor::reset_history`](lucid_engine::graph::Executor::reset_history)
+//! starts them afresh. The spatial modes run step 3 alone on the (accumulated) output.
+
+mod filter;
+mod gradient;
+mod params;
+mod schedule;
+mod temporal;
+
+pub use params::{SvgfMode, SvgfParams};
+pub use schedule::{Apply, Schedule};
+
+use crate::gbuffer::GBuffer;
+use crate::scene_buffers::SceneHandles;
+use lucid_engine::graph::{BufferHandle, ImageHandle, RenderGraph, TemporalImage};
+use lucid_engine::shader::Specialization;
+
+/// History key of the filtered illumination (output of the first a-trous iteration).
+pub const COLOR_KEY: &str = "svgf.color";
+/// History key of the luminance moments and history length.
+pub const MOMENTS_KEY: &str = "svgf.moments";
+/// History key of the surface records (depth, normal, object id, raw radiance luminance).
+pub const SURFACE_KEY: &str = "svgf.surface";
+
+/// Side of a gradient stratum in pixels.
+const STRATUM: u32 = 3;
+
+/// The keyed histories of one frame.
+struct Histories {
+    color: TemporalImage,
+    moments: TemporalImage,
+    surface: TemporalImage,
+}
+
+/// What the denoiser reads of a frame.
+pub struct FrameInputs<'a> {
+    /// This frame's noisy radiance (the temporal filter's input).
+    pub radiance: ImageHandle,
+    /// The (accumulated) output the spatial modes filter.
+    pub accumulated: ImageHandle,
+    /// Primary visibility.
+    pub gbuffer: GBuffer,
+    /// The scene (the gradient pass re-traces paths).
+    pub scene: &'a SceneHandles,
+    /// The frame constants.
+    pub frame: BufferHandle,
+    /// The scene's specialization constants.
+    pub spec: &'a Specialization,
+    /// Output width.
+    pub width: u32,
+    /// Output height.
+    pub height: u32,
+}
+
+/// Adds what `apply` asks for; returns the denoised radiance (`inputs.accumulated` for
+/// [`Apply::Nothing`]).
+pub fn add(
+    g: &mut RenderGraph,
+    inputs: &FrameInputs<'_>,
+    params: &SvgfParams,
+    apply: Apply,
+) -> ImageHandle {
+    match apply {
+        Apply::Temporal => add_temporal(g, inputs, params),
+        Apply::Spatial => add_spatial(
+            g,
+            inputs.accumulated,
+            &inputs.gbuffer,
+            params,
+            (inputs.width, inputs.height),
+        ),
+        Apply::Nothing => inputs.accumulated,
+    }
+}
+
+/// Adds full SVGF on `inputs.radiance`.
+pub fn add_temporal(
+    g: &mut RenderGraph,
+    inputs: &FrameInputs<'_>,
+    params: &SvgfParams,
+) -> ImageHandle {
+    let size = (inputs.width, inputs.height);
+    let (color_desc, surface_desc) = temporal::history_descs(inputs.width, inputs.height);
+    let history = Histories {
+        color: g.temporal_image(COLOR_KEY, color_desc),
+        moments: g.temporal_image(MOMENTS_KEY, color_desc),
+        surface: g.temporal_image(SURFACE_KEY, surface_desc),
+    };
+    let gradient = gradient::add(
+        g,
+        &gradient::GradientInputs {
+            scene: inputs.scene,
+            frame: inputs.frame,
+            spec: inputs.spec,
+            motion: inputs.gbuffer.motion,
+            prev_surface: history.surface.prev,
+            enabled: params.gradients,
+            width: inputs.width,
+            height: inputs.height,
+        },
+    );
+    let integrated = temporal::add(
+        g,
+        inputs.radiance,
+        &inputs.gbuffer,
+        gradient,
+        &history,
+        (params.alpha, params.moments_alpha),
+        size,
+    );
+    let params = SvgfParams {
+        iterations: params.iterations.max(1),
+        ..*params
+    };
+    filter::add(
+        g,
+        (integrated.color, integrated.moments),
+        &inputs.gbuffer,
+        &params,
+        Some(history.color.cur),
+        size,
+    )
+}
+
+/// Adds the spatial filter alone (variance estimated spatially) on `radiance`, `width`x`height`.
+pub fn add_spatial(
+    g: &mut RenderGraph,
+    radiance: ImageHandle,
+    gbuffer: &GBuffer,
+    params: &SvgfParams,
+    (width, height): (u32, u32),
+) -> ImageHandle {
+    let input = filter::demodulate(g, radiance, gbuffer, (width, height));
+    filter::add(g, input, gbuffer, params, None, (width, height))
+}

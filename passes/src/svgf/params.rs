@@ -1,0 +1,52 @@
+//! The SVGF parameters and when the denoiser runs.
+
+/// When the denoiser runs and on what.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum SvgfMode {
+    /// Full SVGF on each frame's noisy radiance: temporal accumulation with reprojection and
+    /// temporal gradients, variance estimation, a-trous filtering.
+    Temporal,
+    /// The a-trous filter alone on every frame's output (accumulated while still; with
+    /// accumulation off this is the per-frame baseline, which flickers).
+    EveryFrame,
+    /// The a-trous filter on the accumulated image once it holds this many samples per pixel.
+    AfterSamples(u32),
+    /// The a-trous filter on the accumulated image once accumulation has run this many seconds.
+    AfterSeconds(f32),
+}
+
+/// SVGF's parameters (Schied et al. 2017, with A-SVGF's temporal gradients, Schied et al. 2018).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct SvgfParams {
+    /// When the denoiser runs.
+    pub mode: SvgfMode,
+    /// A-trous iterations (step sizes 1, 2, 4, ...).
+    pub iterations: u32,
+    /// Weight of the new frame in the colour's moving average once the history is long.
+    pub alpha: f32,
+    /// Weight of the new frame in the luminance moments' moving average.
+    pub moments_alpha: f32,
+    /// Depth edge stopping (larger tolerates more depth difference).
+    pub sigma_z: f32,
+    /// Normal edge stopping: the exponent of the normals' cosine.
+    pub sigma_n: f32,
+    /// Luminance edge stopping, in standard deviations of the luminance.
+    pub sigma_l: f32,
+    /// Reject history where the temporal gradient shows that shading changed (A-SVGF).
+    pub gradients: bool,
+}
+
+impl Default for SvgfParams {
+    fn default() -> Self {
+        Self {
+            mode: SvgfMode::Temporal,
+            iterations: 5,
+            alpha: 0.2,
+            moments_alpha: 0.2,
+            sigma_z: 1.0,
+            sigma_n: 128.0,
+            sigma_l: 4.0,
+            gradients: true,
+        }
+    }
+}

@@ -1,0 +1,69 @@
+//! Which denoising a frame gets under an [`SvgfMode`].
+
+use super::params::SvgfMode;
+use std::time::Instant;
+
+/// What the denoiser does in one frame.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Apply {
+    /// Full temporal SVGF on the frame's own radiance.
+    Temporal,
+    /// The spatial filter on the (accumulated) output.
+    Spatial,
+    /// Nothing: the output passes through.
+    Nothing,
+}
+
+/// Tracks when accumulation restarted, for [`SvgfMode::AfterSeconds`].
+#[derive(Clone, Copy, Debug, Default)]
+pub struct Schedule {
+    started: Option<Instant>,
+}
+
+impl Schedule {
+    /// Decides this frame's denoising; `accumulated` frames of `samples_per_pixel` samples were
+    /// averaged before this one (0 when accumulation restarts).
+    pub fn decide(&mut self, mode: SvgfMode, accumulated: u32, samples_per_pixel: u32) -> Apply {
+        if accumulated == 0 || self.started.is_none() {
+            self.started = Some(Instant::now());
+        }
+        let samples = u64::from(accumulated + 1) * u64::from(samples_per_pixel.max(1));
+        let spatial_if = |ready: bool| {
+            if ready {
+                Apply::Spatial
+            } else {
+                Apply::Nothing
+            }
+        };
+        match mode {
+            SvgfMode::Temporal => Apply::Temporal,
+            SvgfMode::EveryFrame => Apply::Spatial,
+            SvgfMode::AfterSamples(n) => spatial_if(samples >= u64::from(n)),
+            SvgfMode::AfterSeconds(s) => {
+                spatial_if(self.started.is_some_and(|t| t.elapsed().as_secs_f32() >= s))
+            }
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn sample_budget_waits_for_enough_samples() {
+        let mut s = Schedule::default();
+        let mode = SvgfMode::AfterSamples(8);
+        assert_eq!(s.decide(mode, 0, 4), Apply::Nothing);
+        assert_eq!(s.decide(mode, 1, 4), Apply::Spatial);
+        assert_eq!(s.decide(mode, 0, 4), Apply::Nothing);
+    }
+
+    #[test]
+    fn time_budget_restarts_with_accumulation() {
+        let mut s = Schedule::default();
+        assert_eq!(s.decide(SvgfMode::AfterSeconds(60.0), 0, 1), Apply::Nothing);
+        assert_eq!(s.decide(SvgfMode::AfterSeconds(0.0), 3, 1), Apply::Spatial);
+        assert_eq!(s.decide(SvgfMode::Temporal, 0, 1), Apply::Temporal);
+    }
+}

@@ -1,0 +1,97 @@
+//! SVGF temporal accumulation (`shaders/svgf/temporal.comp`) over the keyed histories.
+
+use super::{Histories, STRATUM};
+use crate::gbuffer::GBuffer;
+use crate::shaders::svgf::TEMPORAL;
+use lucid_engine::graph::{Access, ImageHandle, RenderGraph};
+use lucid_engine::memory::ImageDesc;
+
+/// Push constants of `temporal.comp`.
+#[repr(C)]
+#[derive(Clone, Copy, bytemuck::Pod, bytemuck::Zeroable)]
+struct Params {
+    alpha: f32,
+    moments_alpha: f32,
+    history_valid: u32,
+    stratum: u32,
+    max_history: f32,
+    pad: [f32; 3],
+}
+
+/// Longest history a pixel counts (the moving averages' weights stop falling before this).
+const MAX_HISTORY: f32 = 64.0;
+
+/// The integrated illumination and moments of this frame.
+pub(super) struct Integrated {
+    /// Demodulated illumination (rgb).
+    pub color: ImageHandle,
+    /// Luminance moments (xy) and history length (z); also this frame's moments history.
+    pub moments: ImageHandle,
+}
+
+/// Adds the temporal accumulation of `radiance`, reading last frame's histories and writing this
+/// frame's moments and surface records.
+pub(super) fn add(
+    g: &mut RenderGraph,
+    radiance: ImageHandle,
+    gbuffer: &GBuffer,
+    gradient: ImageHandle,
+    history: &Histories,
+    (alpha, moments_alpha): (f32, f32),
+    (width, height): (u32, u32),
+) -> Integrated {
+    let mut p = g.add_pass("svgf.temporal");
+    let radiance = p.read(radiance, Access::ComputeRead);
+    let gb = GBuffer {
+        depth: p.read(gbuffer.depth, Access::ComputeRead),
+        normal_roughness: p.read(gbuffer.normal_roughness, Access::ComputeRead),
+        albedo: p.read(gbuffer.albedo, Access::ComputeRead),
+        emission: p.read(gbuffer.emission, Access::ComputeRead),
+        ids: p.read(gbuffer.ids, Access::ComputeRead),
+        motion: p.read(gbuffer.motion, Access::ComputeRead),
+    };
+    let gradient = p.read(gradient, Access::ComputeRead);
+    let prev_color = p.read(history.color.prev, Access::ComputeRead);
+    let prev_moments = p.read(history.moments.prev, Access::ComputeRead);
+    let prev_surface = p.read(history.surface.prev, Access::ComputeRead);
+    let color = p.create_image("svgf.integrated", ImageDesc::rgba32f(width, height));
+    let color = p.write(color, Access::ComputeWrite);
+    let moments = p.write(history.moments.cur, Access::ComputeWrite);
+    let surface = p.write(history.surface.cur, Access::ComputeWrite);
+    p.execute(move |ctx| {
+        let params = Params {
+            alpha,
+            moments_alpha,
+            history_valid: u32::from(ctx.history_valid(prev_color)),
+            stratum: STRATUM,
+            max_history: MAX_HISTORY,
+            pad: [0.0; 3],
+        };
+        ctx.compute(&TEMPORAL)
+            .image("u_radiance", radiance)
+            .image("u_depth", gb.depth)
+            .image("u_normal_roughness", gb.normal_roughness)
+            .image("u_albedo", gb.albedo)
+            .image("u_emission", gb.emission)
+            .image("u_ids", gb.ids)
+            .image("u_motion", gb.motion)
+            .image("u_gradient", gradient)
+            .image("u_prev_color", prev_color)
+            .image("u_prev_moments", prev_moments)
+            .image("u_prev_surface", prev_surface)
+            .image("u_color", color)
+            .image("u_moments", moments)
+            .image("u_surface", surface)
+            .push(&params)
+            .dispatch_threads([width, height, 1])
+    });
+    Integrated { color, moments }
+}
+
+/// The history images' formats: colour and moments `rgba32f`, surface records `rgba32ui`.
+pub(super) fn history_descs(width: u32, height: u32) -> (ImageDesc, ImageDesc) {
+    (
+        ImageDesc::rgba32f(width, height),
+        ImageDesc::new(width, height, ash::vk::Format::R32G32B32A32_UINT),
+    )
+}

@@ -1,0 +1,66 @@
+// Shared helpers of the SVGF passes: demodulation, the history surface record and edge-stopping
+// terms. Requires common/math.glsl.
+#ifndef LUCID_SVGF_COMMON_GLSL
+#define LUCID_SVGF_COMMON_GLSL
+
+// The object id the G-buffer writes where the sky is seen.
+const uint SVGF_SKY = 0xffffffffu;
+
+// Radiance without the directly seen emission, divided by the first-hit albedo: the smooth
+// signal the filter works on (emission and albedo are added back after filtering).
+vec3 svgf_demodulate(vec3 radiance, vec3 emission, vec3 albedo) {
+    return max(radiance - emission, vec3(0.0)) / max(albedo, vec3(1e-3));
+}
+
+// Octahedral encoding of a unit vector into [-1, 1]^2.
+vec2 svgf_oct_encode(vec3 n) {
+    n /= abs(n.x) + abs(n.y) + abs(n.z);
+    vec2 e = n.xy;
+    if (n.z < 0.0) {
+        e = (1.0 - abs(n.yx)) * vec2(n.x >= 0.0 ? 1.0 : -1.0, n.y >= 0.0 ? 1.0 : -1.0);
+    }
+    return e;
+}
+
+vec3 svgf_oct_decode(vec2 e) {
+    vec3 n = vec3(e, 1.0 - abs(e.x) - abs(e.y));
+    if (n.z < 0.0) {
+        n.xy = (1.0 - abs(n.yx)) * vec2(n.x >= 0.0 ? 1.0 : -1.0, n.y >= 0.0 ? 1.0 : -1.0);
+    }
+    return normalize(n);
+}
+
+// What the history keeps of a pixel's surface: view depth, normal, object id, and the luminance of
+// the frame's raw radiance (the gradient pass compares re-traced samples against it).
+struct SvgfSurface {
+    float depth;
+    vec3 normal;
+    uint object_id;
+    float radiance_luminance;
+};
+
+uvec4 svgf_pack_surface(SvgfSurface s) {
+    return uvec4(floatBitsToUint(s.depth), packSnorm2x16(svgf_oct_encode(s.normal)), s.object_id,
+                 floatBitsToUint(s.radiance_luminance));
+}
+
+SvgfSurface svgf_unpack_surface(uvec4 v) {
+    SvgfSurface s;
+    s.depth = uintBitsToFloat(v.x);
+    s.normal = svgf_oct_decode(unpackSnorm2x16(v.y));
+    s.object_id = v.z;
+    s.radiance_luminance = uintBitsToFloat(v.w);
+    return s;
+}
+
+// The edge-stopping weight of SVGF between a centre pixel and a tap `dist` pixels away, from view
+// depth (with its slope), normal and luminance (with the standard deviation of the centre).
+float svgf_edge_weight(float z_p, float z_q, float slope, float dist, vec3 n_p, vec3 n_q,
+                       float l_p, float l_q, float sigma_l_std, float sigma_z, float sigma_n) {
+    float wz = abs(z_p - z_q) / (sigma_z * slope * dist + 1e-3 * z_p + 1e-6);
+    float wl = abs(l_p - l_q) / (sigma_l_std + 1e-8);
+    float wn = pow(max(dot(n_p, n_q), 0.0), sigma_n);
+    return exp(-wz - wl) * wn;
+}
+
+#endif

@@ -1,0 +1,126 @@
+#version 460
+// SVGF temporal accumulation: demodulates this frame's radiance, reprojects last frame's
+// integrated illumination and luminance moments with the G-buffer's motion vectors (bilinear taps
+// validated by depth, normal and object id, else a 3x3 search, else a disocclusion), and blends
+// them with an exponential moving average whose weight the temporal gradient raises where the
+// shading changed (A-SVGF). Also writes this frame's surface record for the next frame.
+#include "common/math.glsl"
+#include "common/image_coords.glsl"
+#include "svgf/common.glsl"
+
+layout(local_size_x = 8, local_size_y = 8) in;
+
+layout(set = 0, binding = 0, rgba32f) uniform readonly image2D u_radiance;
+layout(set = 0, binding = 1, r32f) uniform readonly image2D u_depth;
+layout(set = 0, binding = 2, rgba16f) uniform readonly image2D u_normal_roughness;
+layout(set = 0, binding = 3, rgba16f) uniform readonly image2D u_albedo;
+layout(set = 0, binding = 4, rgba16f) uniform readonly image2D u_emission;
+layout(set = 0, binding = 5, rgba32ui) uniform readonly uimage2D u_ids;
+layout(set = 0, binding = 6, rgba16f) uniform readonly image2D u_motion;
+layout(set = 0, binding = 7, rgba32f) uniform readonly image2D u_gradient;
+layout(set = 0, binding = 8, rgba32f) uniform readonly image2D u_prev_color;
+layout(set = 0, binding = 9, rgba32f) uniform readonly image2D u_prev_moments;
+layout(set = 0, binding = 10, rgba32ui) uniform readonly uimage2D u_prev_surface;
+layout(set = 0, binding = 11, rgba32f) uniform writeonly image2D u_color;
+layout(set = 0, binding = 12, rgba32f) uniform writeonly image2D u_moments;
+layout(set = 0, binding = 13, rgba32ui) uniform writeonly uimage2D u_surface;
+
+#include "svgf/depth_slope.glsl"
+
+layout(push_constant) uniform Params {
+    float alpha;          // colour blend weight of a long history
+    float moments_alpha;  // moments blend weight of a long history
+    uint history_valid;   // 0 after a reset: every pixel is a disocclusion
+    uint stratum;         // side of a gradient stratum in pixels
+    float max_history;    // cap of the history length
+    float pad0;
+    float pad1;
+    float pad2;
+} params;
+
+// Whether last frame's pixel `q` saw the surface this pixel sees now.
+bool tap_valid(ivec2 q, ivec2 size, uint object_id, vec3 normal, float expected_depth, float tolerance) {
+    if (any(lessThan(q, ivec2(0))) || any(greaterThanEqual(q, size))) {
+        return false;
+    }
+    SvgfSurface s = svgf_unpack_surface(imageLoad(u_prev_surface, q));
+    if (s.object_id != object_id) {
+        return false;
+    }
+    if (object_id == SVGF_SKY) {
+        return true;
+    }
+    return abs(s.depth - expected_depth) <= tolerance && dot(s.normal, normal) > 0.9;
+}
+
+void main() {
+    ivec2 pixel = ivec2(gl_GlobalInvocationID.xy);
+    ivec2 size = imageSize(u_color);
+    if (!pixel_in_bounds(pixel, size)) {
+        return;
+    }
+    vec3 radiance = imageLoad(u_radiance, pixel).rgb;
+    vec3 illum = svgf_demodulate(radiance, imageLoad(u_emission, pixel).rgb, imageLoad(u_albedo, pixel).rgb);
+    float lum = luminance(illum);
+    SvgfSurface here;
+    here.depth = imageLoad(u_depth, pixel).x;
+    here.normal = imageLoad(u_normal_roughness, pixel).xyz;
+    here.object_id = imageLoad(u_ids, pixel).x;
+    here.radiance_luminance = luminance(radiance);
+    imageStore(u_surface, pixel, svgf_pack_surface(here));
+
+    vec3 motion = imageLoad(u_motion, pixel).xyz;
+    float tolerance = 0.02 * motion.z + 2.0 * svgf_depth_slope(pixel, size);
+    vec3 prev_color = vec3(0.0);
+    vec3 prev_moments = vec3(0.0);
+    float weight_sum = 0.0;
+    if (params.history_valid != 0u) {
+        vec2 prev_pos = vec2(pixel) + motion.xy;
+        ivec2 base = ivec2(floor(prev_pos));
+        vec2 f = prev_pos - vec2(base);
+        float w[4] = float[4]((1.0 - f.x) * (1.0 - f.y), f.x * (1.0 - f.y), (1.0 - f.x) * f.y, f.x * f.y);
+        for (int i = 0; i < 4; ++i) {
+            ivec2 q = base + ivec2(i & 1, i >> 1);
+            if (tap_valid(q, size, here.object_id, here.normal, motion.z, tolerance)) {
+                prev_color += w[i] * imageLoad(u_prev_color, q).rgb;
+                prev_moments += w[i] * imageLoad(u_prev_moments, q).xyz;
+                weight_sum += w[i];
+            }
+        }
+        if (weight_sum < 0.01) {
+            prev_color = vec3(0.0);
+            prev_moments = vec3(0.0);
+            weight_sum = 0.0;
+            ivec2 centre = ivec2(floor(prev_pos + 0.5));
+            for (int dy = -1; dy <= 1; ++dy) {
+                for (int dx = -1; dx <= 1; ++dx) {
+                    ivec2 q = centre + ivec2(dx, dy);
+                    if (tap_valid(q, size, here.object_id, here.normal, motion.z, tolerance + 0.02 * motion.z)) {
+                        prev_color += imageLoad(u_prev_color, q).rgb;
+                        prev_moments += imageLoad(u_prev_moments, q).xyz;
+                        weight_sum += 1.0;
+                    }
+                }
+            }
+        }
+    }
+    vec3 color = illum;
+    vec2 moments = vec2(lum, lum * lum);
+    float history = 1.0;
+    if (weight_sum > 0.0) {
+        prev_color /= weight_sum;
+        prev_moments /= weight_sum;
+        // The temporal gradient's share of shading that changed since last frame drops that
+        // share of the history (A-SVGF).
+        vec2 g = imageLoad(u_gradient, pixel / int(params.stratum)).xy;
+        float lambda = g.y > 1e-6 ? clamp(abs(g.x) / g.y, 0.0, 1.0) : 0.0;
+        float n = prev_moments.z * (1.0 - lambda);
+        float a = mix(max(params.alpha, 1.0 / (n + 1.0)), 1.0, lambda);
+        float am = mix(max(params.moments_alpha, 1.0 / (n + 1.0)), 1.0, lambda);
+        color = mix(prev_color, illum, a);
+        moments = mix(prev_moments.xy, moments, am);
+        history = min(n + 1.0, params.max_history);
+    }
+    imageStore(u_color, pixel, vec4(color, 0.0));
+    imageStore(u_moments, pixel, vec4(moments, history, 0.0));
+}

@@ -1,0 +1,103 @@
+//! Statistics for comparing Monte Carlo estimates of one image (shared by the BDPT tests).
+
+use lucid_engine::capture::ImageData;
+
+/// Per-channel mean of an image.
+pub fn mean(image: &ImageData) -> [f64; 3] {
+    let mut sum = [0.0f64; 3];
+    for p in &image.pixels {
+        for c in 0..3 {
+            sum[c] += f64::from(p[c]);
+        }
+    }
+    sum.map(|s| s / image.pixels.len() as f64)
+}
+
+/// The pixelwise average of two images.
+pub fn average(a: &ImageData, b: &ImageData) -> ImageData {
+    let mut out = a.clone();
+    for (o, q) in out.pixels.iter_mut().zip(&b.pixels) {
+        for c in 0..3 {
+            o[c] = 0.5 * (o[c] + q[c]);
+        }
+    }
+    out
+}
+
+/// Relative mean squared error of `image` against `reference`: squared differences over the
+/// squared reference luminance, floored at a hundredth of the mean luminance squared.
+pub fn rel_mse(image: &ImageData, reference: &ImageData) -> f64 {
+    let floor = 0.01 * mean_luminance(reference).powi(2);
+    let sum: f64 = image
+        .pixels
+        .iter()
+        .zip(&reference.pixels)
+        .map(|(p, r)| {
+            let d: f64 = (0..3).map(|c| f64::from(p[c] - r[c]).powi(2)).sum();
+            d / (luminance(r).powi(2) + floor)
+        })
+        .sum();
+    sum / image.pixels.len() as f64
+}
+
+/// Two estimators compared from two independent renders each.
+#[derive(Debug)]
+pub struct Comparison {
+    /// Channel means of the first estimator (both renders averaged).
+    pub mean_a: [f64; 3],
+    /// Channel means of the second estimator.
+    pub mean_b: [f64; 3],
+    /// Relative MSE between the two averaged estimates.
+    pub rel_mse: f64,
+    /// The relative MSE their noise alone explains: (var_a + var_b) / 2 per pixel, each variance
+    /// estimated from its pair of renders as (x1 - x2)^2 / 2.
+    pub expected_rel_mse: f64,
+}
+
+impl Comparison {
+    /// Compares estimator a (renders a1, a2) with estimator b (b1, b2).
+    pub fn new(a: [&ImageData; 2], b: [&ImageData; 2]) -> Self {
+        let (ma, mb) = (average(a[0], a[1]), average(b[0], b[1]));
+        let reference = average(&ma, &mb);
+        let floor = 0.01 * mean_luminance(&reference).powi(2);
+        let mut observed = 0.0;
+        let mut expected = 0.0;
+        for i in 0..reference.pixels.len() {
+            let denom = luminance(&reference.pixels[i]).powi(2) + floor;
+            for c in 0..3 {
+                let d = f64::from(ma.pixels[i][c] - mb.pixels[i][c]);
+                let da = f64::from(a[0].pixels[i][c] - a[1].pixels[i][c]);
+                let db = f64::from(b[0].pixels[i][c] - b[1].pixels[i][c]);
+                observed += d * d / denom;
+                expected += 0.25 * (da * da + db * db) / denom;
+            }
+        }
+        let n = reference.pixels.len() as f64;
+        Self {
+            mean_a: mean(&ma),
+            mean_b: mean(&mb),
+            rel_mse: observed / n,
+            expected_rel_mse: expected / n,
+        }
+    }
+
+    /// Observed over expected relative MSE: about 1 when both estimate the same image.
+    pub fn ratio(&self) -> f64 {
+        self.rel_mse / self.expected_rel_mse
+    }
+
+    /// Largest relative difference of the channel means.
+    pub fn mean_difference(&self) -> f64 {
+        (0..3)
+            .map(|c| (self.mean_a[c] - self.mean_b[c]).abs() / self.mean_a[c].max(1e-9))
+            .fold(0.0, f64::max)
+    }
+}
+
+fn luminance(p: &[f32; 4]) -> f64 {
+    0.2126 * f64::from(p[0]) + 0.7152 * f64::from(p[1]) + 0.0722 * f64::from(p[2])
+}
+
+fn mean_luminance(image: &ImageData) -> f64 {
+    image.pixels.iter().map(luminance).sum::<f64>() / image.pixels.len() as f64
+}

@@ -1,0 +1,108 @@
+//! Shared by the SVGF tests (`#[path]`-included): one renderer per method, frames read back,
+//! luminance statistics over pixel masks.
+
+use lucid_engine::capture::{rec709_luminance, ImageData};
+use lucid_engine::scene::{Camera, Scene};
+use lucid_engine::Context;
+use lucid_passes::renderer::{Denoiser, Renderer, Settings};
+use lucid_passes::svgf::{SvgfMode, SvgfParams};
+
+/// Side of the square test images.
+pub const SIZE: u32 = 64;
+
+/// How a sequence is rendered.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Method {
+    /// 1 spp, no denoiser.
+    Noisy,
+    /// The a-trous filter alone on each 1-spp frame.
+    PerFrame,
+    /// Full SVGF at 1 spp.
+    Svgf,
+    /// SVGF at 1 spp without temporal gradients (history rejected by geometry only).
+    SvgfWithoutGradients,
+}
+
+/// A renderer of `scene` for `method`, without accumulation.
+pub fn renderer(ctx: &Context, scene: Scene, method: Method) -> Renderer {
+    let svgf = |mode, gradients| SvgfParams {
+        mode,
+        gradients,
+        ..SvgfParams::default()
+    };
+    let (spp, denoiser, svgf) = match method {
+        Method::Noisy => (1, Denoiser::None, SvgfParams::default()),
+        Method::PerFrame => (1, Denoiser::Svgf, svgf(SvgfMode::EveryFrame, true)),
+        Method::Svgf => (1, Denoiser::Svgf, svgf(SvgfMode::Temporal, true)),
+        Method::SvgfWithoutGradients => (1, Denoiser::Svgf, svgf(SvgfMode::Temporal, false)),
+    };
+    let settings = Settings {
+        samples_per_pixel: spp,
+        accumulate: false,
+        max_depth: 3,
+        denoiser,
+        svgf,
+        ..Settings::default()
+    };
+    Renderer::new(ctx, scene, SIZE, SIZE, settings).expect("renderer")
+}
+
+/// A reference image of `scene` seen by `camera`: `frames` accumulated frames of `spp` samples by a
+/// fresh renderer. Every reference frame thus draws the same random numbers per pixel, so that its
+/// residual noise barely changes from frame to frame: a reference that flickered would add its own
+/// flicker to every method's temporal instability.
+pub fn reference(ctx: &Context, scene: &Scene, camera: Camera, spp: u32, frames: u32) -> ImageData {
+    let settings = Settings {
+        samples_per_pixel: spp,
+        accumulate: true,
+        max_depth: 3,
+        ..Settings::default()
+    };
+    let mut r = Renderer::new(ctx, scene.clone(), SIZE, SIZE, settings).expect("renderer");
+    r.set_camera(camera);
+    for _ in 1..frames {
+        r.render().expect("frame");
+    }
+    frame(&mut r)
+}
+
+/// Renders a frame and reads its (denoised) HDR output back, checking it is finite.
+pub fn frame(renderer: &mut Renderer) -> ImageData {
+    let image = renderer.render_and_read().expect("frame");
+    assert!(!image.has_non_finite(), "the output has NaN or Inf pixels");
+    image
+}
+
+/// Mean luminance of `image` over the pixels where `mask` is true.
+pub fn mean_luminance(image: &ImageData, mask: &[bool]) -> f64 {
+    let (sum, count) = image
+        .pixels
+        .iter()
+        .zip(mask)
+        .filter(|(_, &m)| m)
+        .fold((0.0, 0usize), |(s, c), (&p, _)| {
+            (s + f64::from(rec709_luminance(p)), c + 1)
+        });
+    sum / count.max(1) as f64
+}
+
+/// Mean absolute luminance error of `test` against `reference` over `mask`, relative to the
+/// reference's mean luminance there.
+pub fn relative_error(test: &ImageData, reference: &ImageData, mask: &[bool]) -> f64 {
+    let (sum, count) = test
+        .pixels
+        .iter()
+        .zip(&reference.pixels)
+        .zip(mask)
+        .filter(|(_, &m)| m)
+        .fold((0.0, 0usize), |(s, c), ((&t, &r), _)| {
+            let d = f64::from(rec709_luminance(t) - rec709_luminance(r)).abs();
+            (s + d, c + 1)
+        });
+    sum / count.max(1) as f64 / mean_luminance(reference, mask).max(1e-6)
+}
+
+/// A mask of every pixel.
+pub fn everywhere() -> Vec<bool> {
+    vec![true; (SIZE * SIZE) as usize]
+}
