@@ -2,7 +2,7 @@
 # The GPU benchmark suite, as run on the NVIDIA machine (see bench/README.md):
 #   bench/run_gpu.sh OUT_DIR [ALGOS]
 # Runs `lucid bench` at 1920x1080, 1 spp, max depth 8 on every built-in scene for each algorithm
-# (default: pt), then Mitsuba 3 (cuda_ad_rgb) on its Cornell box when its package is unpacked at
+# (default: pt), SVGF on classroom at four resolutions, then Mitsuba 3 (cuda_ad_rgb) on its Cornell box when its package is unpacked at
 # /tmp/mitsuba, and merges everything into OUT_DIR/results.json (single runs go to $RUNS).
 set -euo pipefail
 out=${1:?usage: bench/run_gpu.sh OUT_DIR [ALGOS]}
@@ -19,6 +19,14 @@ for algo in $algos; do
     echo "done $algo $scene"
   done
 done
+# The SVGF denoiser's cost at the resolutions the study timed its denoiser at.
+if [ "${SVGF:-1}" = 1 ]; then
+  for size in 1920x1080 1280x720 854x480 640x360; do
+    "$lucid" bench --scene classroom --algo pt --denoise svgf --size "$size" --spp 1 --max-depth 8 \
+      --frames "$frames" --warmup 10 --json "$runs/svgf_classroom_${size}.json" > /dev/null
+    echo "done svgf $size"
+  done
+fi
 if [ -d /tmp/mitsuba ]; then
   PYTHONPATH=/tmp/mitsuba python3 bench/mitsuba/bench_cornell.py --size 1920x1080 --spp 64 \
     --max-depth 8 --runs 5 --out "$runs/mitsuba_cornell.json"

@@ -6,8 +6,8 @@ use lucid_engine::capture::ImageData;
 pub fn mean(image: &ImageData) -> [f64; 3] {
     let mut sum = [0.0f64; 3];
     for p in &image.pixels {
-        for c in 0..3 {
-            sum[c] += f64::from(p[c]);
+        for (s, v) in sum.iter_mut().zip(p) {
+            *s += f64::from(*v);
         }
     }
     sum.map(|s| s / image.pixels.len() as f64)
@@ -25,7 +25,7 @@ pub fn average(a: &ImageData, b: &ImageData) -> ImageData {
 }
 
 /// Relative mean squared error of `image` against `reference`: squared differences over the
-/// squared reference luminance, floored at a hundredth of the mean luminance squared.
+/// squared reference luminance, floored at a hundredth of the squared mean luminance.
 pub fn rel_mse(image: &ImageData, reference: &ImageData) -> f64 {
     let floor = 0.01 * mean_luminance(reference).powi(2);
     let sum: f64 = image
@@ -40,17 +40,19 @@ pub fn rel_mse(image: &ImageData, reference: &ImageData) -> f64 {
     sum / image.pixels.len() as f64
 }
 
-/// Two estimators compared from two independent renders each.
+/// Two estimators of one image, each rendered twice with independent seeds.
 #[derive(Debug)]
 pub struct Comparison {
-    /// Channel means of the first estimator (both renders averaged).
+    /// Channel means of estimator a (both renders averaged).
     pub mean_a: [f64; 3],
-    /// Channel means of the second estimator.
+    /// Channel means of estimator b.
     pub mean_b: [f64; 3],
+    /// Standard deviation of the difference of the channel means, from the pairs' noise.
+    pub mean_sigma: [f64; 3],
     /// Relative MSE between the two averaged estimates.
     pub rel_mse: f64,
-    /// The relative MSE their noise alone explains: (var_a + var_b) / 2 per pixel, each variance
-    /// estimated from its pair of renders as (x1 - x2)^2 / 2.
+    /// The relative MSE their noise alone explains: each averaged estimate's variance is
+    /// (x1 - x2)^2 / 4 per pixel.
     pub expected_rel_mse: f64,
 }
 
@@ -60,22 +62,26 @@ impl Comparison {
         let (ma, mb) = (average(a[0], a[1]), average(b[0], b[1]));
         let reference = average(&ma, &mb);
         let floor = 0.01 * mean_luminance(&reference).powi(2);
+        let n = reference.pixels.len() as f64;
         let mut observed = 0.0;
         let mut expected = 0.0;
+        let mut mean_var = [0.0f64; 3];
         for i in 0..reference.pixels.len() {
             let denom = luminance(&reference.pixels[i]).powi(2) + floor;
-            for c in 0..3 {
+            for (c, var) in mean_var.iter_mut().enumerate() {
                 let d = f64::from(ma.pixels[i][c] - mb.pixels[i][c]);
                 let da = f64::from(a[0].pixels[i][c] - a[1].pixels[i][c]);
                 let db = f64::from(b[0].pixels[i][c] - b[1].pixels[i][c]);
+                let noise = 0.25 * (da * da + db * db);
                 observed += d * d / denom;
-                expected += 0.25 * (da * da + db * db) / denom;
+                expected += noise / denom;
+                *var += noise / (n * n);
             }
         }
-        let n = reference.pixels.len() as f64;
         Self {
             mean_a: mean(&ma),
             mean_b: mean(&mb),
+            mean_sigma: mean_var.map(f64::sqrt),
             rel_mse: observed / n,
             expected_rel_mse: expected / n,
         }
@@ -90,6 +96,13 @@ impl Comparison {
     pub fn mean_difference(&self) -> f64 {
         (0..3)
             .map(|c| (self.mean_a[c] - self.mean_b[c]).abs() / self.mean_a[c].max(1e-9))
+            .fold(0.0, f64::max)
+    }
+
+    /// Largest difference of the channel means in standard deviations of their noise.
+    pub fn mean_z(&self) -> f64 {
+        (0..3)
+            .map(|c| (self.mean_a[c] - self.mean_b[c]).abs() / self.mean_sigma[c].max(1e-12))
             .fold(0.0, f64::max)
     }
 }

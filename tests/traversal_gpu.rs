@@ -1,5 +1,7 @@
 //! The GPU BVH traversal returns the same hits as the CPU traversal, on random rays through every
-//! built-in scene (reduced tessellation for the large ones).
+//! built-in scene (reduced tessellation for the large ones). The GPU traverses the renderer's
+//! packing (static instances flattened into one BLAS, some kept as instances); hits must name the
+//! same original instance as the CPU's two-level BVH over the original scene.
 
 use ash::vk;
 use glam::Vec3;
@@ -7,7 +9,8 @@ use lucid_engine::bvh::{Bvh, HitKind, Ray};
 use lucid_engine::graph::{Executor, RenderGraph};
 use lucid_engine::memory::Buffer;
 use lucid_engine::scene::builtin::{self, BuildOptions};
-use lucid_engine::scene::gpu::GpuScene;
+use lucid_engine::scene::gpu::pack_flat;
+use lucid_engine::scene::FlatScene;
 use lucid_engine::shader::ShaderLibrary;
 use lucid_passes::ray_query::{self, QueryHit, QueryRay, SPHERE_BIT};
 use lucid_passes::scene_buffers::SceneBuffers;
@@ -38,9 +41,13 @@ fn check_scene(name: &str, rays_per_scene: usize) {
     let mut scene = builtin::build_with(name, &options).unwrap();
     scene.validate().unwrap();
     let bvh = Bvh::build(&scene);
-    let gpu = GpuScene::new(&scene, &bvh);
+    // The GPU gets the renderer's packing: static instances flattened, every third kept dynamic.
+    let dynamic: Vec<bool> = (0..scene.instances.len()).map(|i| i % 3 == 1).collect();
+    let flat = FlatScene::new(&scene, &dynamic);
+    let flat_bvh = Bvh::build(&flat.scene);
+    let (gpu, triangle_ids) = pack_flat(&flat, &flat_bvh);
     let ctx = context(false);
-    let buffers = SceneBuffers::upload(&ctx, &gpu).unwrap();
+    let buffers = SceneBuffers::upload(&ctx, &gpu, &triangle_ids).unwrap();
     let mut executor = Executor::new(&ctx, ShaderLibrary::new(&ctx, None).unwrap()).unwrap();
 
     let bounds = scene.bounds();

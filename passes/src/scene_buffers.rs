@@ -11,7 +11,7 @@ use lucid_engine::{Context, Result};
 use std::sync::Arc;
 
 /// The names of the scene buffers in the shaders, in [`SceneBuffers::buffers`] order.
-const NAMES: [&str; 12] = [
+const NAMES: [&str; 13] = [
     "b_vertices",
     "b_indices",
     "b_blas",
@@ -24,11 +24,12 @@ const NAMES: [&str; 12] = [
     "b_texels",
     "b_textures",
     "b_scene",
+    "b_triangle_ids",
 ];
 
 /// Device-local copies of a packed scene.
 pub struct SceneBuffers {
-    buffers: [Arc<Buffer>; 12],
+    buffers: [Arc<Buffer>; 13],
     /// The features the scene uses (drive shader specialization).
     pub features: SceneFeatures,
 }
@@ -45,8 +46,9 @@ fn upload<T: Pod>(ctx: &Context, name: &str, data: &[T]) -> Result<Arc<Buffer>> 
 }
 
 impl SceneBuffers {
-    /// Uploads every array of `gpu`.
-    pub fn upload(ctx: &Context, gpu: &GpuScene) -> Result<Self> {
+    /// Uploads every array of `gpu`, and the per-triangle `[material, instance]` ids of the
+    /// flattened static geometry (see `lucid_engine::scene::gpu::pack_flat`).
+    pub fn upload(ctx: &Context, gpu: &GpuScene, triangle_ids: &[[u32; 2]]) -> Result<Self> {
         Ok(Self {
             buffers: [
                 upload(ctx, NAMES[0], &gpu.vertices)?,
@@ -61,6 +63,7 @@ impl SceneBuffers {
                 upload(ctx, NAMES[9], &gpu.texels)?,
                 upload(ctx, NAMES[10], &gpu.textures)?,
                 upload(ctx, NAMES[11], std::slice::from_ref(&gpu.params))?,
+                upload(ctx, NAMES[12], triangle_ids)?,
             ],
             features: gpu.features,
         })
@@ -99,7 +102,7 @@ impl SceneBuffers {
 /// The scene buffers of one frame's graph.
 #[derive(Clone, Copy, Debug)]
 pub struct SceneHandles {
-    handles: [BufferHandle; 12],
+    handles: [BufferHandle; 13],
 }
 
 impl SceneHandles {

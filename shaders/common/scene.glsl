@@ -1,6 +1,7 @@
 // The scene buffers, mirroring lucid_engine::scene::gpu (std430). Bound by name: b_vertices,
 // b_indices, b_blas, b_tlas, b_instances, b_spheres, b_materials, b_lights, b_light_table,
-// b_texels, b_textures, b_scene. Bindings 0-11; passes use 16 and up for their own resources.
+// b_texels, b_textures, b_scene, b_triangle_ids. Bindings 0-11 and 13 (12 is the frame constants);
+// passes use 16 and up for their own resources.
 #ifndef LUCID_SCENE_GLSL
 #define LUCID_SCENE_GLSL
 
@@ -46,6 +47,7 @@ const uint LIGHT_POINT = 2u;
 const uint LIGHT_SPOT = 3u;
 const uint INSTANCE_TRIANGLES = 0u;
 const uint INSTANCE_SPHERES = 1u;
+const uint INSTANCE_FLATTENED = 2u; // static instances merged in world space: ids per triangle
 const uint TEXTURE_RGBA8_SRGB = 0u;
 const uint TEXTURE_RGBA8_LINEAR = 1u;
 const uint TEXTURE_RGBA32F = 2u;
@@ -62,6 +64,8 @@ layout(set = 0, binding = 8, std430) readonly buffer LightTable { LightTableEntr
 layout(set = 0, binding = 9, std430) readonly buffer Texels { uint t[]; } b_texels;
 layout(set = 0, binding = 10, std430) readonly buffer Textures { TextureRecord r[]; } b_textures;
 layout(set = 0, binding = 11, std430) readonly buffer ScenePayload { SceneParams p; } b_scene;
+// Per triangle of the flattened instance: material, original scene instance.
+layout(set = 0, binding = 13, std430) readonly buffer TriangleIds { uvec2 t[]; } b_triangle_ids;
 
 vec3 vertex_position(uint index) {
     Vertex v = b_vertices.v[index];

@@ -59,8 +59,14 @@ Surface surface_at(Hit hit, vec3 origin, vec3 dir) {
     } else {
         s.uv = vec2(0.0);
     }
-    s.material = inst.material;
-    s.object_id = inst.scene_instance;
+    if (inst.kind == INSTANCE_FLATTENED) {
+        uvec2 ids = b_triangle_ids.t[hit.primitive];
+        s.material = ids.x;
+        s.object_id = ids.y;
+    } else {
+        s.material = inst.material;
+        s.object_id = inst.scene_instance;
+    }
     return s;
 }
 

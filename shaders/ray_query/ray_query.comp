@@ -38,9 +38,13 @@ void main() {
     if (trace_closest(ray.origin_tmax.xyz, ray.dir.xyz, ray.origin_tmax.w, hit)) {
         result.t = hit.t;
         Instance inst = b_instances.i[hit.instance];
-        result.object_id = inst.kind == INSTANCE_SPHERES
-            ? (0x80000000u | b_spheres.s[hit.primitive].scene_sphere)
-            : inst.scene_instance;
+        if (inst.kind == INSTANCE_SPHERES) {
+            result.object_id = 0x80000000u | b_spheres.s[hit.primitive].scene_sphere;
+        } else if (inst.kind == INSTANCE_FLATTENED) {
+            result.object_id = b_triangle_ids.t[hit.primitive].y;
+        } else {
+            result.object_id = inst.scene_instance;
+        }
     } else {
         result.t = -1.0;
         result.object_id = 0xffffffffu;

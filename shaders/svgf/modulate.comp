@@ -1,12 +1,13 @@
 #version 460
-// Re-modulation after filtering: radiance = illumination * albedo + directly seen emission.
+// Re-modulation after filtering: radiance = illumination * albedo + directly seen emission, both
+// antialiased (svgf/primary.comp).
 #include "common/image_coords.glsl"
 
 layout(local_size_x = 8, local_size_y = 8) in;
 
 layout(set = 0, binding = 0, rgba32f) uniform readonly image2D u_illumination;
-layout(set = 0, binding = 1, rgba16f) uniform readonly image2D u_albedo;
-layout(set = 0, binding = 2, rgba16f) uniform readonly image2D u_emission;
+layout(set = 0, binding = 1, rgba32f) uniform readonly image2D u_albedo;
+layout(set = 0, binding = 2, rgba32f) uniform readonly image2D u_emission;
 layout(set = 0, binding = 3, rgba32f) uniform writeonly image2D u_out;
 
 void main() {

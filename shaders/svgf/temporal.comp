@@ -1,5 +1,5 @@
 #version 460
-// SVGF temporal accumulation: demodulates this frame's radiance, reprojects last frame's
+// SVGF temporal accumulation: takes this frame's demodulated illumination, reprojects last frame's
 // integrated illumination and luminance moments with the G-buffer's motion vectors (bilinear taps
 // validated by depth, normal and object id, else a 3x3 search, else a disocclusion), and blends
 // them with an exponential moving average whose weight the temporal gradient raises where the
@@ -13,8 +13,7 @@ layout(local_size_x = 8, local_size_y = 8) in;
 layout(set = 0, binding = 0, rgba32f) uniform readonly image2D u_radiance;
 layout(set = 0, binding = 1, r32f) uniform readonly image2D u_depth;
 layout(set = 0, binding = 2, rgba16f) uniform readonly image2D u_normal_roughness;
-layout(set = 0, binding = 3, rgba16f) uniform readonly image2D u_albedo;
-layout(set = 0, binding = 4, rgba16f) uniform readonly image2D u_emission;
+layout(set = 0, binding = 3, rgba32f) uniform readonly image2D u_illumination;
 layout(set = 0, binding = 5, rgba32ui) uniform readonly uimage2D u_ids;
 layout(set = 0, binding = 6, rgba16f) uniform readonly image2D u_motion;
 layout(set = 0, binding = 7, rgba32f) uniform readonly image2D u_gradient;
@@ -60,7 +59,7 @@ void main() {
         return;
     }
     vec3 radiance = imageLoad(u_radiance, pixel).rgb;
-    vec3 illum = svgf_demodulate(radiance, imageLoad(u_emission, pixel).rgb, imageLoad(u_albedo, pixel).rgb);
+    vec3 illum = imageLoad(u_illumination, pixel).rgb;
     float lum = luminance(illum);
     SvgfSurface here;
     here.depth = imageLoad(u_depth, pixel).x;

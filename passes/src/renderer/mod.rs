@@ -26,8 +26,8 @@ use crate::{accumulate, bdpt, path_trace, svgf, tonemap};
 use lucid_engine::bvh::Bvh;
 use lucid_engine::capture::ImageData;
 use lucid_engine::graph::{Executor, FrameId, ImageHandle, ReadbackId, RenderGraph};
-use lucid_engine::scene::gpu::{self, GpuCamera, GpuScene};
-use lucid_engine::scene::{Camera, Material, Scene};
+use lucid_engine::scene::gpu::{self, fix_instances, pack_flat, GpuCamera, GpuScene};
+use lucid_engine::scene::{Camera, FlatScene, Material, Scene};
 use lucid_engine::shader::{ShaderLibrary, Specialization};
 use lucid_engine::{Context, EngineError, Result};
 
@@ -61,6 +61,8 @@ pub struct Renderer {
     ctx: Context,
     executor: Executor,
     scene: Scene,
+    flat: FlatScene,
+    dynamic: Vec<bool>,
     bvh: Bvh,
     gpu: GpuScene,
     buffers: SceneBuffers,
@@ -91,9 +93,11 @@ impl Renderer {
         scene
             .validate()
             .map_err(|e| EngineError::InvalidArgument(format!("scene {}: {e}", scene.name)))?;
-        let bvh = Bvh::build(&scene);
-        let gpu = GpuScene::new(&scene, &bvh);
-        let buffers = SceneBuffers::upload(ctx, &gpu)?;
+        let flat = FlatScene::new(&scene, &[]);
+        let flat_len = scene.instances.len();
+        let bvh = Bvh::build(&flat.scene);
+        let (gpu, triangle_ids) = pack_flat(&flat, &bvh);
+        let buffers = SceneBuffers::upload(ctx, &gpu, &triangle_ids)?;
         let spec = specialization(&gpu.features);
         let library = ShaderLibrary::new(ctx, None)?;
         let camera = scene.camera;
@@ -104,6 +108,8 @@ impl Renderer {
             prev_transforms: transform_rows(&scene),
             camera,
             scene,
+            dynamic: vec![false; flat_len],
+            flat,
             bvh,
             gpu,
             buffers,
@@ -122,11 +128,6 @@ impl Renderer {
     /// The scene being rendered.
     pub fn scene(&self) -> &Scene {
         &self.scene
-    }
-
-    /// The scene's BVH (for picking with CPU traversal).
-    pub fn bvh(&self) -> &Bvh {
-        &self.bvh
     }
 
     /// The specialization constants derived from the scene's features.
@@ -186,7 +187,8 @@ impl Renderer {
         Ok(())
     }
 
-    /// Places instance `index` of the scene at `transform`: only the top level is rebuilt.
+    /// Places instance `index` of the scene at `transform`. The first move of an instance takes it out
+    /// of the flattened static geometry (a full rebuild, once); later moves rebuild only the top level.
     pub fn set_instance_transform(
         &mut self,
         index: usize,
@@ -196,13 +198,22 @@ impl Renderer {
             EngineError::InvalidArgument(format!("scene has no instance {index}"))
         })?;
         instance.transform = transform;
-        self.bvh
-            .rebuild_top_level(&self.scene)
-            .map_err(|e| EngineError::InvalidArgument(e.to_string()))?;
-        self.gpu.update_top_level(&self.scene, &self.bvh);
-        self.buffers.update_top_level(&self.ctx, &self.gpu)?;
         self.accumulated = 0;
-        Ok(())
+        match self.flat.instance_of(index) {
+            Some(flat_index) => {
+                self.flat.scene.instances[flat_index].transform = transform;
+                self.bvh
+                    .rebuild_top_level(&self.flat.scene)
+                    .map_err(|e| EngineError::InvalidArgument(e.to_string()))?;
+                self.gpu.update_top_level(&self.flat.scene, &self.bvh);
+                fix_instances(&mut self.gpu, &self.flat);
+                self.buffers.update_top_level(&self.ctx, &self.gpu)
+            }
+            None => {
+                self.dynamic[index] = true;
+                self.rebuild_gpu_scene()
+            }
+        }
     }
 
     /// Replaces material `index` of the scene (e.g. switches a light off); restarts accumulation.
@@ -210,11 +221,29 @@ impl Renderer {
         let slot = self.scene.materials.get_mut(index).ok_or_else(|| {
             EngineError::InvalidArgument(format!("scene has no material {index}"))
         })?;
-        *slot = material;
-        self.gpu = GpuScene::new(&self.scene, &self.bvh);
+        let emission_changed = slot.is_emissive() != material.is_emissive();
+        *slot = material.clone();
+        self.accumulated = 0;
+        if emission_changed {
+            // Emitters are never merged: which instances are flattened changes.
+            return self.rebuild_gpu_scene();
+        }
+        self.flat.scene.materials[index] = material;
+        let (gpu, _) = pack_flat(&self.flat, &self.bvh);
+        self.gpu = gpu;
         self.buffers.update_materials(&self.ctx, &self.gpu)?;
         self.spec = specialization(&self.gpu.features);
-        self.accumulated = 0;
+        Ok(())
+    }
+
+    /// Flattens, builds and uploads the scene again (frames in flight keep the old buffers).
+    fn rebuild_gpu_scene(&mut self) -> Result<()> {
+        self.flat = FlatScene::new(&self.scene, &self.dynamic);
+        self.bvh = Bvh::build(&self.flat.scene);
+        let (gpu, triangle_ids) = pack_flat(&self.flat, &self.bvh);
+        self.buffers = SceneBuffers::upload(&self.ctx, &gpu, &triangle_ids)?;
+        self.spec = specialization(&gpu.features);
+        self.gpu = gpu;
         Ok(())
     }
 
@@ -277,12 +306,14 @@ impl Renderer {
         let hdr = match self.settings.denoiser {
             Denoiser::None => hdr,
             Denoiser::Svgf => {
-                let spp = self.settings.samples_per_pixel;
+                let spp = self.settings.samples_per_pixel.max(1);
                 let params = self.settings.svgf;
                 let apply = self.svgf_schedule.decide(params.mode, accumulated, spp);
                 let inputs = svgf::FrameInputs {
                     radiance: traced.radiance,
                     accumulated: hdr,
+                    accumulated_frames: accumulated,
+                    samples_per_pixel: spp,
                     gbuffer,
                     scene: &scene,
                     frame,

@@ -1,9 +1,10 @@
 //! SVGF's spatial half: variance estimation, the edge-avoiding a-trous wavelet filter and
-//! re-modulation (`shaders/svgf/{demodulate,variance,atrous,atrous_feedback,modulate}.comp`).
+//! re-modulation (`shaders/svgf/{moments,variance,atrous,atrous_feedback,modulate}.comp`).
 
+use super::primary::Primary;
 use super::SvgfParams;
 use crate::gbuffer::GBuffer;
-use crate::shaders::svgf::{ATROUS, ATROUS_FEEDBACK, DEMODULATE, MODULATE, VARIANCE};
+use crate::shaders::svgf::{ATROUS, ATROUS_FEEDBACK, MODULATE, MOMENTS, VARIANCE};
 use lucid_engine::graph::{Access, ImageHandle, RenderGraph};
 use lucid_engine::memory::ImageDesc;
 
@@ -17,40 +18,34 @@ struct AtrousParams {
     sigma_l: f32,
 }
 
-/// Demodulated illumination with no history: the spatial-only filter's input (colour, moments).
-pub(super) fn demodulate(
+/// Luminance moments of `illumination` with no history: the spatial-only filter's moments.
+pub(super) fn moments(
     g: &mut RenderGraph,
-    radiance: ImageHandle,
-    gbuffer: &GBuffer,
+    illumination: ImageHandle,
     (width, height): (u32, u32),
-) -> (ImageHandle, ImageHandle) {
-    let mut p = g.add_pass("svgf.demodulate");
-    let radiance = p.read(radiance, Access::ComputeRead);
-    let albedo = p.read(gbuffer.albedo, Access::ComputeRead);
-    let emission = p.read(gbuffer.emission, Access::ComputeRead);
-    let color = p.create_image("svgf.illumination", ImageDesc::rgba32f(width, height));
-    let color = p.write(color, Access::ComputeWrite);
+) -> ImageHandle {
+    let mut p = g.add_pass("svgf.moments");
+    let illumination = p.read(illumination, Access::ComputeRead);
     let moments = p.create_image("svgf.moments", ImageDesc::rgba32f(width, height));
     let moments = p.write(moments, Access::ComputeWrite);
     p.execute(move |ctx| {
-        ctx.compute(&DEMODULATE)
-            .image("u_radiance", radiance)
-            .image("u_albedo", albedo)
-            .image("u_emission", emission)
-            .image("u_color", color)
+        ctx.compute(&MOMENTS)
+            .image("u_illumination", illumination)
             .image("u_moments", moments)
             .dispatch_threads([width, height, 1])
     });
-    (color, moments)
+    moments
 }
 
 /// Estimates variance (temporally, or spatially where the history is short), filters with
-/// `params.iterations` a-trous iterations and re-modulates. The first iteration's output is also
-/// written to `feedback` (the colour history) when given. Returns the denoised radiance.
+/// `params.iterations` a-trous iterations and re-modulates with `primary`'s albedo and emission.
+/// The first iteration's output is also written to `feedback` (the colour history) when given.
+/// Returns the denoised radiance.
 pub(super) fn add(
     g: &mut RenderGraph,
     (color, moments): (ImageHandle, ImageHandle),
     gbuffer: &GBuffer,
+    primary: &Primary,
     params: &SvgfParams,
     feedback: Option<ImageHandle>,
     (width, height): (u32, u32),
@@ -112,20 +107,20 @@ pub(super) fn add(
         });
         filtered = out;
     }
-    modulate(g, filtered, gbuffer, (width, height))
+    modulate(g, filtered, primary, (width, height))
 }
 
 /// Re-modulates filtered illumination by the albedo and adds the directly seen emission back.
 fn modulate(
     g: &mut RenderGraph,
     illumination: ImageHandle,
-    gbuffer: &GBuffer,
+    primary: &Primary,
     (width, height): (u32, u32),
 ) -> ImageHandle {
     let mut p = g.add_pass("svgf.modulate");
     let illumination = p.read(illumination, Access::ComputeRead);
-    let albedo = p.read(gbuffer.albedo, Access::ComputeRead);
-    let emission = p.read(gbuffer.emission, Access::ComputeRead);
+    let albedo = p.read(primary.albedo, Access::ComputeRead);
+    let emission = p.read(primary.emission, Access::ComputeRead);
     let out = p.create_image("svgf.output", ImageDesc::rgba32f(width, height));
     let out = p.write(out, Access::ComputeWrite);
     p.execute(move |ctx| {

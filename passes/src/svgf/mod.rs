@@ -7,22 +7,26 @@
 //!    tracer produced for it; the differences are spread over 7x7 strata. Where only the camera
 //!    moved they are exactly zero; where a light or an object changed they measure the share of
 //!    shading that changed.
-//! 2. **Temporal accumulation** ([`temporal`]): demodulate `(radiance - emission) / albedo`,
-//!    reproject the history with the motion vectors (bilinear taps validated by depth, normal and
+//! 2. **Demodulation** ([`primary`]): `(radiance - emission) / albedo` with the emission and albedo
+//!    of the path tracer's own primary hit (re-cast with its random numbers); the albedo and
+//!    emission added back at the end are averaged over a fixed 4x4 grid of primary rays per pixel,
+//!    so that emitter and texture edges stay antialiased and do not flicker.
+//! 3. **Temporal accumulation** ([`temporal`]): reproject the history with the motion vectors (bilinear taps validated by depth, normal and
 //!    object id, else a 3x3 search, else a disocclusion), blend colour and the first two luminance
 //!    moments with moving averages whose weight the gradient raises, count the history length.
-//! 3. **Filter** ([`filter`]): variance from the moments (spatial 7x7 estimate while the history
+//! 4. **Filter** ([`filter`]): variance from the moments (spatial 7x7 estimate while the history
 //!    is shorter than 4 frames), `iterations` a-trous iterations with depth, normal and
 //!    luminance-variance edge stopping; the first iteration's output is the next frame's colour
 //!    history; re-modulation by albedo plus emission.
 //!
 //! The histories are the render graph's keyed temporal images ([`COLOR_KEY`], [`MOMENTS_KEY`],
 //! [`SURFACE_KEY`]): a resize or [`Executor::reset_history`](lucid_engine::graph::Executor::reset_history)
-//! starts them afresh. The spatial modes run step 3 alone on the (accumulated) output.
+//! starts them afresh. The spatial modes run steps 2 and 4 on the (accumulated) output.
 
 mod filter;
 mod gradient;
 mod params;
+mod primary;
 mod schedule;
 mod temporal;
 
@@ -57,6 +61,10 @@ pub struct FrameInputs<'a> {
     pub radiance: ImageHandle,
     /// The (accumulated) output the spatial modes filter.
     pub accumulated: ImageHandle,
+    /// Frames averaged into `accumulated` before this one (0: it is this frame's radiance).
+    pub accumulated_frames: u32,
+    /// Samples per pixel of this frame.
+    pub samples_per_pixel: u32,
     /// Primary visibility.
     pub gbuffer: GBuffer,
     /// The scene (the gradient pass re-traces paths).
@@ -81,13 +89,7 @@ pub fn add(
 ) -> ImageHandle {
     match apply {
         Apply::Temporal => add_temporal(g, inputs, params),
-        Apply::Spatial => add_spatial(
-            g,
-            inputs.accumulated,
-            &inputs.gbuffer,
-            params,
-            (inputs.width, inputs.height),
-        ),
+        Apply::Spatial => add_spatial(g, inputs, params),
         Apply::Nothing => inputs.accumulated,
     }
 }
@@ -118,9 +120,18 @@ pub fn add_temporal(
             height: inputs.height,
         },
     );
+    let primary = primary::add(
+        g,
+        inputs.scene,
+        inputs.frame,
+        inputs.spec,
+        inputs.radiance,
+        inputs.samples_per_pixel == 1,
+        size,
+    );
     let integrated = temporal::add(
         g,
-        inputs.radiance,
+        (inputs.radiance, primary.illumination),
         &inputs.gbuffer,
         gradient,
         &history,
@@ -135,20 +146,38 @@ pub fn add_temporal(
         g,
         (integrated.color, integrated.moments),
         &inputs.gbuffer,
+        &primary,
         &params,
         Some(history.color.cur),
         size,
     )
 }
 
-/// Adds the spatial filter alone (variance estimated spatially) on `radiance`, `width`x`height`.
+/// Adds the spatial filter alone (variance estimated spatially) on `inputs.accumulated`.
 pub fn add_spatial(
     g: &mut RenderGraph,
-    radiance: ImageHandle,
-    gbuffer: &GBuffer,
+    inputs: &FrameInputs<'_>,
     params: &SvgfParams,
-    (width, height): (u32, u32),
 ) -> ImageHandle {
-    let input = filter::demodulate(g, radiance, gbuffer, (width, height));
-    filter::add(g, input, gbuffer, params, None, (width, height))
+    let size = (inputs.width, inputs.height);
+    let single_sample = inputs.samples_per_pixel == 1 && inputs.accumulated_frames == 0;
+    let primary = primary::add(
+        g,
+        inputs.scene,
+        inputs.frame,
+        inputs.spec,
+        inputs.accumulated,
+        single_sample,
+        size,
+    );
+    let moments = filter::moments(g, primary.illumination, size);
+    filter::add(
+        g,
+        (primary.illumination, moments),
+        &inputs.gbuffer,
+        &primary,
+        params,
+        None,
+        size,
+    )
 }

@@ -29,11 +29,11 @@ pub(super) struct Integrated {
     pub moments: ImageHandle,
 }
 
-/// Adds the temporal accumulation of `radiance`, reading last frame's histories and writing this
-/// frame's moments and surface records.
+/// Adds the temporal accumulation of `illumination` (demodulated `radiance`), reading last frame's
+/// histories and writing this frame's moments and surface records.
 pub(super) fn add(
     g: &mut RenderGraph,
-    radiance: ImageHandle,
+    (radiance, illumination): (ImageHandle, ImageHandle),
     gbuffer: &GBuffer,
     gradient: ImageHandle,
     history: &Histories,
@@ -42,14 +42,11 @@ pub(super) fn add(
 ) -> Integrated {
     let mut p = g.add_pass("svgf.temporal");
     let radiance = p.read(radiance, Access::ComputeRead);
-    let gb = GBuffer {
-        depth: p.read(gbuffer.depth, Access::ComputeRead),
-        normal_roughness: p.read(gbuffer.normal_roughness, Access::ComputeRead),
-        albedo: p.read(gbuffer.albedo, Access::ComputeRead),
-        emission: p.read(gbuffer.emission, Access::ComputeRead),
-        ids: p.read(gbuffer.ids, Access::ComputeRead),
-        motion: p.read(gbuffer.motion, Access::ComputeRead),
-    };
+    let illumination = p.read(illumination, Access::ComputeRead);
+    let depth = p.read(gbuffer.depth, Access::ComputeRead);
+    let normal = p.read(gbuffer.normal_roughness, Access::ComputeRead);
+    let ids = p.read(gbuffer.ids, Access::ComputeRead);
+    let motion = p.read(gbuffer.motion, Access::ComputeRead);
     let gradient = p.read(gradient, Access::ComputeRead);
     let prev_color = p.read(history.color.prev, Access::ComputeRead);
     let prev_moments = p.read(history.moments.prev, Access::ComputeRead);
@@ -69,12 +66,11 @@ pub(super) fn add(
         };
         ctx.compute(&TEMPORAL)
             .image("u_radiance", radiance)
-            .image("u_depth", gb.depth)
-            .image("u_normal_roughness", gb.normal_roughness)
-            .image("u_albedo", gb.albedo)
-            .image("u_emission", gb.emission)
-            .image("u_ids", gb.ids)
-            .image("u_motion", gb.motion)
+            .image("u_illumination", illumination)
+            .image("u_depth", depth)
+            .image("u_normal_roughness", normal)
+            .image("u_ids", ids)
+            .image("u_motion", motion)
             .image("u_gradient", gradient)
             .image("u_prev_color", prev_color)
             .image("u_prev_moments", prev_moments)

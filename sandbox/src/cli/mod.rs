@@ -1,12 +1,14 @@
 //! The `lucid` subcommands.
 
 mod bench;
+mod evaluate;
 mod info;
 mod progress;
 mod render;
 mod render_options;
 mod scene_source;
 mod scenes;
+mod sequence;
 mod size;
 mod view;
 
@@ -34,6 +36,10 @@ enum Command {
     Render(render::RenderArgs),
     /// Measure GPU frame time, per-pass times, paths/s and rays/s.
     Bench(bench::BenchArgs),
+    /// Render a scene's camera path as a reference and through each denoiser, then evaluate them.
+    Sequence(sequence::SequenceArgs),
+    /// Metrics of rendered sequences against their reference, as CSV and an SVG plot.
+    Evaluate(evaluate::EvaluateArgs),
 }
 
 /// Runs the parsed command.
@@ -50,5 +56,7 @@ pub fn run(cli: Cli) -> anyhow::Result<()> {
         Command::Scenes(args) => scenes::run(&args),
         Command::Render(args) => render::run(&args),
         Command::Bench(args) => bench::run(&args),
+        Command::Sequence(args) => sequence::run(&args),
+        Command::Evaluate(args) => evaluate::run(&args),
     }
 }

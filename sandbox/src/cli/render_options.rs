@@ -3,13 +3,24 @@
 use super::size::Size;
 use clap::{Args, ValueEnum};
 use lucid_engine::capture::{PngEncoding, ToneCurve};
-use lucid_passes::renderer::{Algorithm, Settings};
+use lucid_passes::renderer::{Algorithm, Denoiser, Settings};
 
 /// The light-transport algorithm on the command line.
 #[derive(Clone, Copy, Debug, ValueEnum)]
 pub enum AlgoArg {
     /// Path tracing (NEE, MIS, Russian roulette).
     Pt,
+    /// Bidirectional path tracing (light vertex cache, MIS).
+    Bdpt,
+}
+
+/// The denoiser on the command line.
+#[derive(Clone, Copy, Debug, ValueEnum)]
+pub enum DenoiseArg {
+    /// No denoiser.
+    None,
+    /// SVGF (temporal, with A-SVGF gradients).
+    Svgf,
 }
 
 /// The tone curve on the command line.
@@ -50,6 +61,9 @@ pub struct RenderOptions {
     /// Tone curve for PNG output and display.
     #[arg(long, value_enum, default_value_t = ToneArg::Aces)]
     pub tone: ToneArg,
+    /// Denoiser applied after tracing.
+    #[arg(long, value_enum, default_value_t = DenoiseArg::None)]
+    pub denoise: DenoiseArg,
 }
 
 impl RenderOptions {
@@ -58,12 +72,17 @@ impl RenderOptions {
         Settings {
             algorithm: match self.algo {
                 AlgoArg::Pt => Algorithm::PathTracing,
+                AlgoArg::Bdpt => Algorithm::Bidirectional,
             },
             samples_per_pixel: self.spp,
             max_depth: self.max_depth,
             seed: self.seed,
             accumulate,
             display: self.display(),
+            denoiser: match self.denoise {
+                DenoiseArg::None => Denoiser::None,
+                DenoiseArg::Svgf => Denoiser::Svgf,
+            },
             ..Settings::default()
         }
     }

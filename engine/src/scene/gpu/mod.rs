@@ -17,11 +17,13 @@
 //! - `params`: camera, environment, sun, counts.
 
 mod encode;
+mod flat;
 mod geometry;
 mod layout;
 mod params;
 
 pub use encode::{decode_normal, encode_normal, encode_uv};
+pub use flat::{fix_instances, pack_flat, INSTANCE_FLATTENED};
 pub use layout::{
     light_kind, material_kind, texture_format, GpuAliasEntry, GpuCamera, GpuEnvironment,
     GpuInstance, GpuLight, GpuMaterial, GpuSceneParams, GpuSphere, GpuSun, GpuTextureRecord,

@@ -1,0 +1,166 @@
+//! `lucid evaluate`: metrics of rendered sequences against their reference, per frame, as CSV and
+//! an SVG plot.
+
+use super::sequence::{frame_path, METHODS};
+use anyhow::Context as _;
+use clap::Args;
+use lucid_engine::capture::{self, ImageData, PngEncoding};
+use lucid_engine::metrics::{evaluate_sequence, FrameMetrics, SequenceMetrics};
+use std::fmt::Write as _;
+use std::path::{Path, PathBuf};
+
+/// Options of `lucid evaluate`.
+#[derive(Debug, Args)]
+pub struct EvaluateArgs {
+    /// A folder written by `lucid sequence` (`reference/` and one folder per method).
+    #[arg(default_value = "sequence")]
+    dir: PathBuf,
+    /// Exposure in stops of the display mapping SSIM and FLIP compare.
+    #[arg(long, default_value_t = 0.0, allow_negative_numbers = true)]
+    exposure: f32,
+}
+
+/// Evaluates the folder.
+pub fn run(args: &EvaluateArgs) -> anyhow::Result<()> {
+    let display = PngEncoding {
+        exposure: args.exposure,
+        tone: capture::ToneCurve::Aces,
+    };
+    evaluate_folder(&args.dir, &display)
+}
+
+/// The metrics' names and how to read each from a frame's metrics.
+const COLUMNS: [(&str, fn(&FrameMetrics) -> f64); 5] = [
+    ("rel_mse", |m| m.rel_mse),
+    ("ssim", |m| m.ssim),
+    ("dssim", |m| m.dssim),
+    ("flip", |m| m.flip),
+    ("temporal_instability", |m| m.temporal_instability),
+];
+
+/// Evaluates every method folder of `dir` against `dir/reference`, writing `metrics.csv` and
+/// `metrics.svg` there and printing the means.
+pub fn evaluate_folder(dir: &Path, display: &PngEncoding) -> anyhow::Result<()> {
+    let reference = load_frames(&dir.join("reference"))?;
+    let mut results = Vec::new();
+    for method in METHODS {
+        let folder = dir.join(method);
+        if folder.is_dir() {
+            let frames = load_frames(&folder)?;
+            let metrics = evaluate_sequence(&frames, &reference, display)
+                .with_context(|| format!("evaluating {method}"))?;
+            results.push((method, metrics));
+        }
+    }
+    let csv = dir.join("metrics.csv");
+    std::fs::write(&csv, to_csv(&results)).with_context(|| format!("writing {}", csv.display()))?;
+    let svg = dir.join("metrics.svg");
+    std::fs::write(&svg, to_svg(&results)).with_context(|| format!("writing {}", svg.display()))?;
+    for (method, m) in &results {
+        let means: Vec<String> = COLUMNS
+            .iter()
+            .map(|(name, get)| format!("{name} {:.4}", get(&m.mean)))
+            .collect();
+        println!("{method:>8}: {}", means.join(", "));
+    }
+    println!("-> {} and {}", csv.display(), svg.display());
+    Ok(())
+}
+
+/// Frames `0000.exr`, `0001.exr`, ... of a folder, until the first missing one.
+fn load_frames(folder: &Path) -> anyhow::Result<Vec<ImageData>> {
+    let mut frames = Vec::new();
+    while frame_path(folder, frames.len()).exists() {
+        let path = frame_path(folder, frames.len());
+        frames
+            .push(capture::load_exr(&path).with_context(|| format!("reading {}", path.display()))?);
+    }
+    anyhow::ensure!(!frames.is_empty(), "no frames in {}", folder.display());
+    Ok(frames)
+}
+
+/// One row per method and frame, then one `mean` row per method.
+fn to_csv(results: &[(&str, SequenceMetrics)]) -> String {
+    let mut out = String::from("method,frame");
+    for (name, _) in COLUMNS {
+        let _ = write!(out, ",{name}");
+    }
+    out.push('\n');
+    for (method, m) in results {
+        let rows = m
+            .frames
+            .iter()
+            .enumerate()
+            .map(|(i, f)| (i.to_string(), f))
+            .chain(std::iter::once(("mean".to_string(), &m.mean)));
+        for (frame, f) in rows {
+            let _ = write!(out, "{method},{frame}");
+            for (_, get) in COLUMNS {
+                let _ = write!(out, ",{:.6}", get(f));
+            }
+            out.push('\n');
+        }
+    }
+    out
+}
+
+/// One panel per metric (value against frame), one coloured line per method.
+fn to_svg(results: &[(&str, SequenceMetrics)]) -> String {
+    const W: f64 = 360.0;
+    const H: f64 = 200.0;
+    const PAD: f64 = 30.0;
+    const COLOURS: [&str; 3] = ["#d62728", "#1f77b4", "#2ca02c"];
+    let mut out = format!(
+        "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"{}\" height=\"{}\" font-family=\"sans-serif\" font-size=\"11\">\n",
+        W * 2.0,
+        H * 3.0
+    );
+    for (panel, (name, get)) in COLUMNS.iter().enumerate() {
+        let (x0, y0) = ((panel % 2) as f64 * W, (panel / 2) as f64 * H);
+        let series: Vec<Vec<f64>> = results
+            .iter()
+            .map(|(_, m)| m.frames.iter().map(get).collect())
+            .collect();
+        let max = series
+            .iter()
+            .flatten()
+            .copied()
+            .filter(|v| v.is_finite())
+            .fold(0.0, f64::max)
+            .max(1e-9);
+        let frames = series.first().map_or(1, Vec::len).max(2) as f64 - 1.0;
+        let _ = writeln!(
+            out,
+            "<rect x=\"{}\" y=\"{}\" width=\"{}\" height=\"{}\" fill=\"none\" stroke=\"#999\"/><text x=\"{}\" y=\"{}\">{name} (max {max:.4})</text>",
+            x0 + PAD, y0 + PAD, W - 2.0 * PAD, H - 2.0 * PAD, x0 + PAD, y0 + PAD - 6.0
+        );
+        for (s, values) in series.iter().enumerate() {
+            let points: Vec<String> = values
+                .iter()
+                .enumerate()
+                .map(|(i, v)| {
+                    let x = x0 + PAD + i as f64 / frames * (W - 2.0 * PAD);
+                    let y = y0 + H - PAD - (v / max).clamp(0.0, 1.0) * (H - 2.0 * PAD);
+                    format!("{x:.1},{y:.1}")
+                })
+                .collect();
+            let _ = writeln!(
+                out,
+                "<polyline fill=\"none\" stroke=\"{}\" points=\"{}\"/>",
+                COLOURS[s % COLOURS.len()],
+                points.join(" ")
+            );
+        }
+    }
+    for (s, (method, _)) in results.iter().enumerate() {
+        let _ = writeln!(
+            out,
+            "<text x=\"{}\" y=\"{}\" fill=\"{}\">{method}</text>",
+            W + PAD,
+            2.0 * H + PAD + 16.0 * (s as f64 + 1.0),
+            COLOURS[s % COLOURS.len()]
+        );
+    }
+    out.push_str("</svg>\n");
+    out
+}

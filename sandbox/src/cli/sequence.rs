@@ -1,0 +1,138 @@
+//! `lucid sequence`: renders a scene's camera path as a reference and through each denoiser, then
+//! evaluates them (`lucid evaluate`).
+
+use super::evaluate;
+use super::progress::Progress;
+use super::render_options::RenderOptions;
+use super::scene_source;
+use anyhow::Context as _;
+use clap::Args;
+use lucid_engine::capture::{self, ExrPrecision, ImageData};
+use lucid_engine::scene::{Camera, Scene};
+use lucid_engine::{Context, ContextDesc};
+use lucid_passes::renderer::{Denoiser, Renderer, Settings};
+use lucid_passes::svgf::{SvgfMode, SvgfParams};
+use std::path::{Path, PathBuf};
+
+/// Options of `lucid sequence`.
+#[derive(Debug, Args)]
+pub struct SequenceArgs {
+    #[command(flatten)]
+    options: RenderOptions,
+    /// Frames of the camera path to render.
+    #[arg(long, default_value_t = 60, value_parser = clap::value_parser!(u32).range(2..))]
+    frames: u32,
+    /// Frames per second along the camera path.
+    #[arg(long, default_value_t = 30.0)]
+    fps: f32,
+    /// Samples per pixel of each reference frame.
+    #[arg(long, default_value_t = 1024, value_parser = clap::value_parser!(u32).range(1..))]
+    reference_spp: u32,
+    /// Output folder: `<method>/NNNN.exr` frames, `metrics.csv` and `metrics.svg`.
+    #[arg(long, default_value = "sequence")]
+    out: PathBuf,
+}
+
+/// The sequences rendered besides the reference: the noisy input and each denoiser, all at 1 spp.
+pub const METHODS: [&str; 3] = ["none", "spatial", "svgf"];
+
+/// Samples per pixel per frame of the reference renders (more are accumulated over frames).
+const REFERENCE_SPP_PER_FRAME: u32 = 16;
+
+/// Renders every sequence and writes the evaluation.
+pub fn run(args: &SequenceArgs) -> anyhow::Result<()> {
+    let scene = scene_source::load(&args.options.scene)?;
+    let path = scene
+        .camera_path
+        .clone()
+        .with_context(|| format!("scene {} has no camera path", scene.name))?;
+    let cameras: Vec<Camera> = (0..args.frames)
+        .map(|i| path.sample(i as f32 / args.fps))
+        .collect();
+    let ctx = Context::new(&ContextDesc::from_env())?;
+    let base = Settings {
+        samples_per_pixel: 1,
+        ..args.options.settings(false)
+    };
+    let reference_settings = Settings {
+        samples_per_pixel: args.reference_spp.min(REFERENCE_SPP_PER_FRAME),
+        accumulate: true,
+        denoiser: Denoiser::None,
+        ..base
+    };
+    let reference_frames = args.reference_spp.div_ceil(REFERENCE_SPP_PER_FRAME);
+    render(
+        &ctx,
+        &scene,
+        args,
+        &cameras,
+        "reference",
+        reference_settings,
+        reference_frames,
+    )?;
+    for method in METHODS {
+        let svgf = |mode| SvgfParams {
+            mode,
+            ..SvgfParams::default()
+        };
+        let settings = match method {
+            "spatial" => Settings {
+                denoiser: Denoiser::Svgf,
+                svgf: svgf(SvgfMode::EveryFrame),
+                ..base
+            },
+            "svgf" => Settings {
+                denoiser: Denoiser::Svgf,
+                svgf: svgf(SvgfMode::Temporal),
+                ..base
+            },
+            _ => Settings {
+                denoiser: Denoiser::None,
+                ..base
+            },
+        };
+        render(&ctx, &scene, args, &cameras, method, settings, 1)?;
+    }
+    evaluate::evaluate_folder(&args.out, &args.options.display())
+}
+
+/// Renders `cameras` with `settings`, accumulating `frames_each` frames per camera, into
+/// `<out>/<name>/NNNN.exr`.
+fn render(
+    ctx: &Context,
+    scene: &Scene,
+    args: &SequenceArgs,
+    cameras: &[Camera],
+    name: &str,
+    settings: Settings,
+    frames_each: u32,
+) -> anyhow::Result<()> {
+    let (w, h) = (args.options.size.width, args.options.size.height);
+    let folder = args.out.join(name);
+    std::fs::create_dir_all(&folder).with_context(|| format!("creating {}", folder.display()))?;
+    let mut renderer = Renderer::new(ctx, scene.clone(), w, h, settings)?;
+    eprintln!("{name}: {} frames", cameras.len());
+    let progress = Progress::new(cameras.len() as u64, "frames");
+    for (i, &camera) in cameras.iter().enumerate() {
+        renderer.set_camera(camera);
+        for _ in 1..frames_each {
+            renderer.render()?;
+        }
+        let image = renderer.render_and_read()?;
+        save(&frame_path(&folder, i), &image)?;
+        progress.inc();
+    }
+    progress.finish();
+    renderer.finish()?;
+    Ok(())
+}
+
+/// The file of frame `index` in a method's folder.
+pub fn frame_path(folder: &Path, index: usize) -> PathBuf {
+    folder.join(format!("{index:04}.exr"))
+}
+
+fn save(path: &Path, image: &ImageData) -> anyhow::Result<()> {
+    capture::save_exr(path, image, ExrPrecision::F32)
+        .with_context(|| format!("writing {}", path.display()))
+}
