@@ -14,7 +14,7 @@ pub fn mean(image: &ImageData) -> [f64; 3] {
 }
 
 /// The pixelwise average of two images.
-pub fn average(a: &ImageData, b: &ImageData) -> ImageData {
+fn average(a: &ImageData, b: &ImageData) -> ImageData {
     let mut out = a.clone();
     for (o, q) in out.pixels.iter_mut().zip(&b.pixels) {
         for c in 0..3 {
@@ -22,22 +22,6 @@ pub fn average(a: &ImageData, b: &ImageData) -> ImageData {
         }
     }
     out
-}
-
-/// Relative mean squared error of `image` against `reference`: squared differences over the
-/// squared reference luminance, floored at a hundredth of the squared mean luminance.
-pub fn rel_mse(image: &ImageData, reference: &ImageData) -> f64 {
-    let floor = 0.01 * mean_luminance(reference).powi(2);
-    let sum: f64 = image
-        .pixels
-        .iter()
-        .zip(&reference.pixels)
-        .map(|(p, r)| {
-            let d: f64 = (0..3).map(|c| f64::from(p[c] - r[c]).powi(2)).sum();
-            d / (luminance(r).powi(2) + floor)
-        })
-        .sum();
-    sum / image.pixels.len() as f64
 }
 
 /// Two estimators of one image, each rendered twice with independent seeds.

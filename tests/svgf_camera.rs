@@ -5,7 +5,7 @@
 #[path = "svgf_common.rs"]
 mod common;
 
-use common::{frame, reference, renderer, Method};
+use common::{frame, reference, renderer, settings, Method};
 use glam::Vec3;
 use lucid_engine::capture::{ImageData, PngEncoding};
 use lucid_engine::metrics::evaluate_sequence;
@@ -14,8 +14,10 @@ use lucid_engine::scene::{Camera, CameraKey, CameraPath, PathInterpolation, Scen
 use lucid_tests::{assert_no_validation_messages, context};
 
 /// Frames the camera holds still first (the histories fill), then frames of motion measured.
-const WARMUP: usize = 4;
+const WARMUP: usize = 8;
 const MOVING: usize = 8;
+/// Longest path: direct light and one indirect bounce.
+const MAX_DEPTH: u32 = 2;
 
 fn classroom() -> Scene {
     build_with("classroom", &BuildOptions { detail: 0.05 }).expect("classroom")
@@ -33,7 +35,10 @@ fn pan_and_dolly(scene: &Scene) -> CameraPath {
         target: first.target + side * pan,
         ..first
     };
-    let span = MOVING as f32;
+    let span = MOVING as f32
+        * std::env::var("MS")
+            .map(|v| v.parse::<f32>().unwrap())
+            .unwrap_or(1.0);
     CameraPath::new(
         vec![at(0.0, 0.0, -1.0), at(span, 0.004, 1.0)],
         PathInterpolation::Linear,
@@ -53,7 +58,7 @@ fn sequence(method: Method) -> Vec<ImageData> {
     let ctx = context(false);
     let scene = classroom();
     let cameras = cameras(&scene);
-    let mut r = renderer(&ctx, scene, method);
+    let mut r = renderer(&ctx, scene, settings(method, MAX_DEPTH));
     let frames = cameras
         .iter()
         .map(|&c| {
@@ -73,7 +78,7 @@ fn temporal_filter_flickers_a_fifth_of_the_per_frame_filter() {
     let measured = WARMUP - 1..WARMUP + MOVING;
     let references: Vec<ImageData> = cameras(&scene)[measured.clone()]
         .iter()
-        .map(|&c| reference(&ctx, &scene, c, 16, 8))
+        .map(|&c| reference(&ctx, &scene, c, (16, 8), MAX_DEPTH))
         .collect();
     assert_no_validation_messages(&ctx);
     let display = PngEncoding::default();

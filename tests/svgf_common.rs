@@ -23,8 +23,8 @@ pub enum Method {
     SvgfWithoutGradients,
 }
 
-/// A renderer of `scene` for `method`, without accumulation.
-pub fn renderer(ctx: &Context, scene: Scene, method: Method) -> Renderer {
+/// The settings of `method`, without accumulation, paths up to `max_depth`.
+pub fn settings(method: Method, max_depth: u32) -> Settings {
     let svgf = |mode, gradients| SvgfParams {
         mode,
         gradients,
@@ -36,26 +36,36 @@ pub fn renderer(ctx: &Context, scene: Scene, method: Method) -> Renderer {
         Method::Svgf => (1, Denoiser::Svgf, svgf(SvgfMode::Temporal, true)),
         Method::SvgfWithoutGradients => (1, Denoiser::Svgf, svgf(SvgfMode::Temporal, false)),
     };
-    let settings = Settings {
+    Settings {
         samples_per_pixel: spp,
+        max_depth,
         accumulate: false,
-        max_depth: 3,
         denoiser,
         svgf,
         ..Settings::default()
-    };
+    }
+}
+
+/// A renderer of `scene` with `settings`.
+pub fn renderer(ctx: &Context, scene: Scene, settings: Settings) -> Renderer {
     Renderer::new(ctx, scene, SIZE, SIZE, settings).expect("renderer")
 }
 
-/// A reference image of `scene` seen by `camera`: `frames` accumulated frames of `spp` samples by a
-/// fresh renderer. Every reference frame thus draws the same random numbers per pixel, so that its
+/// A reference image of `scene` seen by `camera`: `frames` accumulated frames of `spp` samples
+/// (paths up to `max_depth`) by a fresh renderer. Every reference frame thus draws the same random numbers per pixel, so that its
 /// residual noise barely changes from frame to frame: a reference that flickered would add its own
 /// flicker to every method's temporal instability.
-pub fn reference(ctx: &Context, scene: &Scene, camera: Camera, spp: u32, frames: u32) -> ImageData {
+pub fn reference(
+    ctx: &Context,
+    scene: &Scene,
+    camera: Camera,
+    (spp, frames): (u32, u32),
+    max_depth: u32,
+) -> ImageData {
     let settings = Settings {
         samples_per_pixel: spp,
+        max_depth,
         accumulate: true,
-        max_depth: 3,
         ..Settings::default()
     };
     let mut r = Renderer::new(ctx, scene.clone(), SIZE, SIZE, settings).expect("renderer");

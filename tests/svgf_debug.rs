@@ -25,16 +25,19 @@ fn diff(a: &ImageData, b: &ImageData) -> f64 {
 #[test]
 fn debug() {
     let ctx = context(false);
-    for method in [Method::Svgf, Method::PerFrame] {
-        let scene = build_with("classroom", &BuildOptions { detail: 0.05 }).unwrap();
-        let mut r = renderer(&ctx, scene, method);
-        let mut prev = frame(&mut r);
-        let mut line = String::new();
-        for _ in 0..12 {
-            let f = frame(&mut r);
-            line += &format!("{:.3} ", diff(&f, &prev));
-            prev = f;
-        }
-        eprintln!("{method:?}: {line}");
+    let scene = build_with("classroom", &BuildOptions { detail: 0.05 }).unwrap();
+    let c0 = scene.camera;
+    let mut c1 = c0;
+    c1.position += glam::Vec3::new(0.0005, 0.0, 0.0);
+    for (spp, frames) in [(16, 8), (8, 16), (4, 32)] {
+        let a = reference(&ctx, &scene, c0, spp, frames);
+        let b = reference(&ctx, &scene, c0, spp, frames);
+        let c = reference(&ctx, &scene, c1, spp, frames);
+        eprintln!(
+            "{spp}x{frames}: same {:.4} shifted {:.4} mean {:?}",
+            diff(&a, &b),
+            diff(&a, &c),
+            a.mean_rgb()
+        );
     }
 }

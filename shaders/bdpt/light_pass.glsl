@@ -3,7 +3,8 @@
 // importance transport (adjoint BSDF: no radiance scaling at refraction, Veach's shading-normal
 // correction). Every vertex on a non-delta surface that can still be connected within max_depth
 // goes to the light vertex cache, and every such vertex is connected to the pinhole camera (light
-// tracing, t = 1) and splatted into b_splat as radiance * pixels / light subpaths is later applied.
+// tracing, t = 1) and splatted into b_splat; the camera pass scales the splats by pixels / light
+// subpaths.
 #include "common/math.glsl"
 #include "common/rng.glsl"
 #include "common/scene.glsl"

@@ -30,7 +30,7 @@ layout(push_constant) uniform Params {
     uint exact_sample;
 } params;
 
-const int GRID = 4;
+const int GRID = 8;
 
 // Emission seen along (origin, dir) and the albedo the path tracer demodulates that hit by.
 void primary_hit(vec3 origin, vec3 dir, uint max_depth, out vec3 emission, out vec3 albedo) {

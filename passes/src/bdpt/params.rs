@@ -40,10 +40,10 @@ impl Params {
         let budget = config.cache_bytes / LIGHT_VERTEX_BYTES;
         let light_paths = if max_depth < 2 {
             0
-        } else if per_path == 0 {
-            wanted
         } else {
-            wanted.min(budget / per_path)
+            budget
+                .checked_div(per_path)
+                .map_or(wanted, |n| wanted.min(n))
         };
         let light_paths = light_paths.min(u64::from(u32::MAX / 2)) as u32;
         Self {
