@@ -1,0 +1,144 @@
+//! The `lucid` command line on the machine's device (lavapipe in CI): listings, headless renders of
+//! each algorithm and denoiser, and clear one-line errors with a non-zero exit for bad input.
+
+use std::path::PathBuf;
+use std::process::{Command, Output};
+
+fn lucid(args: &[&str]) -> Output {
+    Command::new(env!("CARGO_BIN_EXE_lucid"))
+        .args(args)
+        .env("LUCID_VALIDATION", "1")
+        .output()
+        .expect("run lucid")
+}
+
+fn temp(name: &str) -> PathBuf {
+    std::env::temp_dir().join(format!("lucid-cli-{}-{name}", std::process::id()))
+}
+
+fn stderr(o: &Output) -> String {
+    String::from_utf8_lossy(&o.stderr).into_owned()
+}
+
+#[test]
+fn scenes_lists_every_builtin_scene() {
+    let out = lucid(&["scenes", "--json"]);
+    assert!(out.status.success(), "{}", stderr(&out));
+    let listed: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+    let names: Vec<&str> = listed
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|s| s["name"].as_str().unwrap())
+        .collect();
+    for name in lucid_engine::scene::builtin::names() {
+        assert!(names.contains(name), "{name} missing from {names:?}");
+    }
+    let covered = listed
+        .as_array()
+        .unwrap()
+        .iter()
+        .find(|s| s["name"] == "covered-light")
+        .unwrap();
+    assert!(covered["triangles"].as_u64().unwrap() >= 5_000_000);
+}
+
+#[test]
+fn renders_each_algorithm_and_denoiser_at_64x64() {
+    for (algo, denoise) in [("pt", "none"), ("bdpt", "none"), ("pt", "svgf")] {
+        let file = temp(&format!("{algo}-{denoise}.png"));
+        let out = lucid(&[
+            "render",
+            "--scene",
+            "cornell-box",
+            "--algo",
+            algo,
+            "--denoise",
+            denoise,
+            "--size",
+            "64x64",
+            "--spp",
+            "2",
+            "--frames",
+            "2",
+            "--out",
+            file.to_str().unwrap(),
+        ]);
+        assert!(out.status.success(), "{algo}/{denoise}: {}", stderr(&out));
+        assert!(
+            !stderr(&out).contains("VUID"),
+            "validation messages: {}",
+            stderr(&out)
+        );
+        let image = lucid_engine::capture::load(&file).unwrap();
+        assert_eq!((image.width, image.height), (64, 64));
+        let mean = image.mean_rgb();
+        assert!(
+            mean[0] > 0.05 && mean[0] < 0.95,
+            "{algo}/{denoise}: a lit image, mean {mean:?}"
+        );
+        std::fs::remove_file(&file).unwrap();
+    }
+    let exr = temp("hdr.exr");
+    let out = lucid(&[
+        "render",
+        "--size",
+        "32x32",
+        "--frames",
+        "1",
+        "--out",
+        exr.to_str().unwrap(),
+    ]);
+    assert!(out.status.success(), "{}", stderr(&out));
+    assert!(
+        lucid_engine::capture::load(&exr)
+            .unwrap()
+            .pixels
+            .iter()
+            .any(|p| p[0] > 1.0),
+        "HDR values survive in EXR"
+    );
+    std::fs::remove_file(&exr).unwrap();
+}
+
+fn assert_clear_failure(args: &[&str], expect: &str) {
+    let out = lucid(args);
+    let err = stderr(&out);
+    assert!(!out.status.success(), "{args:?} must fail");
+    assert!(
+        err.contains(expect),
+        "{args:?}: expected {expect:?} in {err:?}"
+    );
+    assert!(!err.contains("panicked"), "{args:?} panicked: {err}");
+}
+
+#[test]
+fn bad_arguments_and_files_fail_with_a_clear_message() {
+    assert_clear_failure(
+        &["render", "--scene", "no-such-scene", "--size", "8x8"],
+        "no-such-scene",
+    );
+    assert_clear_failure(&["render", "--size", "0x8"], "0x8");
+    assert_clear_failure(
+        &["render", "--out", "image.jpg", "--size", "8x8"],
+        ".png or .exr",
+    );
+    assert_clear_failure(&["render", "--algo", "vcm"], "vcm");
+    assert_clear_failure(
+        &["render", "--scene", "/nonexistent/scene.glb"],
+        "does not exist",
+    );
+    let broken = temp("broken.gltf");
+    std::fs::write(&broken, br#"{"asset": {"version": "2.0"}, "meshes": [ {"primitives": [ {"attributes": {"POSITION": 7}} ]} ]"#).unwrap();
+    assert_clear_failure(
+        &[
+            "render",
+            "--scene",
+            broken.to_str().unwrap(),
+            "--size",
+            "8x8",
+        ],
+        "broken.gltf",
+    );
+    std::fs::remove_file(&broken).unwrap();
+}
