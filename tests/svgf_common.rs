@@ -2,6 +2,7 @@
 //! luminance statistics over pixel masks.
 
 use lucid_engine::capture::{rec709_luminance, ImageData};
+use lucid_engine::graph::RenderGraph;
 use lucid_engine::scene::{Camera, Scene};
 use lucid_engine::Context;
 use lucid_passes::renderer::{Denoiser, Renderer, Settings};
@@ -115,4 +116,21 @@ pub fn relative_error(test: &ImageData, reference: &ImageData, mask: &[bool]) ->
 /// A mask of every pixel.
 pub fn everywhere() -> Vec<bool> {
     vec![true; (SIZE * SIZE) as usize]
+}
+
+/// The object id of every pixel of the next frame (the frame is rendered and discarded).
+pub fn object_ids(r: &mut Renderer) -> Vec<f32> {
+    let mut g = RenderGraph::new();
+    let (images, _) = r.add_frame(&mut g);
+    let ids = g.readback(images.gbuffer.ids);
+    let executor = r.executor_mut();
+    let frame = executor
+        .execute(g.compile().expect("graph"))
+        .expect("frame");
+    let image = executor
+        .wait(frame)
+        .expect("frame")
+        .image(ids)
+        .expect("ids");
+    image.pixels.iter().map(|p| p[0]).collect()
 }

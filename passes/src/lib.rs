@@ -8,6 +8,7 @@ pub mod accumulate;
 pub mod bdpt;
 pub mod frame_constants;
 pub mod gbuffer;
+pub mod hot_reload;
 pub mod path_trace;
 pub mod ray_query;
 pub mod renderer;

@@ -15,13 +15,38 @@ use std::time::{SystemTime, UNIX_EPOCH};
 /// Frames that may fail in a row before the app gives up.
 const MAX_FAILURES_IN_A_ROW: u32 = 3;
 
+/// Seconds between checks of the shader sources.
+const SHADER_CHECK_INTERVAL: f64 = 0.5;
+
 impl Session {
+    /// Recompiles shaders edited on disk; a compile error is shown and the old pipelines stay.
+    fn reload_shaders(&mut self, now: f64) {
+        if now - self.last_shader_check < SHADER_CHECK_INTERVAL
+            || !self.shader_watcher.is_available()
+        {
+            return;
+        }
+        self.last_shader_check = now;
+        let library = self.source.executor().library();
+        match self.shader_watcher.poll(library) {
+            Some(lucid_passes::hot_reload::Reload::Reloaded(n)) => {
+                self.state.message = Some(format!("reloaded {n} shaders"));
+            }
+            Some(lucid_passes::hot_reload::Reload::Failed(error)) => {
+                self.state.message =
+                    Some(format!("shader error (previous shaders kept):\n{error}"));
+            }
+            None => {}
+        }
+    }
+
     /// Draws and presents one frame (nothing while minimized).
     pub fn redraw(&mut self) -> anyhow::Result<Flow> {
         let now = self.clock.elapsed().as_secs_f64();
         let dt = now - self.last_frame;
         self.last_frame = now;
         self.update_camera(now, dt);
+        self.reload_shaders(now);
         if self.needs_recreate || !self.swapchain.is_usable() {
             self.recreate()?;
         }

@@ -1,0 +1,66 @@
+//! A light switched off: SVGF's output darkens within 4 frames because the temporal gradients
+//! reject the history; without them the moving average lags for many frames.
+
+#[allow(dead_code)]
+#[path = "svgf_common.rs"]
+mod common;
+
+use common::{everywhere, frame, mean_luminance, renderer, settings, Method};
+use glam::Vec3;
+use lucid_tests::render::scene;
+use lucid_tests::{assert_no_validation_messages, context};
+
+/// Frames rendered before the switch (the history fills) and after it.
+const BEFORE: usize = 8;
+const AFTER: usize = 4;
+/// The largest accepted brightness 4 frames after the switch, relative to before (the reference
+/// is black: the box has no other light).
+const MAX_REMAINING: f64 = 0.05;
+
+/// Mean luminance of the frames after the light goes off, relative to the last frame before.
+fn remaining_brightness(method: Method) -> Vec<f64> {
+    let ctx = context(false);
+    let cornell = scene("cornell-box");
+    let light = cornell
+        .materials
+        .iter()
+        .position(|m| m.name == "light")
+        .expect("the Cornell box has a light material");
+    let mut off = cornell.materials[light].clone();
+    off.emission = Vec3::ZERO;
+    let mut r = renderer(&ctx, cornell, settings(method, 8));
+    let all = everywhere();
+    let mut before = 0.0;
+    for _ in 0..BEFORE {
+        before = mean_luminance(&frame(&mut r), &all);
+    }
+    r.set_material(light, off).expect("switch the light off");
+    let remaining = (0..AFTER)
+        .map(|_| mean_luminance(&frame(&mut r), &all) / before)
+        .collect();
+    drop(r);
+    assert_no_validation_messages(&ctx);
+    remaining
+}
+
+#[test]
+fn the_image_darkens_within_four_frames() {
+    let remaining = remaining_brightness(Method::Svgf);
+    eprintln!("with gradients: {remaining:.3?}");
+    assert!(
+        remaining[AFTER - 1] <= MAX_REMAINING,
+        "{:.3} of the brightness remains 4 frames after the switch",
+        remaining[AFTER - 1]
+    );
+}
+
+#[test]
+fn without_gradients_the_history_lags() {
+    let remaining = remaining_brightness(Method::SvgfWithoutGradients);
+    eprintln!("without gradients: {remaining:.3?}");
+    assert!(
+        remaining[AFTER - 1] > 2.0 * MAX_REMAINING,
+        "the gradients are what makes the image darken: {:.3} remains without them",
+        remaining[AFTER - 1]
+    );
+}
