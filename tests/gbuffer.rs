@@ -152,3 +152,41 @@ fn camera_motion_reprojects_onto_the_same_objects() {
     drop(renderer);
     assert_no_validation_messages(&ctx);
 }
+
+#[test]
+fn debug_views_show_gbuffer_channels() {
+    use lucid_passes::debug_view::{self, View};
+    let ctx = context(false);
+    let mut renderer =
+        Renderer::new(&ctx, scene("cornell-box"), SIZE, SIZE, Settings::default()).unwrap();
+    let mut g = RenderGraph::new();
+    let (images, _) = renderer.add_frame(&mut g);
+    let views: Vec<_> = View::ALL
+        .iter()
+        .map(|&v| {
+            let shown = debug_view::add(&mut g, &images, v, SIZE, SIZE);
+            (v, g.readback(shown))
+        })
+        .collect();
+    let executor = renderer.executor_mut();
+    let frame = executor.execute(g.compile().unwrap()).unwrap();
+    let out = executor.wait(frame).unwrap();
+    for (view, id) in views {
+        let image = out.image(id).unwrap();
+        assert!(!image.has_non_finite(), "{view:?}");
+        // Bottom centre of the Cornell box is the floor: normal +y, near-ish, white albedo.
+        let floor = image.get(SIZE / 2, SIZE - 2).unwrap();
+        match view {
+            View::Normal => assert!(
+                floor[1] > 0.95 && (floor[0] - 0.5).abs() < 0.05,
+                "{floor:?}"
+            ),
+            View::Depth => assert!(floor[0] > 0.0 && floor[0] < 1.0, "{floor:?}"),
+            View::Motion => assert!((floor[0] - 0.5).abs() < 1e-3, "still camera: {floor:?}"),
+            View::Albedo => assert!(floor[0] > 0.5, "white floor: {floor:?}"),
+            View::Final | View::Noisy => {}
+        }
+    }
+    drop(renderer);
+    assert_no_validation_messages(&ctx);
+}

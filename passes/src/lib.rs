@@ -6,6 +6,7 @@
 
 pub mod accumulate;
 pub mod bdpt;
+pub mod debug_view;
 pub mod frame_constants;
 pub mod gbuffer;
 pub mod hot_reload;

@@ -62,6 +62,8 @@ pub struct RenderSettings {
     pub denoiser: Denoiser,
     /// Whether samples accumulate over frames while nothing changes.
     pub accumulate: bool,
+    /// The image shown: final, or an intermediate of the frame.
+    pub view: lucid_passes::debug_view::View,
 }
 
 impl Default for RenderSettings {
@@ -72,6 +74,7 @@ impl Default for RenderSettings {
             max_depth: 8,
             denoiser: Denoiser::default(),
             accumulate: true,
+            view: lucid_passes::debug_view::View::Final,
         }
     }
 }

@@ -62,7 +62,14 @@ impl FrameSource for RendererSource {
         let next = settings(self.renderer.settings(), request.settings);
         self.renderer.set_settings(next);
         let (images, _) = self.renderer.add_frame(graph);
-        Ok(images.hdr)
+        let [w, h] = request.extent;
+        Ok(lucid_passes::debug_view::add(
+            graph,
+            &images,
+            request.settings.view,
+            w,
+            h,
+        ))
     }
 
     fn executor(&mut self) -> &mut Executor {

@@ -95,6 +95,13 @@ fn renderer(ui: &mut egui::Ui, state: &mut AppState) {
             }
         });
     ui.checkbox(&mut r.accumulate, "accumulate");
+    egui::ComboBox::from_label("view")
+        .selected_text(r.view.label())
+        .show_ui(ui, |ui| {
+            for v in lucid_passes::debug_view::View::ALL {
+                ui.selectable_value(&mut r.view, v, v.label());
+            }
+        });
 }
 
 fn display(ui: &mut egui::Ui, state: &mut AppState, requests: &mut Requests) {

@@ -1,0 +1,79 @@
+//! Debug views: any intermediate image of a frame mapped to displayable linear RGB
+//! (`shaders/debug_view/debug_view.comp`).
+
+use crate::renderer::FrameImages;
+use crate::shaders::debug_view::DEBUG_VIEW;
+use lucid_engine::graph::{Access, ImageHandle, RenderGraph};
+use lucid_engine::memory::ImageDesc;
+
+/// What to show instead of the final image.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub enum View {
+    /// The final (accumulated, denoised) image.
+    #[default]
+    Final,
+    /// This frame's noisy radiance.
+    Noisy,
+    /// The G-buffer's demodulation albedo.
+    Albedo,
+    /// World normals as colours.
+    Normal,
+    /// View depth, near = white.
+    Depth,
+    /// Motion vectors (x red, y green, 0.5 = still).
+    Motion,
+}
+
+impl View {
+    /// Every view, for menus.
+    pub const ALL: [View; 6] = [
+        View::Final,
+        View::Noisy,
+        View::Albedo,
+        View::Normal,
+        View::Depth,
+        View::Motion,
+    ];
+
+    /// The name in menus.
+    pub fn label(self) -> &'static str {
+        match self {
+            View::Final => "final image",
+            View::Noisy => "noisy radiance",
+            View::Albedo => "albedo",
+            View::Normal => "normal",
+            View::Depth => "depth",
+            View::Motion => "motion",
+        }
+    }
+}
+
+/// The image `view` shows of `frame` (a visualisation pass for G-buffer channels).
+pub fn add(
+    g: &mut RenderGraph,
+    frame: &FrameImages,
+    view: View,
+    width: u32,
+    height: u32,
+) -> ImageHandle {
+    let (source, mode) = match view {
+        View::Final => return frame.hdr,
+        View::Noisy => return frame.radiance,
+        View::Albedo => (frame.gbuffer.albedo, 0u32),
+        View::Normal => (frame.gbuffer.normal_roughness, 1),
+        View::Depth => (frame.gbuffer.depth, 2),
+        View::Motion => (frame.gbuffer.motion, 3),
+    };
+    let mut p = g.add_pass("debug_view");
+    let source = p.read(source, Access::ComputeSampled);
+    let out = p.create_image("debug_view.out", ImageDesc::rgba32f(width, height));
+    let out = p.write(out, Access::ComputeWrite);
+    p.execute(move |ctx| {
+        ctx.compute(&DEBUG_VIEW)
+            .image("u_source", source)
+            .image("u_out", out)
+            .push(&[mode, 10.0f32.to_bits()])
+            .dispatch_threads([width, height, 1])
+    });
+    out
+}
