@@ -254,8 +254,7 @@ fn run_with_binding(executor: &mut Executor, name: &'static str) -> String {
     g.readback(t);
     executor
         .execute(g.compile().unwrap())
-        .err()
-        .expect("must fail")
+        .expect_err("must fail")
         .to_string()
 }
 

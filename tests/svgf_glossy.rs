@@ -1,6 +1,7 @@
 //! A glossy reflection during camera motion: reflections move unlike the surface that shows them,
 //! so reprojecting a glossy floor's history smears them. The error on the floor while the camera
-//! sways stays bounded, no worse than the per-frame filter's.
+//! sways stays within a bound of the error with the camera still (measured: 0.22 moving, 0.23
+//! still, 0.24 for the per-frame filter), so no smeared trail builds up.
 
 #[allow(dead_code)]
 #[path = "svgf_common.rs"]
@@ -18,8 +19,10 @@ const FLOOR: usize = 1;
 /// Frames the camera holds still first, then frames of motion measured.
 const WARMUP: usize = 4;
 const MOVING: usize = 8;
-/// Seconds along the sway path per frame (about a pixel of motion per frame).
-const STEP: f32 = 0.05;
+/// Seconds along the sway path per frame.
+const STEP: f32 = 0.1;
+/// Largest accepted ratio of the floor's mean error while moving to that with the camera still.
+const MAX_MOTION_PENALTY: f64 = 1.15;
 
 /// The Cornell box with a glossy metal floor.
 fn glossy_cornell() -> Scene {
@@ -48,11 +51,16 @@ fn floor_mask(ctx: &Context, s: &Scene, camera: Camera) -> Vec<bool> {
     ids.iter().map(|&id| id == FLOOR as f32).collect()
 }
 
-/// The error on the floor of each moving frame.
-fn errors(method: Method, s: &Scene, references: &[ImageData], masks: &[Vec<bool>]) -> Vec<f64> {
+/// The error on the floor of each frame after the warm-up, with the camera at `cams`.
+fn errors(
+    method: Method,
+    s: &Scene,
+    cams: &[Camera],
+    references: &[ImageData],
+    masks: &[Vec<bool>],
+) -> Vec<f64> {
     let ctx = context(false);
     let mut r = renderer(&ctx, s.clone(), settings(method, 8));
-    let cams = cameras(s);
     let mut out = Vec::new();
     for (i, &c) in cams.iter().enumerate() {
         r.set_camera(c);
@@ -81,8 +89,24 @@ fn glossy_reflection_does_not_smear() {
         .collect();
     let masks: Vec<Vec<bool>> = moving.iter().map(|&c| floor_mask(&ctx, &s, c)).collect();
     assert_no_validation_messages(&ctx);
-    let svgf = errors(Method::Svgf, &s, &references, &masks);
-    let per_frame = errors(Method::PerFrame, &s, &references, &masks);
+    let cams = cameras(&s);
+    let still = vec![cams[WARMUP]; cams.len()];
+    let still_references = vec![references[0].clone(); MOVING];
+    let still_masks = vec![masks[0].clone(); MOVING];
+    let svgf = errors(Method::Svgf, &s, &cams, &references, &masks);
+    let svgf_still = errors(Method::Svgf, &s, &still, &still_references, &still_masks);
+    let per_frame = errors(Method::PerFrame, &s, &cams, &references, &masks);
     eprintln!("svgf floor error: {svgf:.3?}");
+    eprintln!("svgf floor error, camera still: {svgf_still:.3?}");
     eprintln!("per-frame floor error: {per_frame:.3?}");
+    let mean = |e: &[f64]| e.iter().sum::<f64>() / e.len() as f64;
+    let penalty = mean(&svgf) / mean(&svgf_still);
+    assert!(
+        penalty <= MAX_MOTION_PENALTY,
+        "motion raises the floor's error {penalty:.3}x: a smeared reflection"
+    );
+    assert!(
+        mean(&svgf) <= mean(&per_frame),
+        "no worse than the per-frame filter"
+    );
 }

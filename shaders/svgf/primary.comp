@@ -2,8 +2,8 @@
 // The primary hits SVGF demodulates by and re-modulates with, antialiased so that emitter and
 // albedo edges do not alias (a G-buffer sampled at pixel centres flips whole pixels as an edge
 // crosses them, which flickers under sub-pixel motion):
-// - the re-modulation albedo and emission: the mean over a fixed 4x4 grid of pinhole rays per
-//   pixel (deterministic, so they change smoothly as the camera moves);
+// - the re-modulation albedo and emission: the mean over a fixed `grid` x `grid` lattice of pinhole
+//   rays per pixel (deterministic, so they change smoothly as the camera moves);
 // - the demodulated illumination of the input: with `exact_sample` set (one path-traced sample per
 //   pixel this frame), the path tracer's own primary ray is re-cast with its random numbers, and
 //   its exact emission and albedo are removed: (radiance - emission) / albedo. Otherwise (several
@@ -28,9 +28,8 @@ layout(set = 0, binding = 19, rgba32f) uniform writeonly image2D u_emission;
 
 layout(push_constant) uniform Params {
     uint exact_sample;
+    uint grid;
 } params;
-
-const int GRID = 8;
 
 // Emission seen along (origin, dir) and the albedo the path tracer demodulates that hit by.
 void primary_hit(vec3 origin, vec3 dir, uint max_depth, out vec3 emission, out vec3 albedo) {
@@ -57,8 +56,9 @@ void main() {
     pinhole.position_aperture.w = 0.0;
     vec3 emission_sum = vec3(0.0);
     vec3 albedo_sum = vec3(0.0);
-    for (int i = 0; i < GRID * GRID; ++i) {
-        vec2 offset = (vec2(i % GRID, i / GRID) + 0.5) / float(GRID);
+    int grid = int(max(params.grid, 1u));
+    for (int i = 0; i < grid * grid; ++i) {
+        vec2 offset = (vec2(i % grid, i / grid) + 0.5) / float(grid);
         vec3 origin;
         vec3 dir;
         camera_ray(pinhole, film_ndc(vec2(pixel), offset, vec2(size)), aspect, vec2(0.5), origin, dir);
@@ -68,8 +68,8 @@ void main() {
         emission_sum += emission;
         albedo_sum += albedo;
     }
-    vec3 emission = emission_sum / float(GRID * GRID);
-    vec3 albedo = albedo_sum / float(GRID * GRID);
+    vec3 emission = emission_sum / float(grid * grid);
+    vec3 albedo = albedo_sum / float(grid * grid);
     imageStore(u_albedo, pixel, vec4(albedo, 1.0));
     imageStore(u_emission, pixel, vec4(emission, 1.0));
 

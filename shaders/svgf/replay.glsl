@@ -1,8 +1,8 @@
 // A copy of the path tracer's `trace_path` (shaders/path_trace/path_trace.comp) without ray
 // counting, so that the gradient pass re-traces a pixel's path with exactly the random numbers the
 // path tracer drew for it. Keep it in step with the path tracer: a difference shows up as a
-// spurious temporal gradient on static scenes (tests/svgf_gradient.rs checks that there is none).
-// Requires the includes of the path tracer.
+// spurious temporal gradient where only the camera moves (tests/svgf_history.rs checks that
+// there is none). Requires the includes of the path tracer.
 #ifndef LUCID_SVGF_REPLAY_GLSL
 #define LUCID_SVGF_REPLAY_GLSL
 

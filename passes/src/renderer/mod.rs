@@ -308,7 +308,9 @@ impl Renderer {
             Denoiser::Svgf => {
                 let spp = self.settings.samples_per_pixel.max(1);
                 let params = self.settings.svgf;
-                let apply = self.svgf_schedule.decide(params.mode, accumulated, spp);
+                let apply =
+                    self.svgf_schedule
+                        .decide(params.mode, self.frame_index, accumulated, spp);
                 let inputs = svgf::FrameInputs {
                     radiance: traced.radiance,
                     accumulated: hdr,

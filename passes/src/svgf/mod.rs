@@ -2,26 +2,28 @@
 //! (Schied et al. 2018), in compute passes over the G-buffer (`shaders/svgf/`).
 //!
 //! Temporal mode, per frame:
-//! 1. **Gradients** ([`gradient`]): per 3x3 stratum, one pixel's path of last frame is re-traced in
+//! 1. **Gradients** (`gradient`): per 3x3 stratum, one pixel's path of last frame is re-traced in
 //!    the current scene with last frame's camera and random numbers and compared with what the path
 //!    tracer produced for it; the differences are spread over 7x7 strata. Where only the camera
 //!    moved they are exactly zero; where a light or an object changed they measure the share of
 //!    shading that changed.
-//! 2. **Demodulation** ([`primary`]): `(radiance - emission) / albedo` with the emission and albedo
+//! 2. **Demodulation** (`primary`): `(radiance - emission) / albedo` with the emission and albedo
 //!    of the path tracer's own primary hit (re-cast with its random numbers); the albedo and
-//!    emission added back at the end are averaged over a fixed 4x4 grid of primary rays per pixel,
-//!    so that emitter and texture edges stay antialiased and do not flicker.
-//! 3. **Temporal accumulation** ([`temporal`]): reproject the history with the motion vectors (bilinear taps validated by depth, normal and
-//!    object id, else a 3x3 search, else a disocclusion), blend colour and the first two luminance
-//!    moments with moving averages whose weight the gradient raises, count the history length.
-//! 4. **Filter** ([`filter`]): variance from the moments (spatial 7x7 estimate while the history
+//!    emission added back at the end are averaged over a fixed lattice of primary rays per pixel
+//!    ([`SvgfParams::primary_grid`]), so that emitter and texture edges stay antialiased and do
+//!    not flicker.
+//! 3. **Temporal accumulation** (`temporal`): reproject the history with the motion vectors
+//!    (bilinear taps validated by depth, normal and object id, else a 3x3 search, else a
+//!    disocclusion), blend colour and the first two luminance moments with moving averages whose
+//!    weight the gradient raises, count the history length.
+//! 4. **Filter** (`filter`): variance from the moments (spatial 7x7 estimate while the history
 //!    is shorter than 4 frames), `iterations` a-trous iterations with depth, normal and
 //!    luminance-variance edge stopping; the first iteration's output is the next frame's colour
 //!    history; re-modulation by albedo plus emission.
 //!
 //! The histories are the render graph's keyed temporal images ([`COLOR_KEY`], [`MOMENTS_KEY`],
-//! [`SURFACE_KEY`]): a resize or [`Executor::reset_history`](lucid_engine::graph::Executor::reset_history)
-//! starts them afresh. The spatial modes run steps 2 and 4 on the (accumulated) output.
+//! [`SURFACE_KEY`]): a resize or
+//! [`Executor::reset_history`](lucid_engine::graph::Executor::reset_history) starts them afresh. The spatial modes run steps 2 and 4 on the (accumulated) output.
 
 mod filter;
 mod gradient;
@@ -88,17 +90,19 @@ pub fn add(
     apply: Apply,
 ) -> ImageHandle {
     match apply {
-        Apply::Temporal => add_temporal(g, inputs, params),
+        Apply::Temporal { continues } => add_temporal(g, inputs, params, continues),
         Apply::Spatial => add_spatial(g, inputs, params),
         Apply::Nothing => inputs.accumulated,
     }
 }
 
-/// Adds full SVGF on `inputs.radiance`.
+/// Adds full SVGF on `inputs.radiance`; `continues`: the histories hold last frame (else they are
+/// ignored, as after a reset).
 pub fn add_temporal(
     g: &mut RenderGraph,
     inputs: &FrameInputs<'_>,
     params: &SvgfParams,
+    continues: bool,
 ) -> ImageHandle {
     let size = (inputs.width, inputs.height);
     let (color_desc, surface_desc) = temporal::history_descs(inputs.width, inputs.height);
@@ -115,7 +119,7 @@ pub fn add_temporal(
             spec: inputs.spec,
             motion: inputs.gbuffer.motion,
             prev_surface: history.surface.prev,
-            enabled: params.gradients,
+            enabled: params.gradients && continues,
             width: inputs.width,
             height: inputs.height,
         },
@@ -126,7 +130,7 @@ pub fn add_temporal(
         inputs.frame,
         inputs.spec,
         inputs.radiance,
-        inputs.samples_per_pixel == 1,
+        (inputs.samples_per_pixel == 1, params.primary_grid),
         size,
     );
     let integrated = temporal::add(
@@ -134,7 +138,7 @@ pub fn add_temporal(
         (inputs.radiance, primary.illumination),
         &inputs.gbuffer,
         gradient,
-        &history,
+        (&history, continues),
         (params.alpha, params.moments_alpha),
         size,
     );
@@ -167,7 +171,7 @@ pub fn add_spatial(
         inputs.frame,
         inputs.spec,
         inputs.accumulated,
-        single_sample,
+        (single_sample, params.primary_grid),
         size,
     );
     let moments = filter::moments(g, primary.illumination, size);

@@ -17,15 +17,16 @@ pub(super) struct Primary {
     pub emission: ImageHandle,
 }
 
-/// Adds the primary-hit pass over `radiance`. `exact_sample`: `radiance` is this frame's single
-/// path-traced sample per pixel, whose own primary hit is demodulated exactly.
+/// Adds the primary-hit pass over `radiance` with `grid` x `grid` antialiasing rays per pixel.
+/// `exact_sample`: `radiance` is this frame's single path-traced sample per pixel, whose own
+/// primary hit is demodulated exactly.
 pub(super) fn add(
     g: &mut RenderGraph,
     scene: &SceneHandles,
     frame: BufferHandle,
     spec: &Specialization,
     radiance: ImageHandle,
-    exact_sample: bool,
+    (exact_sample, grid): (bool, u32),
     (width, height): (u32, u32),
 ) -> Primary {
     let mut p = g.add_pass("svgf.primary");
@@ -42,7 +43,7 @@ pub(super) fn add(
         emission: image("svgf.emission"),
     };
     let (scene, spec) = (*scene, spec.clone());
-    let exact = u32::from(exact_sample);
+    let push = [u32::from(exact_sample), grid];
     p.execute(move |ctx| {
         let dispatch = ctx
             .compute(&PRIMARY)
@@ -52,7 +53,7 @@ pub(super) fn add(
             .image("u_illumination", out.illumination)
             .image("u_albedo", out.albedo)
             .image("u_emission", out.emission)
-            .push(&exact);
+            .push(&push);
         scene.bind(dispatch).dispatch_threads([width, height, 1])
     });
     out

@@ -30,13 +30,13 @@ pub(super) struct Integrated {
 }
 
 /// Adds the temporal accumulation of `illumination` (demodulated `radiance`), reading last frame's
-/// histories and writing this frame's moments and surface records.
+/// histories (unless `continues` is false) and writing this frame's moments and surface records.
 pub(super) fn add(
     g: &mut RenderGraph,
     (radiance, illumination): (ImageHandle, ImageHandle),
     gbuffer: &GBuffer,
     gradient: ImageHandle,
-    history: &Histories,
+    (history, continues): (&Histories, bool),
     (alpha, moments_alpha): (f32, f32),
     (width, height): (u32, u32),
 ) -> Integrated {
@@ -59,7 +59,7 @@ pub(super) fn add(
         let params = Params {
             alpha,
             moments_alpha,
-            history_valid: u32::from(ctx.history_valid(prev_color)),
+            history_valid: u32::from(continues && ctx.history_valid(prev_color)),
             stratum: STRATUM,
             max_history: MAX_HISTORY,
             pad: [0.0; 3],

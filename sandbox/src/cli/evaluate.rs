@@ -29,8 +29,11 @@ pub fn run(args: &EvaluateArgs) -> anyhow::Result<()> {
     evaluate_folder(&args.dir, &display)
 }
 
-/// The metrics' names and how to read each from a frame's metrics.
-const COLUMNS: [(&str, fn(&FrameMetrics) -> f64); 5] = [
+/// Reads one metric from a frame's metrics.
+type Metric = fn(&FrameMetrics) -> f64;
+
+/// The metrics' names and how to read each.
+const COLUMNS: [(&str, Metric); 5] = [
     ("rel_mse", |m| m.rel_mse),
     ("ssim", |m| m.ssim),
     ("dssim", |m| m.dssim),
@@ -111,10 +114,11 @@ fn to_svg(results: &[(&str, SequenceMetrics)]) -> String {
     const PAD: f64 = 30.0;
     const COLOURS: [&str; 3] = ["#d62728", "#1f77b4", "#2ca02c"];
     let mut out = format!(
-        "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"{}\" height=\"{}\" font-family=\"sans-serif\" font-size=\"11\">\n",
+        r#"<svg xmlns="http://www.w3.org/2000/svg" width="{}" height="{}" font-size="11">"#,
         W * 2.0,
         H * 3.0
     );
+    out.push('\n');
     for (panel, (name, get)) in COLUMNS.iter().enumerate() {
         let (x0, y0) = ((panel % 2) as f64 * W, (panel / 2) as f64 * H);
         let series: Vec<Vec<f64>> = results
@@ -129,10 +133,15 @@ fn to_svg(results: &[(&str, SequenceMetrics)]) -> String {
             .fold(0.0, f64::max)
             .max(1e-9);
         let frames = series.first().map_or(1, Vec::len).max(2) as f64 - 1.0;
+        let (left, top, width, height) = (x0 + PAD, y0 + PAD, W - 2.0 * PAD, H - 2.0 * PAD);
         let _ = writeln!(
             out,
-            "<rect x=\"{}\" y=\"{}\" width=\"{}\" height=\"{}\" fill=\"none\" stroke=\"#999\"/><text x=\"{}\" y=\"{}\">{name} (max {max:.4})</text>",
-            x0 + PAD, y0 + PAD, W - 2.0 * PAD, H - 2.0 * PAD, x0 + PAD, y0 + PAD - 6.0
+            r##"<rect x="{left}" y="{top}" width="{width}" height="{height}" fill="none" stroke="#999"/>"##
+        );
+        let _ = writeln!(
+            out,
+            r#"<text x="{left}" y="{}">{name} (max {max:.4})</text>"#,
+            top - 6.0
         );
         for (s, values) in series.iter().enumerate() {
             let points: Vec<String> = values

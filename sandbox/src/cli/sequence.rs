@@ -33,7 +33,8 @@ pub struct SequenceArgs {
     out: PathBuf,
 }
 
-/// The sequences rendered besides the reference: the noisy input and each denoiser, all at 1 spp.
+/// The sequences rendered besides the reference: the noisy input and each denoiser, at `--spp`
+/// samples per pixel (1 by default).
 pub const METHODS: [&str; 3] = ["none", "spatial", "svgf"];
 
 /// Samples per pixel per frame of the reference renders (more are accumulated over frames).
@@ -50,10 +51,7 @@ pub fn run(args: &SequenceArgs) -> anyhow::Result<()> {
         .map(|i| path.sample(i as f32 / args.fps))
         .collect();
     let ctx = Context::new(&ContextDesc::from_env())?;
-    let base = Settings {
-        samples_per_pixel: 1,
-        ..args.options.settings(false)
-    };
+    let base = args.options.settings(false);
     let reference_settings = Settings {
         samples_per_pixel: args.reference_spp.min(REFERENCE_SPP_PER_FRAME),
         accumulate: true,

@@ -1,0 +1,78 @@
+//! Hard light transport at 1 spp: `covered-light` (light reaching the room only through gaps) and
+//! `caustics` (a glass sphere focusing a small lamp). SVGF's output stays finite and its fireflies
+//! do not spread into blotches: the worst 8x8 block's excess brightness over a 256-spp reference
+//! stays bounded, and below the per-frame filter's.
+
+#[allow(dead_code)]
+#[path = "svgf_common.rs"]
+mod common;
+
+use common::{frame, reference, renderer, settings, Method, SIZE};
+use lucid_engine::capture::{rec709_luminance, ImageData};
+use lucid_engine::scene::builtin::{build_with, BuildOptions};
+use lucid_tests::{assert_no_validation_messages, context};
+
+const FRAMES: usize = 8;
+/// Largest accepted worst-block excess (measured: covered-light 0.35, per-frame filter 0.88;
+/// caustics 0.11, per-frame filter 0.17).
+const MAX_EXCESS_COVERED_LIGHT: f64 = 0.6;
+const MAX_EXCESS_CAUSTICS: f64 = 0.25;
+/// Side of the blocks whose mean error is compared.
+const BLOCK: u32 = 8;
+
+/// The largest excess of an 8x8 block's mean luminance over the reference's, relative to the
+/// reference's mean luminance: a firefly smeared into a blotch brightens a whole block, while
+/// the reference's own residual noise mostly averages out within one.
+fn worst_block_excess(test: &ImageData, reference: &ImageData) -> f64 {
+    let block_mean = |image: &ImageData, bx: u32, by: u32| {
+        let sum: f64 = (by..by + BLOCK)
+            .flat_map(|y| (bx..bx + BLOCK).map(move |x| (x, y)))
+            .map(|(x, y)| f64::from(rec709_luminance(image.pixels[(y * SIZE + x) as usize])))
+            .sum();
+        sum / f64::from(BLOCK * BLOCK)
+    };
+    let mean: f64 = reference
+        .pixels
+        .iter()
+        .map(|&p| f64::from(rec709_luminance(p)))
+        .sum::<f64>()
+        / reference.pixels.len() as f64;
+    (0..SIZE / BLOCK)
+        .flat_map(|by| (0..SIZE / BLOCK).map(move |bx| (bx * BLOCK, by * BLOCK)))
+        .map(|(bx, by)| (block_mean(test, bx, by) - block_mean(reference, bx, by)) / mean)
+        .fold(0.0, f64::max)
+}
+
+/// (SVGF, per-frame filter) worst block excesses of the last frame of a still sequence.
+fn worst_errors(name: &str) -> (f64, f64) {
+    let ctx = context(false);
+    let scene = build_with(name, &BuildOptions { detail: 0.05 }).expect("scene");
+    let reference = reference(&ctx, &scene, scene.camera, (16, 16), 8);
+    let run = |method| {
+        let mut r = renderer(&ctx, scene.clone(), settings(method, 8));
+        let mut last = frame(&mut r);
+        for _ in 1..FRAMES {
+            last = frame(&mut r);
+        }
+        worst_block_excess(&last, &reference)
+    };
+    let errors = (run(Method::Svgf), run(Method::PerFrame));
+    assert_no_validation_messages(&ctx);
+    errors
+}
+
+#[test]
+fn covered_light_has_no_blotches() {
+    let (svgf, per_frame) = worst_errors("covered-light");
+    eprintln!("covered-light worst block excess: svgf {svgf:.3}, per-frame {per_frame:.3}");
+    assert!(svgf <= MAX_EXCESS_COVERED_LIGHT, "a blotch: {svgf:.3}");
+    assert!(svgf <= per_frame, "no worse than the per-frame filter");
+}
+
+#[test]
+fn caustics_have_no_blotches() {
+    let (svgf, per_frame) = worst_errors("caustics");
+    eprintln!("caustics worst block excess: svgf {svgf:.3}, per-frame {per_frame:.3}");
+    assert!(svgf <= MAX_EXCESS_CAUSTICS, "a blotch: {svgf:.3}");
+    assert!(svgf <= per_frame, "no worse than the per-frame filter");
+}
