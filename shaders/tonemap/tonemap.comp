@@ -10,7 +10,8 @@ layout(set = 0, binding = 1, rgba8) uniform writeonly image2D u_ldr;
 
 layout(push_constant) uniform Params {
     float exposure;
-    uint curve; // 0 clamp, 1 ACES, 2 AgX
+    uint curve;   // 0 clamp, 1 ACES, 2 AgX
+    uint swap_rb; // 1: store B, G, R, A (for copies into BGRA images)
 } params;
 
 const vec3 AGX_INSET_ROWS[3] = vec3[3](
@@ -61,5 +62,6 @@ void main() {
     } else if (params.curve == 2u) {
         c = agx(c);
     }
-    imageStore(u_ldr, pixel, vec4(srgb_encode(clamp(c, 0.0, 1.0)), 1.0));
+    vec3 encoded = srgb_encode(clamp(c, 0.0, 1.0));
+    imageStore(u_ldr, pixel, vec4(params.swap_rb == 1u ? encoded.bgr : encoded, 1.0));
 }

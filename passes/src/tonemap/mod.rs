@@ -6,7 +6,16 @@ use lucid_engine::capture::{PngEncoding, ToneCurve};
 use lucid_engine::graph::{Access, ImageHandle, RenderGraph};
 use lucid_engine::memory::ImageDesc;
 
-/// Adds tone mapping of `hdr` with `encoding`; returns the sRGB-encoded RGBA8 image.
+/// The byte order of the 8-bit output.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum ChannelOrder {
+    /// Red first.
+    Rgba,
+    /// Blue first: bytes for copies into `B8G8R8A8` images (typical swapchains).
+    Bgra,
+}
+
+/// Adds tone mapping of `hdr` (RGBA f32) with `encoding`; returns the sRGB-encoded RGBA8 image.
 pub fn add(
     g: &mut RenderGraph,
     hdr: ImageHandle,
@@ -14,11 +23,24 @@ pub fn add(
     height: u32,
     encoding: PngEncoding,
 ) -> ImageHandle {
+    add_ordered(g, hdr, width, height, encoding, ChannelOrder::Rgba)
+}
+
+/// Like [`add`], with the channels stored in `order`.
+pub fn add_ordered(
+    g: &mut RenderGraph,
+    hdr: ImageHandle,
+    width: u32,
+    height: u32,
+    encoding: PngEncoding,
+    order: ChannelOrder,
+) -> ImageHandle {
     let curve: u32 = match encoding.tone {
         ToneCurve::Clamp => 0,
         ToneCurve::Aces => 1,
         ToneCurve::AgX => 2,
     };
+    let swap_rb = u32::from(order == ChannelOrder::Bgra);
     let mut p = g.add_pass("tonemap");
     let hdr = p.read(hdr, Access::ComputeRead);
     let ldr = p.create_image("tonemap.ldr", ImageDesc::rgba8(width, height));
@@ -27,7 +49,7 @@ pub fn add(
         ctx.compute(&TONEMAP)
             .image("u_hdr", hdr)
             .image("u_ldr", ldr)
-            .push(&[encoding.exposure.to_bits(), curve])
+            .push(&[encoding.exposure.to_bits(), curve, swap_rb])
             .dispatch_threads([width, height, 1])
     });
     ldr

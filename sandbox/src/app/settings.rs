@@ -104,15 +104,6 @@ impl ToneMapper {
         }
     }
 
-    /// The index the tone-mapping shader switches on.
-    pub fn shader_index(self) -> u32 {
-        match self {
-            Self::Clamp => 0,
-            Self::Aces => 1,
-            Self::AgX => 2,
-        }
-    }
-
     /// The engine's curve of the same name (used for PNG captures).
     pub fn curve(self) -> ToneCurve {
         match self {
