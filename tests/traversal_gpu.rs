@@ -45,7 +45,12 @@ fn check_scene(name: &str, rays_per_scene: usize) {
     let dynamic: Vec<bool> = (0..scene.instances.len()).map(|i| i % 3 == 1).collect();
     let flat = FlatScene::new(&scene, &dynamic);
     let flat_bvh = Bvh::build(&flat.scene);
-    let (gpu, triangle_ids) = pack_flat(&flat, &flat_bvh);
+    let (gpu, triangle_ids) = pack_flat(&flat, &scene, &flat_bvh);
+    assert_eq!(
+        gpu.features,
+        scene.features(),
+        "{name}: flattening must not hide features"
+    );
     let ctx = context(false);
     let buffers = SceneBuffers::upload(&ctx, &gpu, &triangle_ids).unwrap();
     let mut executor = Executor::new(&ctx, ShaderLibrary::new(&ctx, None).unwrap()).unwrap();

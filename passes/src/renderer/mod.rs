@@ -96,7 +96,7 @@ impl Renderer {
         let flat = FlatScene::new(&scene, &[]);
         let flat_len = scene.instances.len();
         let bvh = Bvh::build(&flat.scene);
-        let (gpu, triangle_ids) = pack_flat(&flat, &bvh);
+        let (gpu, triangle_ids) = pack_flat(&flat, &scene, &bvh);
         let buffers = SceneBuffers::upload(ctx, &gpu, &triangle_ids)?;
         let spec = specialization(&gpu.features);
         let library = ShaderLibrary::new(ctx, None)?;
@@ -206,7 +206,7 @@ impl Renderer {
                     .rebuild_top_level(&self.flat.scene)
                     .map_err(|e| EngineError::InvalidArgument(e.to_string()))?;
                 self.gpu.update_top_level(&self.flat.scene, &self.bvh);
-                fix_instances(&mut self.gpu, &self.flat);
+                fix_instances(&mut self.gpu, &self.flat, &self.scene);
                 self.buffers.update_top_level(&self.ctx, &self.gpu)
             }
             None => {
@@ -229,7 +229,7 @@ impl Renderer {
             return self.rebuild_gpu_scene();
         }
         self.flat.scene.materials[index] = material;
-        let (gpu, _) = pack_flat(&self.flat, &self.bvh);
+        let (gpu, _) = pack_flat(&self.flat, &self.scene, &self.bvh);
         self.gpu = gpu;
         self.buffers.update_materials(&self.ctx, &self.gpu)?;
         self.spec = specialization(&self.gpu.features);
@@ -240,7 +240,7 @@ impl Renderer {
     fn rebuild_gpu_scene(&mut self) -> Result<()> {
         self.flat = FlatScene::new(&self.scene, &self.dynamic);
         self.bvh = Bvh::build(&self.flat.scene);
-        let (gpu, triangle_ids) = pack_flat(&self.flat, &self.bvh);
+        let (gpu, triangle_ids) = pack_flat(&self.flat, &self.scene, &self.bvh);
         self.buffers = SceneBuffers::upload(&self.ctx, &gpu, &triangle_ids)?;
         self.spec = specialization(&gpu.features);
         self.gpu = gpu;
