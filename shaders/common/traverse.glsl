@@ -34,7 +34,7 @@ vec3 safe_inverse(vec3 d) {
                       abs(d.z) > tiny ? d.z : (d.z >= 0.0 ? tiny : -tiny));
 }
 
-// Möller-Trumbore; returns t (or T_INFINITY) and barycentrics.
+// Moller-Trumbore; returns t (or T_INFINITY) and barycentrics.
 float intersect_triangle(uint tri, vec3 o, vec3 d, float t_max, out vec2 bary) {
     vec3 p0 = vertex_position(b_indices.i[3u * tri]);
     vec3 p1 = vertex_position(b_indices.i[3u * tri + 1u]);
@@ -82,6 +82,23 @@ float intersect_sphere(uint s, vec3 o, vec3 d, float t_max) {
     return (t > 1e-5 * cr.w / sqrt(a) && t < t_max) ? t : T_INFINITY;
 }
 
+const uint NO_NODE = 0xffffffffu;
+
+// Chooses how to go on at an interior node whose children (left, left + 1) are entered at
+// t_left and t_right: returns the nearer child hit (NO_NODE when neither is), and in far_child the
+// other one when both are hit (else NO_NODE).
+uint order_children(uint left, float t_left, float t_right, out uint far_child) {
+    far_child = NO_NODE;
+    if (min(t_left, t_right) == T_INFINITY) {
+        return NO_NODE;
+    }
+    bool left_first = t_left <= t_right;
+    if (max(t_left, t_right) < T_INFINITY) {
+        far_child = left_first ? left + 1u : left;
+    }
+    return left_first ? left : left + 1u;
+}
+
 // Traverses one instance's BLAS in object space. Updates hit when closer; with any_hit, stops at
 // the first hit and returns true.
 bool traverse_blas(uint inst_index, Instance inst, vec3 o, vec3 d, bool any_hit, inout Hit hit) {
@@ -115,14 +132,14 @@ bool traverse_blas(uint inst_index, Instance inst, vec3 o, vec3 d, bool any_hit,
             }
         } else if (node.left_or_first != 0u) {
             uint left = node.left_or_first;
-            float t_left = box_entry(b_blas.n[left], o, inv_dir, hit.t);
-            float t_right = box_entry(b_blas.n[left + 1u], o, inv_dir, hit.t);
-            uint near_child = t_left <= t_right ? left : left + 1u;
-            uint far_child = t_left <= t_right ? left + 1u : left;
-            float t_near = min(t_left, t_right);
-            float t_far = max(t_left, t_right);
-            if (t_near < T_INFINITY) {
-                if (t_far < T_INFINITY && sp < BLAS_STACK) {
+            uint far_child;
+            uint near_child = order_children(
+                left,
+                box_entry(b_blas.n[left], o, inv_dir, hit.t),
+                box_entry(b_blas.n[left + 1u], o, inv_dir, hit.t),
+                far_child);
+            if (near_child != NO_NODE) {
+                if (far_child != NO_NODE && sp < BLAS_STACK) {
                     stack[sp++] = far_child;
                 }
                 node_index = near_child;
@@ -171,14 +188,14 @@ bool trace_ray(vec3 origin, vec3 dir, float t_max, bool any_hit, out Hit hit) {
             }
         } else if (node.left_or_first != 0u) {
             uint left = node.left_or_first;
-            float t_left = box_entry(b_tlas.n[left], origin, inv_dir, hit.t);
-            float t_right = box_entry(b_tlas.n[left + 1u], origin, inv_dir, hit.t);
-            uint near_child = t_left <= t_right ? left : left + 1u;
-            uint far_child = t_left <= t_right ? left + 1u : left;
-            float t_near = min(t_left, t_right);
-            float t_far = max(t_left, t_right);
-            if (t_near < T_INFINITY) {
-                if (t_far < T_INFINITY && sp < TLAS_STACK) {
+            uint far_child;
+            uint near_child = order_children(
+                left,
+                box_entry(b_tlas.n[left], origin, inv_dir, hit.t),
+                box_entry(b_tlas.n[left + 1u], origin, inv_dir, hit.t),
+                far_child);
+            if (near_child != NO_NODE) {
+                if (far_child != NO_NODE && sp < TLAS_STACK) {
                     stack[sp++] = far_child;
                 }
                 node_index = near_child;
