@@ -3,8 +3,9 @@
 // (s = 1) and connections to `connections` light vertices drawn uniformly from the light vertex
 // cache (s > 1), each with its recursive MIS weight (see bdpt.glsl). Paths lit by the sun or the
 // environment are found by this pass alone and weighted between BSDF sampling and NEE as the path
-// tracer does. Adds the light pass's splats and writes radiance and radiance demodulated by the
-// first-hit albedo. Non-finite samples are dropped and counted in b_stats.
+// tracer does. Adds the light pass's splats and writes radiance, radiance demodulated by the
+// first hit (its emission removed, divided by its albedo) and that hit's albedo and emission.
+// Non-finite samples are dropped and counted in b_stats.
 #include "common/math.glsl"
 #include "common/rng.glsl"
 #include "common/scene.glsl"
@@ -21,6 +22,8 @@ layout(local_size_x = 8, local_size_y = 8) in;
 
 layout(set = 0, binding = 16, rgba32f) uniform writeonly image2D u_radiance;
 layout(set = 0, binding = 17, rgba32f) uniform writeonly image2D u_demodulated;
+layout(set = 0, binding = 23, rgba32f) uniform writeonly image2D u_albedo;
+layout(set = 0, binding = 24, rgba32f) uniform writeonly image2D u_emission;
 layout(set = 0, binding = 18, std430) buffer Stats { uint non_finite; uint samples; uint pad0; uint pad1; } b_stats;
 layout(set = 0, binding = 20, std430) readonly buffer Lvc { LightVertex v[]; } b_lvc;
 layout(set = 0, binding = 21, std430) readonly buffer LvcCount { uint count; uint pad0; uint pad1; uint pad2; } b_lvc_count;
@@ -151,7 +154,8 @@ vec3 emission_hit(Surface s, vec3 d, vec3 prev_p, uint depth, float dvcm, float 
     return emitted / (1.0 + w_camera);
 }
 
-vec3 trace_camera(vec3 o, vec3 d, inout uint rng, uint max_depth, uint rr_depth, out vec3 first_albedo) {
+vec3 trace_camera(vec3 o, vec3 d, inout uint rng, uint max_depth, uint rr_depth, out vec3 first_albedo,
+                  out vec3 first_emission) {
     Camera cam = b_frame.f.camera;
     uvec2 size = b_frame.f.size.xy;
     float aspect = float(size.x) / float(size.y);
@@ -168,11 +172,15 @@ vec3 trace_camera(vec3 o, vec3 d, inout uint rng, uint max_depth, uint rr_depth,
     bool prev_delta = true;
     vec3 prev_p = o;
     first_albedo = vec3(1.0);
+    first_emission = vec3(0.0);
     for (uint depth = 0u; depth < max_depth; ++depth) {
         Hit hit;
         if (!trace_closest(o, d, T_INFINITY, hit)) {
             float w_sun = prev_delta ? 1.0 : mis_pair(prev_pdf, sun_pdf());
             radiance += c.beta * (environment_radiance(d) + sun_radiance(d) * w_sun);
+            if (depth == 0u) {
+                first_emission = radiance;
+            }
             break;
         }
         c.s = surface_at(hit, o, d);
@@ -185,6 +193,9 @@ vec3 trace_camera(vec3 o, vec3 d, inout uint rng, uint max_depth, uint rr_depth,
         c.dvcm *= mis(dist2) / mis(cos_in);
         c.dvc /= mis(cos_in);
         radiance += c.beta * emission_hit(c.s, d, prev_p, depth, c.dvcm, c.dvc, cos_in, dist2);
+        if (depth == 0u) {
+            first_emission = radiance;
+        }
         if (depth + 1u >= max_depth) {
             break;
         }
@@ -244,6 +255,7 @@ void main() {
     float aspect = float(size.x) / float(size.y);
     vec3 sum = vec3(0.0);
     vec3 albedo_sum = vec3(0.0);
+    vec3 emission_sum = vec3(0.0);
     uint dropped = 0u;
     for (uint i = 0u; i < spp; ++i) {
         vec2 ndc = film_ndc(vec2(pixel), rng_next2(rng), vec2(size));
@@ -251,13 +263,16 @@ void main() {
         vec3 dir;
         camera_ray(b_frame.f.camera, ndc, aspect, rng_next2(rng), origin, dir);
         vec3 albedo;
-        vec3 l = trace_camera(origin, dir, rng, max_depth, rr_depth, albedo);
+        vec3 emission;
+        vec3 l = trace_camera(origin, dir, rng, max_depth, rr_depth, albedo, emission);
         if (any(isnan(l)) || any(isinf(l))) {
             dropped += 1u;
             l = vec3(0.0);
+            emission = vec3(0.0);
         }
         sum += l;
         albedo_sum += albedo;
+        emission_sum += emission;
     }
     if (dropped > 0u) {
         atomicAdd(b_stats.non_finite, dropped);
@@ -266,6 +281,9 @@ void main() {
     vec3 splat = vec3(b_splat.v[i], b_splat.v[i + 1u], b_splat.v[i + 2u]) * pc.splat_scale;
     vec3 radiance = sum / float(spp) + splat;
     vec3 albedo = albedo_sum / float(spp);
+    vec3 emission = emission_sum / float(spp);
     imageStore(u_radiance, pixel, vec4(radiance, 1.0));
-    imageStore(u_demodulated, pixel, vec4(radiance / max(albedo, vec3(1e-3)), 1.0));
+    imageStore(u_demodulated, pixel, vec4(max(radiance - emission, vec3(0.0)) / max(albedo, vec3(1e-3)), 1.0));
+    imageStore(u_albedo, pixel, vec4(albedo, 1.0));
+    imageStore(u_emission, pixel, vec4(emission, 1.0));
 }

@@ -16,7 +16,7 @@
 #include "common/surface.glsl"
 #include "common/camera.glsl"
 #include "svgf/common.glsl"
-#include "svgf/replay.glsl"
+#include "common/path.glsl"
 
 layout(local_size_x = 8, local_size_y = 8) in;
 
@@ -51,13 +51,13 @@ void main() {
     uint rr_depth = uint(b_frame.f.params.x);
     float aspect = float(size.x) / float(size.y);
     vec3 sum = vec3(0.0);
+    uint rays = 0u;
     for (uint i = 0u; i < spp; ++i) {
         vec2 ndc = film_ndc(vec2(q), rng_next2(rng), vec2(size));
         vec3 origin;
         vec3 dir;
         camera_ray(b_frame.f.prev_camera, ndc, aspect, rng_next2(rng), origin, dir);
-        vec3 albedo;
-        vec3 l = svgf_replay_path(origin, dir, rng, max_depth, rr_depth, albedo);
+        vec3 l = path_trace_all(origin, dir, rng, max_depth, rr_depth, rays).radiance;
         if (any(isnan(l)) || any(isinf(l))) {
             l = vec3(0.0);
         }

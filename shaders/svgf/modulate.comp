@@ -1,6 +1,6 @@
 #version 460
 // Re-modulation after filtering: radiance = illumination * albedo + directly seen emission, both
-// antialiased (svgf/primary.comp).
+// averaged over the light transport's jittered first hits (svgf/temporal.comp, or accumulated).
 #include "common/image_coords.glsl"
 
 layout(local_size_x = 8, local_size_y = 8) in;

@@ -3,7 +3,10 @@
 // integrated illumination and luminance moments with the G-buffer's motion vectors (bilinear taps
 // validated by depth, normal and object id, else a 3x3 search, else a disocclusion), and blends
 // them with an exponential moving average whose weight the temporal gradient raises where the
-// shading changed (A-SVGF). Also writes this frame's surface record for the next frame.
+// shading changed (A-SVGF). The first hit's albedo and emission, which the light-transport pass
+// wrote for its jittered samples, are averaged the same way: re-modulating with these means keeps
+// emitter and texture edges antialiased and steady under sub-pixel motion. Also writes this
+// frame's surface record for the next frame.
 #include "common/math.glsl"
 #include "common/image_coords.glsl"
 #include "svgf/common.glsl"
@@ -23,6 +26,12 @@ layout(set = 0, binding = 10, rgba32ui) uniform readonly uimage2D u_prev_surface
 layout(set = 0, binding = 11, rgba32f) uniform writeonly image2D u_color;
 layout(set = 0, binding = 12, rgba32f) uniform writeonly image2D u_moments;
 layout(set = 0, binding = 13, rgba32ui) uniform writeonly uimage2D u_surface;
+layout(set = 0, binding = 14, rgba32f) uniform readonly image2D u_albedo;
+layout(set = 0, binding = 15, rgba32f) uniform readonly image2D u_emission;
+layout(set = 0, binding = 16, rgba32f) uniform readonly image2D u_prev_albedo;
+layout(set = 0, binding = 17, rgba32f) uniform readonly image2D u_prev_emission;
+layout(set = 0, binding = 18, rgba32f) uniform writeonly image2D u_albedo_out;
+layout(set = 0, binding = 19, rgba32f) uniform writeonly image2D u_emission_out;
 
 #include "svgf/depth_slope.glsl"
 
@@ -72,6 +81,8 @@ void main() {
     float tolerance = 0.02 * motion.z + 2.0 * svgf_depth_slope(pixel, size);
     vec3 prev_color = vec3(0.0);
     vec3 prev_moments = vec3(0.0);
+    vec3 prev_albedo = vec3(0.0);
+    vec3 prev_emission = vec3(0.0);
     float weight_sum = 0.0;
     if (params.history_valid != 0u) {
         vec2 prev_pos = vec2(pixel) + motion.xy;
@@ -83,12 +94,16 @@ void main() {
             if (tap_valid(q, size, here.object_id, here.normal, motion.z, tolerance)) {
                 prev_color += w[i] * imageLoad(u_prev_color, q).rgb;
                 prev_moments += w[i] * imageLoad(u_prev_moments, q).xyz;
+                prev_albedo += w[i] * imageLoad(u_prev_albedo, q).rgb;
+                prev_emission += w[i] * imageLoad(u_prev_emission, q).rgb;
                 weight_sum += w[i];
             }
         }
         if (weight_sum < 0.01) {
             prev_color = vec3(0.0);
             prev_moments = vec3(0.0);
+            prev_albedo = vec3(0.0);
+            prev_emission = vec3(0.0);
             weight_sum = 0.0;
             ivec2 centre = ivec2(floor(prev_pos + 0.5));
             for (int dy = -1; dy <= 1; ++dy) {
@@ -97,6 +112,8 @@ void main() {
                     if (tap_valid(q, size, here.object_id, here.normal, motion.z, tolerance + 0.02 * motion.z)) {
                         prev_color += imageLoad(u_prev_color, q).rgb;
                         prev_moments += imageLoad(u_prev_moments, q).xyz;
+                        prev_albedo += imageLoad(u_prev_albedo, q).rgb;
+                        prev_emission += imageLoad(u_prev_emission, q).rgb;
                         weight_sum += 1.0;
                     }
                 }
@@ -105,10 +122,14 @@ void main() {
     }
     vec3 color = illum;
     vec2 moments = vec2(lum, lum * lum);
+    vec3 albedo = imageLoad(u_albedo, pixel).rgb;
+    vec3 emission = imageLoad(u_emission, pixel).rgb;
     float history = 1.0;
     if (weight_sum > 0.0) {
         prev_color /= weight_sum;
         prev_moments /= weight_sum;
+        prev_albedo /= weight_sum;
+        prev_emission /= weight_sum;
         // The temporal gradient's share of shading that changed since last frame drops that
         // share of the history (A-SVGF).
         vec2 g = imageLoad(u_gradient, pixel / int(params.stratum)).xy;
@@ -117,9 +138,13 @@ void main() {
         float a = mix(max(params.alpha, 1.0 / (n + 1.0)), 1.0, lambda);
         float am = mix(max(params.moments_alpha, 1.0 / (n + 1.0)), 1.0, lambda);
         color = mix(prev_color, illum, a);
+        albedo = mix(prev_albedo, albedo, a);
+        emission = mix(prev_emission, emission, a);
         moments = mix(prev_moments.xy, moments, am);
         history = min(n + 1.0, params.max_history);
     }
     imageStore(u_color, pixel, vec4(color, 0.0));
     imageStore(u_moments, pixel, vec4(moments, history, 0.0));
+    imageStore(u_albedo_out, pixel, vec4(albedo, 1.0));
+    imageStore(u_emission_out, pixel, vec4(emission, 1.0));
 }

@@ -17,8 +17,20 @@ pub fn add(
     height: u32,
     accumulated: u32,
 ) -> ImageHandle {
-    let history = g.temporal_image(HISTORY_KEY, ImageDesc::rgba32f(width, height));
-    let mut p = g.add_pass("accumulate");
+    add_keyed(g, HISTORY_KEY, input, (width, height), accumulated)
+}
+
+/// Adds accumulation of the `rgba32f` image `input` into the history `key` (also the pass name),
+/// as [`add`] does.
+pub fn add_keyed(
+    g: &mut RenderGraph,
+    key: &str,
+    input: ImageHandle,
+    (width, height): (u32, u32),
+    accumulated: u32,
+) -> ImageHandle {
+    let history = g.temporal_image(key, ImageDesc::rgba32f(width, height));
+    let mut p = g.add_pass(key);
     let input = p.read(input, Access::ComputeRead);
     let prev = p.read(history.prev, Access::ComputeRead);
     let cur = p.write(history.cur, Access::ComputeWrite);

@@ -16,11 +16,10 @@ mod params;
 
 pub use params::{Params, LIGHT_VERTEX_BYTES};
 
-use crate::path_trace::Outputs;
 use crate::scene_buffers::SceneHandles;
 use crate::shaders::bdpt::{CAMERA, LIGHT, LIGHT_CAS};
+use crate::transport::{Images, Outputs};
 use lucid_engine::graph::{Access, BufferHandle, RenderGraph};
-use lucid_engine::memory::ImageDesc;
 use lucid_engine::shader::Specialization;
 
 /// The multiple-importance-sampling heuristic combining the strategies.
@@ -131,10 +130,7 @@ pub fn add(
     let count = p.read(count, Access::ComputeRead);
     let splat = p.read(splat, Access::ComputeRead);
     let stats = p.write(stats, Access::ComputeReadWrite);
-    let radiance = p.create_image("bdpt.radiance", ImageDesc::rgba32f(width, height));
-    let radiance = p.write(radiance, Access::ComputeWrite);
-    let demodulated = p.create_image("bdpt.demodulated", ImageDesc::rgba32f(width, height));
-    let demodulated = p.write(demodulated, Access::ComputeWrite);
+    let images = Images::create(&mut p, "bdpt", width, height);
     let scene = *scene;
     p.execute(move |ctx| {
         let dispatch = ctx
@@ -146,15 +142,13 @@ pub fn add(
             .buffer("b_lvc", cache)
             .buffer("b_lvc_count", count)
             .buffer("b_splat", splat)
-            .image("u_radiance", radiance)
-            .image("u_demodulated", demodulated);
+            .image("u_radiance", images.radiance)
+            .image("u_demodulated", images.demodulated)
+            .image("u_albedo", images.albedo)
+            .image("u_emission", images.emission);
         scene.bind(dispatch).dispatch_threads([width, height, 1])
     });
-    Outputs {
-        radiance,
-        demodulated,
-        stats,
-    }
+    images.with_stats(stats)
 }
 
 /// Adds a pass creating the zeroed light-tracing splat buffer (RGB floats per pixel).

@@ -36,7 +36,8 @@ use lucid_engine::{Context, EngineError, Result};
 pub struct FrameImages {
     /// Noisy radiance of this frame.
     pub radiance: ImageHandle,
-    /// Radiance demodulated by albedo.
+    /// Radiance without the first hit's emission, divided by its albedo (see
+    /// [`crate::transport::Outputs::demodulated`]).
     pub demodulated: ImageHandle,
     /// Accumulated (or this frame's) HDR radiance.
     pub hdr: ImageHandle,
@@ -284,7 +285,14 @@ impl Renderer {
         let prev_transforms = add_prev_transforms(g, &self.prev_transforms);
         let gbuffer = gbuffer::add(g, &scene, frame, prev_transforms, &self.spec, w, h);
         let traced = match self.settings.algorithm {
-            Algorithm::PathTracing => path_trace::add(g, &scene, frame, &self.spec, w, h),
+            Algorithm::PathTracing => path_trace::add(
+                g,
+                &scene,
+                frame,
+                &self.spec,
+                (w, h),
+                self.settings.path_threads,
+            ),
             Algorithm::Bidirectional => {
                 let sampling = bdpt::Frame {
                     width: w,
@@ -312,10 +320,9 @@ impl Renderer {
                     self.svgf_schedule
                         .decide(params.mode, self.frame_index, accumulated, spp);
                 let inputs = svgf::FrameInputs {
-                    radiance: traced.radiance,
+                    transport: traced,
                     accumulated: hdr,
                     accumulated_frames: accumulated,
-                    samples_per_pixel: spp,
                     gbuffer,
                     scene: &scene,
                     frame,

@@ -1,7 +1,7 @@
 //! SVGF's spatial half: variance estimation, the edge-avoiding a-trous wavelet filter and
 //! re-modulation (`shaders/svgf/{moments,variance,atrous,atrous_feedback,modulate}.comp`).
 
-use super::primary::Primary;
+use super::demodulate::Demodulated;
 use super::SvgfParams;
 use crate::gbuffer::GBuffer;
 use crate::shaders::svgf::{ATROUS, ATROUS_FEEDBACK, MODULATE, MOMENTS, VARIANCE};
@@ -38,21 +38,20 @@ pub(super) fn moments(
 }
 
 /// Estimates variance (temporally, or spatially where the history is short), filters with
-/// `params.iterations` a-trous iterations and re-modulates with `primary`'s albedo and emission.
+/// `params.iterations` a-trous iterations and re-modulates with `demodulated`'s albedo and emission.
 /// The first iteration's output is also written to `feedback` (the colour history) when given.
 /// Returns the denoised radiance.
 pub(super) fn add(
     g: &mut RenderGraph,
-    (color, moments): (ImageHandle, ImageHandle),
+    (demodulated, moments): (&Demodulated, ImageHandle),
     gbuffer: &GBuffer,
-    primary: &Primary,
     params: &SvgfParams,
     feedback: Option<ImageHandle>,
     (width, height): (u32, u32),
 ) -> ImageHandle {
     let desc = ImageDesc::rgba32f(width, height);
     let mut p = g.add_pass("svgf.variance");
-    let color = p.read(color, Access::ComputeRead);
+    let color = p.read(demodulated.illumination, Access::ComputeRead);
     let moments = p.read(moments, Access::ComputeRead);
     let depth = p.read(gbuffer.depth, Access::ComputeRead);
     let normal = p.read(gbuffer.normal_roughness, Access::ComputeRead);
@@ -107,20 +106,20 @@ pub(super) fn add(
         });
         filtered = out;
     }
-    modulate(g, filtered, primary, (width, height))
+    modulate(g, filtered, demodulated, (width, height))
 }
 
 /// Re-modulates filtered illumination by the albedo and adds the directly seen emission back.
 fn modulate(
     g: &mut RenderGraph,
     illumination: ImageHandle,
-    primary: &Primary,
+    demodulated: &Demodulated,
     (width, height): (u32, u32),
 ) -> ImageHandle {
     let mut p = g.add_pass("svgf.modulate");
     let illumination = p.read(illumination, Access::ComputeRead);
-    let albedo = p.read(primary.albedo, Access::ComputeRead);
-    let emission = p.read(primary.emission, Access::ComputeRead);
+    let albedo = p.read(demodulated.albedo, Access::ComputeRead);
+    let emission = p.read(demodulated.emission, Access::ComputeRead);
     let out = p.create_image("svgf.output", ImageDesc::rgba32f(width, height));
     let out = p.write(out, Access::ComputeWrite);
     p.execute(move |ctx| {

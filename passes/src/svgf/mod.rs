@@ -7,36 +7,39 @@
 //!    tracer produced for it; the differences are spread over 7x7 strata. Where only the camera
 //!    moved they are exactly zero; where a light or an object changed they measure the share of
 //!    shading that changed.
-//! 2. **Demodulation** (`primary`): `(radiance - emission) / albedo` with the emission and albedo
-//!    of the path tracer's own primary hit (re-cast with its random numbers); the albedo and
-//!    emission added back at the end are averaged over a fixed lattice of primary rays per pixel
-//!    ([`SvgfParams::primary_grid`]), so that emitter and texture edges stay antialiased and do
-//!    not flicker.
-//! 3. **Temporal accumulation** (`temporal`): reproject the history with the motion vectors
-//!    (bilinear taps validated by depth, normal and object id, else a 3x3 search, else a
-//!    disocclusion), blend colour and the first two luminance moments with moving averages whose
-//!    weight the gradient raises, count the history length.
-//! 4. **Filter** (`filter`): variance from the moments (spatial 7x7 estimate while the history
+//! 2. **Temporal accumulation** (`temporal`): the light-transport pass demodulated each sample by
+//!    its own first hit, `(radiance - emission) / albedo` ([`transport::Outputs`]); reproject the
+//!    history with the motion vectors (bilinear taps validated by depth, normal and object id,
+//!    else a 3x3 search, else a disocclusion), blend this illumination, the first two luminance
+//!    moments and the first hits' albedo and emission with moving averages whose weight the
+//!    gradient raises, count the history length. The averaged albedo and emission are antialiased
+//!    (each frame's samples are jittered over the pixel), so emitter and texture edges do not
+//!    flicker under sub-pixel motion.
+//! 3. **Filter** (`filter`): variance from the moments (spatial 7x7 estimate while the history
 //!    is shorter than 4 frames), `iterations` a-trous iterations with depth, normal and
 //!    luminance-variance edge stopping; the first iteration's output is the next frame's colour
 //!    history; re-modulation by albedo plus emission.
 //!
 //! The histories are the render graph's keyed temporal images ([`COLOR_KEY`], [`MOMENTS_KEY`],
-//! [`SURFACE_KEY`]): a resize or
-//! [`Executor::reset_history`](lucid_engine::graph::Executor::reset_history) starts them afresh. The spatial modes run steps 2 and 4 on the (accumulated) output.
+//! [`SURFACE_KEY`], [`ALBEDO_KEY`], [`EMISSION_KEY`]): a resize or
+//! [`Executor::reset_history`](lucid_engine::graph::Executor::reset_history) starts them afresh.
+//! The spatial modes filter the (accumulated) output, demodulated by the first hits' albedo and
+//! emission accumulated over the same frames (`demodulate`).
 
+mod demodulate;
 mod filter;
 mod gradient;
 mod params;
-mod primary;
 mod schedule;
 mod temporal;
 
+pub use demodulate::{ALBEDO_ACCUMULATED_KEY, EMISSION_ACCUMULATED_KEY};
 pub use params::{SvgfMode, SvgfParams};
 pub use schedule::{Apply, Schedule};
 
 use crate::gbuffer::GBuffer;
 use crate::scene_buffers::SceneHandles;
+use crate::transport;
 use lucid_engine::graph::{BufferHandle, ImageHandle, RenderGraph, TemporalImage};
 use lucid_engine::shader::Specialization;
 
@@ -46,6 +49,10 @@ pub const COLOR_KEY: &str = "svgf.color";
 pub const MOMENTS_KEY: &str = "svgf.moments";
 /// History key of the surface records (depth, normal, object id, raw radiance luminance).
 pub const SURFACE_KEY: &str = "svgf.surface";
+/// History key of the averaged first-hit albedo.
+pub const ALBEDO_KEY: &str = "svgf.albedo";
+/// History key of the averaged first-hit emission.
+pub const EMISSION_KEY: &str = "svgf.emission";
 
 /// Side of a gradient stratum in pixels.
 const STRATUM: u32 = 3;
@@ -55,18 +62,18 @@ struct Histories {
     color: TemporalImage,
     moments: TemporalImage,
     surface: TemporalImage,
+    albedo: TemporalImage,
+    emission: TemporalImage,
 }
 
 /// What the denoiser reads of a frame.
 pub struct FrameInputs<'a> {
-    /// This frame's noisy radiance (the temporal filter's input).
-    pub radiance: ImageHandle,
+    /// This frame's light transport (the temporal filter's input).
+    pub transport: transport::Outputs,
     /// The (accumulated) output the spatial modes filter.
     pub accumulated: ImageHandle,
     /// Frames averaged into `accumulated` before this one (0: it is this frame's radiance).
     pub accumulated_frames: u32,
-    /// Samples per pixel of this frame.
-    pub samples_per_pixel: u32,
     /// Primary visibility.
     pub gbuffer: GBuffer,
     /// The scene (the gradient pass re-traces paths).
@@ -82,7 +89,8 @@ pub struct FrameInputs<'a> {
 }
 
 /// Adds what `apply` asks for; returns the denoised radiance (`inputs.accumulated` for
-/// [`Apply::Nothing`]).
+/// [`Apply::Nothing`]). The spatial modes average the first hits' albedo and emission every frame,
+/// filtered or not, so that they match the accumulated radiance once the filter starts.
 pub fn add(
     g: &mut RenderGraph,
     inputs: &FrameInputs<'_>,
@@ -91,8 +99,16 @@ pub fn add(
 ) -> ImageHandle {
     match apply {
         Apply::Temporal { continues } => add_temporal(g, inputs, params, continues),
-        Apply::Spatial => add_spatial(g, inputs, params),
-        Apply::Nothing => inputs.accumulated,
+        Apply::Spatial => {
+            let surface = demodulate::accumulate_surface(g, inputs);
+            add_spatial(g, inputs, params, surface)
+        }
+        Apply::Nothing => {
+            if params.mode != SvgfMode::Temporal {
+                demodulate::accumulate_surface(g, inputs);
+            }
+            inputs.accumulated
+        }
     }
 }
 
@@ -110,6 +126,8 @@ pub fn add_temporal(
         color: g.temporal_image(COLOR_KEY, color_desc),
         moments: g.temporal_image(MOMENTS_KEY, color_desc),
         surface: g.temporal_image(SURFACE_KEY, surface_desc),
+        albedo: g.temporal_image(ALBEDO_KEY, color_desc),
+        emission: g.temporal_image(EMISSION_KEY, color_desc),
     };
     let gradient = gradient::add(
         g,
@@ -124,18 +142,9 @@ pub fn add_temporal(
             height: inputs.height,
         },
     );
-    let primary = primary::add(
-        g,
-        inputs.scene,
-        inputs.frame,
-        inputs.spec,
-        inputs.radiance,
-        (inputs.samples_per_pixel == 1, params.primary_grid),
-        size,
-    );
     let integrated = temporal::add(
         g,
-        (inputs.radiance, primary.illumination),
+        &inputs.transport,
         &inputs.gbuffer,
         gradient,
         (&history, continues),
@@ -148,38 +157,30 @@ pub fn add_temporal(
     };
     filter::add(
         g,
-        (integrated.color, integrated.moments),
+        (&integrated.demodulated, integrated.moments),
         &inputs.gbuffer,
-        &primary,
         &params,
         Some(history.color.cur),
         size,
     )
 }
 
-/// Adds the spatial filter alone (variance estimated spatially) on `inputs.accumulated`.
-pub fn add_spatial(
+/// Adds the spatial filter alone (variance estimated spatially) on `inputs.accumulated`,
+/// demodulated by `surface`, the first hits' albedo and emission accumulated over the same frames
+/// (see [`demodulate::accumulate_surface`]).
+fn add_spatial(
     g: &mut RenderGraph,
     inputs: &FrameInputs<'_>,
     params: &SvgfParams,
+    surface: (ImageHandle, ImageHandle),
 ) -> ImageHandle {
     let size = (inputs.width, inputs.height);
-    let single_sample = inputs.samples_per_pixel == 1 && inputs.accumulated_frames == 0;
-    let primary = primary::add(
-        g,
-        inputs.scene,
-        inputs.frame,
-        inputs.spec,
-        inputs.accumulated,
-        (single_sample, params.primary_grid),
-        size,
-    );
-    let moments = filter::moments(g, primary.illumination, size);
+    let demodulated = demodulate::add(g, inputs, surface);
+    let moments = filter::moments(g, demodulated.illumination, size);
     filter::add(
         g,
-        (primary.illumination, moments),
+        (&demodulated, moments),
         &inputs.gbuffer,
-        &primary,
         params,
         None,
         size,

@@ -34,10 +34,6 @@ pub struct SvgfParams {
     pub sigma_l: f32,
     /// Reject history where the temporal gradient shows that shading changed (A-SVGF).
     pub gradients: bool,
-    /// Side of the lattice of primary rays per pixel that antialias the re-modulation albedo and
-    /// emission (`n * n` rays: 4 costs 16 primary rays per pixel; 1 samples pixel centres and
-    /// flickers at emitter and texture edges under sub-pixel motion).
-    pub primary_grid: u32,
 }
 
 impl Default for SvgfParams {
@@ -51,7 +47,6 @@ impl Default for SvgfParams {
             sigma_n: 128.0,
             sigma_l: 4.0,
             gradients: true,
-            primary_grid: 4,
         }
     }
 }

@@ -1,8 +1,10 @@
 //! SVGF temporal accumulation (`shaders/svgf/temporal.comp`) over the keyed histories.
 
+use super::demodulate::Demodulated;
 use super::{Histories, STRATUM};
 use crate::gbuffer::GBuffer;
 use crate::shaders::svgf::TEMPORAL;
+use crate::transport;
 use lucid_engine::graph::{Access, ImageHandle, RenderGraph};
 use lucid_engine::memory::ImageDesc;
 
@@ -23,17 +25,19 @@ const MAX_HISTORY: f32 = 64.0;
 
 /// The integrated illumination and moments of this frame.
 pub(super) struct Integrated {
-    /// Demodulated illumination (rgb).
-    pub color: ImageHandle,
+    /// Demodulated illumination (rgb), the first-hit albedo and emission to re-modulate with
+    /// (also this frame's albedo and emission histories).
+    pub demodulated: Demodulated,
     /// Luminance moments (xy) and history length (z); also this frame's moments history.
     pub moments: ImageHandle,
 }
 
-/// Adds the temporal accumulation of `illumination` (demodulated `radiance`), reading last frame's
-/// histories (unless `continues` is false) and writing this frame's moments and surface records.
+/// Adds the temporal accumulation of the light transport's demodulated radiance, first-hit albedo
+/// and emission, reading last frame's histories (unless `continues` is false) and writing this
+/// frame's moments, albedo, emission and surface records.
 pub(super) fn add(
     g: &mut RenderGraph,
-    (radiance, illumination): (ImageHandle, ImageHandle),
+    transport: &transport::Outputs,
     gbuffer: &GBuffer,
     gradient: ImageHandle,
     (history, continues): (&Histories, bool),
@@ -41,8 +45,10 @@ pub(super) fn add(
     (width, height): (u32, u32),
 ) -> Integrated {
     let mut p = g.add_pass("svgf.temporal");
-    let radiance = p.read(radiance, Access::ComputeRead);
-    let illumination = p.read(illumination, Access::ComputeRead);
+    let radiance = p.read(transport.radiance, Access::ComputeRead);
+    let illumination = p.read(transport.demodulated, Access::ComputeRead);
+    let albedo = p.read(transport.albedo, Access::ComputeRead);
+    let emission = p.read(transport.emission, Access::ComputeRead);
     let depth = p.read(gbuffer.depth, Access::ComputeRead);
     let normal = p.read(gbuffer.normal_roughness, Access::ComputeRead);
     let ids = p.read(gbuffer.ids, Access::ComputeRead);
@@ -51,10 +57,14 @@ pub(super) fn add(
     let prev_color = p.read(history.color.prev, Access::ComputeRead);
     let prev_moments = p.read(history.moments.prev, Access::ComputeRead);
     let prev_surface = p.read(history.surface.prev, Access::ComputeRead);
+    let prev_albedo = p.read(history.albedo.prev, Access::ComputeRead);
+    let prev_emission = p.read(history.emission.prev, Access::ComputeRead);
     let color = p.create_image("svgf.integrated", ImageDesc::rgba32f(width, height));
     let color = p.write(color, Access::ComputeWrite);
     let moments = p.write(history.moments.cur, Access::ComputeWrite);
     let surface = p.write(history.surface.cur, Access::ComputeWrite);
+    let albedo_out = p.write(history.albedo.cur, Access::ComputeWrite);
+    let emission_out = p.write(history.emission.cur, Access::ComputeWrite);
     p.execute(move |ctx| {
         let params = Params {
             alpha,
@@ -78,13 +88,27 @@ pub(super) fn add(
             .image("u_color", color)
             .image("u_moments", moments)
             .image("u_surface", surface)
+            .image("u_albedo", albedo)
+            .image("u_emission", emission)
+            .image("u_prev_albedo", prev_albedo)
+            .image("u_prev_emission", prev_emission)
+            .image("u_albedo_out", albedo_out)
+            .image("u_emission_out", emission_out)
             .push(&params)
             .dispatch_threads([width, height, 1])
     });
-    Integrated { color, moments }
+    Integrated {
+        demodulated: Demodulated {
+            illumination: color,
+            albedo: albedo_out,
+            emission: emission_out,
+        },
+        moments,
+    }
 }
 
-/// The history images' formats: colour and moments `rgba32f`, surface records `rgba32ui`.
+/// The history images' formats: colour, moments, albedo and emission `rgba32f`, surface records
+/// `rgba32ui`.
 pub(super) fn history_descs(width: u32, height: u32) -> (ImageDesc, ImageDesc) {
     (
         ImageDesc::rgba32f(width, height),

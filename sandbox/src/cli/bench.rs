@@ -92,6 +92,7 @@ pub fn run(args: &BenchArgs) -> anyhow::Result<()> {
         "size": [w, h],
         "spp": args.options.spp,
         "max_depth": args.options.max_depth,
+        "path_threads": args.options.path_threads,
         "frames": args.frames,
         "frame_ms": summary(&frame_ms),
         "passes_ms": passes.iter().map(|(k, v)| (k.clone(), summary(v))).collect::<BTreeMap<_, _>>(),
