@@ -100,16 +100,15 @@ uint order_children(uint left, float t_left, float t_right, out uint far_child) 
 }
 
 // Traverses one instance's BLAS in object space. Updates hit when closer; with any_hit, stops at
-// the first hit and returns true. A child's node is loaded once, when its box is tested, and
-// carried into the next step; a node popped from the stack is tested again against the closest
-// hit found since it was pushed.
+// the first hit and returns true.
 bool traverse_blas(uint inst_index, Instance inst, vec3 o, vec3 d, bool any_hit, inout Hit hit) {
     vec3 inv_dir = safe_inverse(d);
     uint stack[BLAS_STACK];
     uint sp = 0u;
-    BvhNode node = b_blas.n[inst.blas_root];
+    uint node_index = inst.blas_root;
     bool found = false;
     while (true) {
+        BvhNode node = b_blas.n[node_index];
         if (node.count > 0u) {
             for (uint k = 0u; k < node.count; ++k) {
                 uint prim = node.left_or_first + k;
@@ -133,30 +132,24 @@ bool traverse_blas(uint inst_index, Instance inst, vec3 o, vec3 d, bool any_hit,
             }
         } else if (node.left_or_first != 0u) {
             uint left = node.left_or_first;
-            BvhNode left_node = b_blas.n[left];
-            BvhNode right_node = b_blas.n[left + 1u];
             uint far_child;
             uint near_child = order_children(
                 left,
-                box_entry(left_node, o, inv_dir, hit.t),
-                box_entry(right_node, o, inv_dir, hit.t),
+                box_entry(b_blas.n[left], o, inv_dir, hit.t),
+                box_entry(b_blas.n[left + 1u], o, inv_dir, hit.t),
                 far_child);
             if (near_child != NO_NODE) {
                 if (far_child != NO_NODE && sp < BLAS_STACK) {
                     stack[sp++] = far_child;
                 }
-                node = near_child == left ? left_node : right_node;
+                node_index = near_child;
                 continue;
             }
         }
-        bool next = false;
-        while (sp > 0u && !next) {
-            node = b_blas.n[stack[--sp]];
-            next = box_entry(node, o, inv_dir, hit.t) < T_INFINITY;
-        }
-        if (!next) {
+        if (sp == 0u) {
             break;
         }
+        node_index = stack[--sp];
     }
     return found;
 }
@@ -173,12 +166,13 @@ bool trace_ray(vec3 origin, vec3 dir, float t_max, bool any_hit, out Hit hit) {
     vec3 inv_dir = safe_inverse(dir);
     uint stack[TLAS_STACK];
     uint sp = 0u;
-    BvhNode node = b_tlas.n[0];
+    uint node_index = 0u;
     bool found = false;
-    if (box_entry(node, origin, inv_dir, hit.t) == T_INFINITY) {
+    if (box_entry(b_tlas.n[0], origin, inv_dir, hit.t) == T_INFINITY) {
         return false;
     }
     while (true) {
+        BvhNode node = b_tlas.n[node_index];
         if (node.count > 0u) {
             for (uint k = 0u; k < node.count; ++k) {
                 uint inst_index = node.left_or_first + k;
@@ -194,30 +188,24 @@ bool trace_ray(vec3 origin, vec3 dir, float t_max, bool any_hit, out Hit hit) {
             }
         } else if (node.left_or_first != 0u) {
             uint left = node.left_or_first;
-            BvhNode left_node = b_tlas.n[left];
-            BvhNode right_node = b_tlas.n[left + 1u];
             uint far_child;
             uint near_child = order_children(
                 left,
-                box_entry(left_node, origin, inv_dir, hit.t),
-                box_entry(right_node, origin, inv_dir, hit.t),
+                box_entry(b_tlas.n[left], origin, inv_dir, hit.t),
+                box_entry(b_tlas.n[left + 1u], origin, inv_dir, hit.t),
                 far_child);
             if (near_child != NO_NODE) {
                 if (far_child != NO_NODE && sp < TLAS_STACK) {
                     stack[sp++] = far_child;
                 }
-                node = near_child == left ? left_node : right_node;
+                node_index = near_child;
                 continue;
             }
         }
-        bool next = false;
-        while (sp > 0u && !next) {
-            node = b_tlas.n[stack[--sp]];
-            next = box_entry(node, origin, inv_dir, hit.t) < T_INFINITY;
-        }
-        if (!next) {
+        if (sp == 0u) {
             break;
         }
+        node_index = stack[--sp];
     }
     return found;
 }

@@ -41,7 +41,7 @@ layout(push_constant) uniform Params {
     uint history_valid;   // 0 after a reset: every pixel is a disocclusion
     uint stratum;         // side of a gradient stratum in pixels
     float max_history;    // cap of the history length
-    float pad0;
+    float surface_alpha;  // albedo and emission blend weight of a long history
     float pad1;
     float pad2;
 } params;
@@ -138,8 +138,9 @@ void main() {
         float a = mix(max(params.alpha, 1.0 / (n + 1.0)), 1.0, lambda);
         float am = mix(max(params.moments_alpha, 1.0 / (n + 1.0)), 1.0, lambda);
         color = mix(prev_color, illum, a);
-        albedo = mix(prev_albedo, albedo, a);
-        emission = mix(prev_emission, emission, a);
+        float a_surface = mix(max(params.surface_alpha, 1.0 / (n + 1.0)), 1.0, lambda);
+        albedo = mix(prev_albedo, albedo, a_surface);
+        emission = mix(prev_emission, emission, a_surface);
         moments = mix(prev_moments.xy, moments, am);
         history = min(n + 1.0, params.max_history);
     }

@@ -148,7 +148,7 @@ pub fn add_temporal(
         &inputs.gbuffer,
         gradient,
         (&history, continues),
-        (params.alpha, params.moments_alpha),
+        (params.alpha, params.moments_alpha, params.surface_alpha),
         size,
     );
     let params = SvgfParams {

@@ -26,6 +26,10 @@ pub struct SvgfParams {
     pub alpha: f32,
     /// Weight of the new frame in the luminance moments' moving average.
     pub moments_alpha: f32,
+    /// Weight of the new frame in the moving averages of the first hits' albedo and emission,
+    /// which re-modulate the filtered illumination (lower: steadier edges under motion; the
+    /// temporal gradient still resets them where emission changes).
+    pub surface_alpha: f32,
     /// Depth edge stopping (larger tolerates more depth difference).
     pub sigma_z: f32,
     /// Normal edge stopping: the exponent of the normals' cosine.
@@ -43,6 +47,7 @@ impl Default for SvgfParams {
             iterations: 5,
             alpha: 0.2,
             moments_alpha: 0.2,
+            surface_alpha: 0.1,
             sigma_z: 1.0,
             sigma_n: 128.0,
             sigma_l: 4.0,

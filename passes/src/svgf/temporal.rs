@@ -17,7 +17,8 @@ struct Params {
     history_valid: u32,
     stratum: u32,
     max_history: f32,
-    pad: [f32; 3],
+    surface_alpha: f32,
+    pad: [f32; 2],
 }
 
 /// Longest history a pixel counts (the moving averages' weights stop falling before this).
@@ -41,7 +42,7 @@ pub(super) fn add(
     gbuffer: &GBuffer,
     gradient: ImageHandle,
     (history, continues): (&Histories, bool),
-    (alpha, moments_alpha): (f32, f32),
+    (alpha, moments_alpha, surface_alpha): (f32, f32, f32),
     (width, height): (u32, u32),
 ) -> Integrated {
     let mut p = g.add_pass("svgf.temporal");
@@ -72,7 +73,8 @@ pub(super) fn add(
             history_valid: u32::from(continues && ctx.history_valid(prev_color)),
             stratum: STRATUM,
             max_history: MAX_HISTORY,
-            pad: [0.0; 3],
+            surface_alpha,
+            pad: [0.0; 2],
         };
         ctx.compute(&TEMPORAL)
             .image("u_radiance", radiance)
