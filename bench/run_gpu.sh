@@ -19,27 +19,6 @@ for algo in $algos; do
     echo "done $algo $scene"
   done
 done
-# Path regeneration: threads the path tracer runs (2073600 = one per pixel at 1080p, no
-# regeneration), and a check that the image does not depend on them (EXRs compared byte for byte).
-for threads in ${THREADS_SWEEP:-}; do
-  for scene in cornell-box classroom; do
-    "$lucid" bench --scene "$scene" --algo pt --size 1920x1080 --spp 1 --max-depth 8 --path-threads "$threads" \
-      --frames "$frames" --warmup 10 --json "$runs/threads_${threads}_${scene}.json" > /dev/null
-    echo "done threads $threads $scene"
-  done
-done
-if [ -n "${THREADS_SWEEP:-}" ]; then
-  for threads in 4096 2073600; do
-    "$lucid" render --scene classroom --size 1920x1080 --spp 1 --frames 1 --path-threads "$threads" \
-      --out "$runs/classroom_threads_$threads.exr" > /dev/null
-  done
-  if cmp -s "$runs/classroom_threads_4096.exr" "$runs/classroom_threads_2073600.exr"; then
-    echo '{"identical": true}' > "$runs/threads_image_check.json"
-  else
-    echo '{"identical": false}' > "$runs/threads_image_check.json"
-  fi
-  rm -f "$runs"/classroom_threads_*.exr
-fi
 # The SVGF denoiser's cost at the resolutions the study timed its denoiser at.
 if [ "${SVGF:-1}" = 1 ]; then
   for size in 1920x1080 1280x720 854x480 640x360; do

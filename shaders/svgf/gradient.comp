@@ -57,7 +57,7 @@ void main() {
         vec3 origin;
         vec3 dir;
         camera_ray(b_frame.f.prev_camera, ndc, aspect, rng_next2(rng), origin, dir);
-        vec3 l = path_trace_all(origin, dir, rng, max_depth, rr_depth, rays).radiance;
+        vec3 l = trace_path(origin, dir, rng, max_depth, rr_depth, rays).radiance;
         if (any(isnan(l)) || any(isinf(l))) {
             l = vec3(0.0);
         }

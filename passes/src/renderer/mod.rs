@@ -285,14 +285,7 @@ impl Renderer {
         let prev_transforms = add_prev_transforms(g, &self.prev_transforms);
         let gbuffer = gbuffer::add(g, &scene, frame, prev_transforms, &self.spec, w, h);
         let traced = match self.settings.algorithm {
-            Algorithm::PathTracing => path_trace::add(
-                g,
-                &scene,
-                frame,
-                &self.spec,
-                (w, h),
-                self.settings.path_threads,
-            ),
+            Algorithm::PathTracing => path_trace::add(g, &scene, frame, &self.spec, w, h),
             Algorithm::Bidirectional => {
                 let sampling = bdpt::Frame {
                     width: w,

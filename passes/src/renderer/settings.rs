@@ -62,9 +62,6 @@ pub struct Settings {
     pub denoiser: Denoiser,
     /// The SVGF denoiser's parameters.
     pub svgf: SvgfParams,
-    /// Threads the path tracer runs, each taking pixel after pixel (path regeneration); see
-    /// [`crate::path_trace::DEFAULT_THREADS`]. The image does not depend on it.
-    pub path_threads: u32,
 }
 
 impl Default for Settings {
@@ -82,7 +79,6 @@ impl Default for Settings {
             },
             denoiser: Denoiser::None,
             svgf: SvgfParams::default(),
-            path_threads: crate::path_trace::DEFAULT_THREADS,
         }
     }
 }

@@ -1,7 +1,6 @@
 //! A-SVGF temporal gradients (`shaders/svgf/gradient.comp`, `gradient_filter.comp`): re-traced
 //! samples per stratum compared with last frame's radiance, then spread over a neighbourhood.
 
-use super::STRATUM;
 use crate::scene_buffers::SceneHandles;
 use crate::shaders::svgf::{GRADIENT, GRADIENT_FILTER};
 use lucid_engine::graph::{Access, BufferHandle, ImageHandle, RenderGraph};
@@ -20,15 +19,17 @@ pub(super) struct GradientInputs<'a> {
     pub motion: ImageHandle,
     pub prev_surface: ImageHandle,
     pub enabled: bool,
+    pub stratum: u32,
     pub width: u32,
     pub height: u32,
 }
 
 /// Adds the gradient passes; returns per stratum (filtered luminance difference, normaliser).
 pub(super) fn add(g: &mut RenderGraph, inputs: &GradientInputs<'_>) -> ImageHandle {
+    let stratum = inputs.stratum.max(1);
     let (gw, gh) = (
-        inputs.width.div_ceil(STRATUM),
-        inputs.height.div_ceil(STRATUM),
+        inputs.width.div_ceil(stratum),
+        inputs.height.div_ceil(stratum),
     );
     let mut p = g.add_pass("svgf.gradient");
     inputs.scene.read(&mut p);
@@ -38,12 +39,12 @@ pub(super) fn add(g: &mut RenderGraph, inputs: &GradientInputs<'_>) -> ImageHand
     let out = p.create_image("svgf.gradient", ImageDesc::rgba32f(gw, gh));
     let out = p.write(out, Access::ComputeWrite);
     let (scene, spec) = (*inputs.scene, inputs.spec.clone());
-    let push = [u32::from(inputs.enabled), STRATUM];
+    let push = [u32::from(inputs.enabled), stratum];
     p.execute(move |ctx| {
         let enabled = if ctx.history_valid(prev_surface) {
             push
         } else {
-            [0, STRATUM]
+            [0, stratum]
         };
         let dispatch = ctx
             .compute(&GRADIENT)

@@ -2,9 +2,9 @@
 //! (Schied et al. 2018), in compute passes over the G-buffer (`shaders/svgf/`).
 //!
 //! Temporal mode, per frame:
-//! 1. **Gradients** (`gradient`): per 3x3 stratum, one pixel's path of last frame is re-traced in
-//!    the current scene with last frame's camera and random numbers and compared with what the path
-//!    tracer produced for it; the differences are spread over 7x7 strata. Where only the camera
+//! 1. **Gradients** (`gradient`): per stratum of n x n pixels ([`SvgfParams::gradient_stratum`]),
+//!    one pixel's path of last frame is re-traced in the current scene with last frame's camera and
+//!    random numbers and compared with what the path tracer produced for it; the differences are spread over 7x7 strata. Where only the camera
 //!    moved they are exactly zero; where a light or an object changed they measure the share of
 //!    shading that changed.
 //! 2. **Temporal accumulation** (`temporal`): the light-transport pass demodulated each sample by
@@ -53,9 +53,6 @@ pub const SURFACE_KEY: &str = "svgf.surface";
 pub const ALBEDO_KEY: &str = "svgf.albedo";
 /// History key of the averaged first-hit emission.
 pub const EMISSION_KEY: &str = "svgf.emission";
-
-/// Side of a gradient stratum in pixels.
-const STRATUM: u32 = 3;
 
 /// The keyed histories of one frame.
 struct Histories {
@@ -138,6 +135,7 @@ pub fn add_temporal(
             motion: inputs.gbuffer.motion,
             prev_surface: history.surface.prev,
             enabled: params.gradients && continues,
+            stratum: params.gradient_stratum,
             width: inputs.width,
             height: inputs.height,
         },
@@ -149,6 +147,7 @@ pub fn add_temporal(
         gradient,
         (&history, continues),
         (params.alpha, params.moments_alpha, params.surface_alpha),
+        params.gradient_stratum,
         size,
     );
     let params = SvgfParams {

@@ -38,6 +38,9 @@ pub struct SvgfParams {
     pub sigma_l: f32,
     /// Reject history where the temporal gradient shows that shading changed (A-SVGF).
     pub gradients: bool,
+    /// Side in pixels of the strata that get one re-traced gradient sample each (A-SVGF uses 3;
+    /// 4 re-traces 44% fewer paths and measured as good on the disocclusion and light tests).
+    pub gradient_stratum: u32,
 }
 
 impl Default for SvgfParams {
@@ -52,6 +55,7 @@ impl Default for SvgfParams {
             sigma_n: 128.0,
             sigma_l: 4.0,
             gradients: true,
+            gradient_stratum: 4,
         }
     }
 }

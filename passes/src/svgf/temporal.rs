@@ -1,7 +1,7 @@
 //! SVGF temporal accumulation (`shaders/svgf/temporal.comp`) over the keyed histories.
 
 use super::demodulate::Demodulated;
-use super::{Histories, STRATUM};
+use super::Histories;
 use crate::gbuffer::GBuffer;
 use crate::shaders::svgf::TEMPORAL;
 use crate::transport;
@@ -43,6 +43,7 @@ pub(super) fn add(
     gradient: ImageHandle,
     (history, continues): (&Histories, bool),
     (alpha, moments_alpha, surface_alpha): (f32, f32, f32),
+    stratum: u32,
     (width, height): (u32, u32),
 ) -> Integrated {
     let mut p = g.add_pass("svgf.temporal");
@@ -71,7 +72,7 @@ pub(super) fn add(
             alpha,
             moments_alpha,
             history_valid: u32::from(continues && ctx.history_valid(prev_color)),
-            stratum: STRATUM,
+            stratum: stratum.max(1),
             max_history: MAX_HISTORY,
             surface_alpha,
             pad: [0.0; 2],

@@ -67,7 +67,10 @@ pub fn run(args: &BenchArgs) -> anyhow::Result<()> {
     let wall = std::time::Instant::now();
     for _ in 0..args.frames {
         let mut g = lucid_engine::graph::RenderGraph::new();
-        let (_, stats) = renderer.add_frame(&mut g);
+        let (images, stats) = renderer.add_frame(&mut g);
+        // The displayed image leaves the graph, as in the sandbox: without a consumer, the
+        // passes that only feed it (the last a-trous iterations, tone mapping) would be culled.
+        g.readback(images.ldr);
         let frame = renderer.executor_mut().execute(g.compile()?)?;
         let outputs = renderer.executor_mut().wait(frame)?;
         renderer.collect_stats(&outputs, stats)?;
@@ -92,7 +95,6 @@ pub fn run(args: &BenchArgs) -> anyhow::Result<()> {
         "size": [w, h],
         "spp": args.options.spp,
         "max_depth": args.options.max_depth,
-        "path_threads": args.options.path_threads,
         "frames": args.frames,
         "frame_ms": summary(&frame_ms),
         "passes_ms": passes.iter().map(|(k, v)| (k.clone(), summary(v))).collect::<BTreeMap<_, _>>(),

@@ -64,11 +64,6 @@ pub struct RenderOptions {
     /// Denoiser applied after tracing.
     #[arg(long, value_enum, default_value_t = DenoiseArg::None)]
     pub denoise: DenoiseArg,
-    /// Threads the path tracer runs, each taking pixel after pixel (the image does not depend on
-    /// it; a tuning knob for benchmarks).
-    #[arg(long, default_value_t = lucid_passes::path_trace::DEFAULT_THREADS,
-          value_parser = clap::value_parser!(u32).range(1..))]
-    pub path_threads: u32,
 }
 
 impl RenderOptions {
@@ -88,7 +83,6 @@ impl RenderOptions {
                 DenoiseArg::None => Denoiser::None,
                 DenoiseArg::Svgf => Denoiser::Svgf,
             },
-            path_threads: self.path_threads,
             ..Settings::default()
         }
     }
