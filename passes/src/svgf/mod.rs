@@ -146,8 +146,7 @@ pub fn add_temporal(
         &inputs.gbuffer,
         gradient,
         (&history, continues),
-        (params.alpha, params.moments_alpha, params.surface_alpha),
-        params.gradient_stratum,
+        params,
         size,
     );
     let params = SvgfParams {

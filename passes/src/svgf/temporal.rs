@@ -1,7 +1,7 @@
 //! SVGF temporal accumulation (`shaders/svgf/temporal.comp`) over the keyed histories.
 
 use super::demodulate::Demodulated;
-use super::Histories;
+use super::{Histories, SvgfParams};
 use crate::gbuffer::GBuffer;
 use crate::shaders::svgf::TEMPORAL;
 use crate::transport;
@@ -42,8 +42,7 @@ pub(super) fn add(
     gbuffer: &GBuffer,
     gradient: ImageHandle,
     (history, continues): (&Histories, bool),
-    (alpha, moments_alpha, surface_alpha): (f32, f32, f32),
-    stratum: u32,
+    params: &SvgfParams,
     (width, height): (u32, u32),
 ) -> Integrated {
     let mut p = g.add_pass("svgf.temporal");
@@ -67,8 +66,14 @@ pub(super) fn add(
     let surface = p.write(history.surface.cur, Access::ComputeWrite);
     let albedo_out = p.write(history.albedo.cur, Access::ComputeWrite);
     let emission_out = p.write(history.emission.cur, Access::ComputeWrite);
+    let (alpha, moments_alpha, surface_alpha, stratum) = (
+        params.alpha,
+        params.moments_alpha,
+        params.surface_alpha,
+        params.gradient_stratum,
+    );
     p.execute(move |ctx| {
-        let params = Params {
+        let push = Params {
             alpha,
             moments_alpha,
             history_valid: u32::from(continues && ctx.history_valid(prev_color)),
@@ -97,7 +102,7 @@ pub(super) fn add(
             .image("u_prev_emission", prev_emission)
             .image("u_albedo_out", albedo_out)
             .image("u_emission_out", emission_out)
-            .push(&params)
+            .push(&push)
             .dispatch_threads([width, height, 1])
     });
     Integrated {
