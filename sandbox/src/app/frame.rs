@@ -158,6 +158,7 @@ impl Session {
             source: self.source.name(),
             device: &self.ctx.info().name,
             extent: size,
+            split: self.source.split_stats(),
         };
         let state = &mut self.state;
         let mut requests = ui::Requests::default();
@@ -194,6 +195,7 @@ impl Session {
             settings: &self.state.render,
             extent: size,
             time: now as f32,
+            split: self.state.split.as_ref(),
         };
         let mut graph = RenderGraph::new();
         let hdr = match self.source.render(&mut graph, &request) {

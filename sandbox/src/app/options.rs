@@ -1,5 +1,6 @@
 //! How the sandbox was asked to start.
 
+use super::settings::RenderSettings;
 use std::path::PathBuf;
 
 /// Read back the window after some frames, save it and exit.
@@ -22,4 +23,13 @@ pub struct AppOptions {
     pub capture_dir: PathBuf,
     /// Take one screenshot and exit.
     pub screenshot: Option<Screenshot>,
+}
+
+/// The renderer configurations the window starts with (the panels change them later).
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct Startup {
+    /// The configuration of the image (of its left half in a split view).
+    pub render: RenderSettings,
+    /// Start in the split view, with this configuration on the right half.
+    pub split: Option<RenderSettings>,
 }

@@ -4,7 +4,7 @@
 use super::frame_source::{FrameSource, RendererSource, TestPatternSource};
 use super::gpu::{create_context, FrameRing, Swapchain};
 use super::input::{Action, Input};
-use super::options::AppOptions;
+use super::options::{AppOptions, Startup};
 use super::overlay::Overlay;
 use super::pending::Pending;
 use super::state::{AppState, PathMode};
@@ -59,8 +59,12 @@ pub struct Session {
 }
 
 impl Session {
-    /// Opens the window and sets up Vulkan, the UI and the scene.
-    pub fn new(event_loop: &ActiveEventLoop, options: &AppOptions) -> anyhow::Result<Self> {
+    /// Opens the window and sets up Vulkan, the UI and the scene, rendering as `startup` says.
+    pub fn new(
+        event_loop: &ActiveEventLoop,
+        options: &AppOptions,
+        startup: &Startup,
+    ) -> anyhow::Result<Self> {
         let attributes = Window::default_attributes()
             .with_title(format!("Lucid — {}", options.scene))
             .with_inner_size(PhysicalSize::new(options.size[0], options.size[1]));
@@ -74,7 +78,9 @@ impl Session {
         let swapchain = Swapchain::new(&ctx, surface, [size.width, size.height])?;
         let mut overlay = Overlay::new(&ctx, &window, swapchain.format())?;
         overlay.set_targets(swapchain.format(), swapchain.views(), swapchain.extent())?;
-        let state = AppState::new(&options.scene, scene::load(&options.scene));
+        let mut state = AppState::new(&options.scene, scene::load(&options.scene));
+        state.render = startup.render;
+        state.split = startup.split;
         let extent = swapchain.extent();
         let source = frame_source_for(&ctx, &state, [extent.width, extent.height])?;
         Ok(Self {
