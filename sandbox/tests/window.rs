@@ -1,5 +1,7 @@
 //! `lucid view` in a real window under Xvfb (lavapipe when there is no GPU, validation on): the
-//! split view's screenshot shows both configurations, a divider and a label per half.
+//! split view's screenshot shows both configurations, a divider and a label per half; the window
+//! self-test shrinks the window, minimizes it, restores it and loses its surface, and the app keeps
+//! running and ends cleanly.
 
 mod support;
 
@@ -15,9 +17,9 @@ fn temp(name: &str) -> std::path::PathBuf {
     std::env::temp_dir().join(format!("lucid-window-{}-{name}", std::process::id()))
 }
 
-/// Runs `lucid view ARGS --size WIDTHxHEIGHT --screenshot-after FRAMES <file>` and returns the
-/// screenshot.
-fn screenshot(args: &[&str], frames: u32, name: &str) -> Result<ImageData, String> {
+/// Runs `lucid view ARGS --size WIDTHxHEIGHT --screenshot-after FRAMES <file>`; returns the
+/// screenshot and what the app printed on stderr.
+fn screenshot(args: &[&str], frames: u32, name: &str) -> Result<(ImageData, String), String> {
     let shot = temp(name);
     let mut command = Command::new(env!("CARGO_BIN_EXE_lucid"));
     command
@@ -28,7 +30,7 @@ fn screenshot(args: &[&str], frames: u32, name: &str) -> Result<ImageData, Strin
         .arg(frames.to_string())
         .arg(&shot);
     let xvfb = Xvfb::start()?;
-    check_clean_exit(&xvfb.run(command)?)?;
+    let stderr = check_clean_exit(&xvfb.run(command)?)?;
     let image = load_png(&shot).map_err(|e| format!("reading the screenshot: {e}"))?;
     std::fs::remove_file(&shot).map_err(|e| e.to_string())?;
     if (image.width, image.height) != (WIDTH, HEIGHT) {
@@ -37,7 +39,7 @@ fn screenshot(args: &[&str], frames: u32, name: &str) -> Result<ImageData, Strin
             image.width, image.height
         ));
     }
-    Ok(image)
+    Ok((image, stderr))
 }
 
 fn luminance(p: [f32; 4]) -> f32 {
@@ -72,7 +74,7 @@ fn count(
 #[test]
 fn split_view_shows_two_configurations_a_divider_and_labels() {
     // Left: path tracing with SVGF; right: the same without a denoiser.
-    let image = screenshot(
+    let (image, _) = screenshot(
         &["cornell-box", "--denoise", "svgf", "--split", "pt/none"],
         6,
         "split.png",
@@ -115,5 +117,52 @@ fn split_view_shows_two_configurations_a_divider_and_labels() {
     assert!(
         right > 4.0 * left,
         "the undenoised half is noisier: {left:.4} (SVGF) vs {right:.4} (none)"
+    );
+}
+
+/// The frame number of the window test's line containing `step`.
+fn step_frame(stderr: &str, step: &str) -> Result<u64, String> {
+    let line = stderr
+        .lines()
+        .find(|l| l.starts_with("window test: ") && l.contains(step))
+        .ok_or_else(|| format!("no window test step {step:?} in:\n{stderr}"))?;
+    line.trim_start_matches("window test: frame ")
+        .split(':')
+        .next()
+        .and_then(|n| n.parse().ok())
+        .ok_or_else(|| format!("no frame number in {line:?}"))
+}
+
+#[test]
+fn the_window_survives_shrinking_minimizing_and_losing_its_surface() {
+    let (image, stderr) = screenshot(&["cornell-box", "--window-test"], 10, "window-test.png")
+        .unwrap_or_else(|e| panic!("{e}"));
+    let frame = |step| step_frame(&stderr, step).unwrap_or_else(|e| panic!("{e}"));
+    let shrunk = frame("asked for 96x64");
+    let minimized = frame("minimized at 96x64");
+    let restored = frame("restored after");
+    let lost = frame("surface lost");
+    println!("steps at frames: shrunk {shrunk}, minimized {minimized}, restored {restored}, surface lost {lost}");
+    assert!(shrunk < minimized, "frames at the tiny size came between");
+    assert_eq!(
+        minimized, restored,
+        "no frame was presented while minimized"
+    );
+    assert!(
+        restored < lost && lost < 10,
+        "the surface was lost before the screenshot"
+    );
+    assert!(
+        stderr.contains("the window surface was lost; creating a new one"),
+        "the surface was made anew:\n{stderr}"
+    );
+    // The screenshot (after the new surface) has the restored size and shows the scene.
+    let red = count(&image, 0..WIDTH / 2, 0..HEIGHT, |p| {
+        p[0] > 0.3 && p[0] > 2.0 * p[1] + 2.0 * p[2]
+    });
+    println!("red wall pixels after the steps: {red}");
+    assert!(
+        red > 2000,
+        "the Cornell box's red wall shows ({red} pixels)"
     );
 }

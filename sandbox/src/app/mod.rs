@@ -24,10 +24,12 @@ mod state;
 mod stats;
 mod tonemap;
 mod ui;
+mod window_test;
 
+pub use gpu::{Began, PresentTarget, Presenter};
 pub use options::{AppOptions, Screenshot, Startup};
 pub use scene::DEFAULT_SCENE;
-pub use settings::{Algorithm, Denoiser, RenderSettings};
+pub use settings::{Algorithm, Denoiser, DisplaySettings, RenderSettings, ToneMapper};
 
 use anyhow::Context as _;
 use lucid_engine::Validation;

@@ -25,11 +25,16 @@ pub struct AppOptions {
     pub screenshot: Option<Screenshot>,
 }
 
-/// The renderer configurations the window starts with (the panels change them later).
+/// How the window starts beyond [`AppOptions`]: the renderer configurations (the panels change
+/// them later) and an optional self-test.
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
 pub struct Startup {
     /// The configuration of the image (of its left half in a split view).
     pub render: RenderSettings,
     /// Start in the split view, with this configuration on the right half.
     pub split: Option<RenderSettings>,
+    /// Over the first frames, shrink the window, report it minimized, restore it and report its
+    /// surface lost, printing each step (a self-test of presentation; the screenshot, if any, fails
+    /// unless every step was taken first).
+    pub window_test: bool,
 }

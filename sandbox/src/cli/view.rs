@@ -39,6 +39,11 @@ pub struct ViewArgs {
     /// `bdpt/none`), the left half the options above, both from the same camera.
     #[arg(long, value_name = "ALGO/DENOISER[/SPP[/DEPTH]]")]
     split: Option<SplitSpec>,
+    /// Self-test of the window code: over the first frames, shrink the window, report it minimized,
+    /// restore it and report its surface lost, printing each step (use with --screenshot-after 10
+    /// or more).
+    #[arg(long)]
+    window_test: bool,
 }
 
 /// Opens the window.
@@ -70,6 +75,7 @@ pub fn run(args: &ViewArgs) -> anyhow::Result<()> {
     let startup = Startup {
         render,
         split: args.split.map(|spec| spec.apply(&render)),
+        window_test: args.window_test,
     };
     lucid_sandbox::run_with(options, startup)
 }
