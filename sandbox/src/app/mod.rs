@@ -26,6 +26,7 @@ mod tonemap;
 mod ui;
 mod window_test;
 
+pub use display::available as display_available;
 pub use gpu::{Began, PresentTarget, Presenter};
 pub use options::{AppOptions, Screenshot, Startup};
 pub use scene::DEFAULT_SCENE;
