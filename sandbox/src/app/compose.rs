@@ -2,13 +2,13 @@
 //! swapchain image (or clear it when there is no output), draw the UI over it, optionally read
 //! back the HDR output and the final image, and leave the image ready to present.
 
+use super::gpu::PresentTarget;
 use super::overlay::{Overlay, OverlayFrame};
 use super::settings::DisplaySettings;
 use super::tonemap;
 use ash::vk;
 use lucid_engine::graph::{Access, ImageHandle, ReadbackId, RenderGraph, ResourceState};
-use lucid_engine::memory::{color_range, Image};
-use std::sync::Arc;
+use lucid_engine::memory::color_range;
 
 /// Colour of the window where there is no frame to show.
 const EMPTY: [f32; 4] = [0.05, 0.05, 0.06, 1.0];
@@ -36,33 +36,24 @@ pub fn acquire_wait_stage() -> vk::PipelineStageFlags2 {
     Access::TransferWrite.info().stage
 }
 
-/// The swapchain image to draw on.
-pub struct Target<'a> {
-    /// The acquired image.
-    pub image: &'a Arc<Image>,
-    /// Its index in the swapchain.
-    pub index: u32,
-}
-
-/// Adds the passes that put `hdr` (or an empty background) and the UI on `target` and end it in
-/// the present layout.
+/// Adds the passes that put `hdr` (or an empty background) and the UI (if any) on `target` and end
+/// it in the present layout.
 pub fn add(
     graph: &mut RenderGraph,
     hdr: Option<ImageHandle>,
-    target: Target<'_>,
-    overlay: &Overlay,
-    ui: OverlayFrame,
+    target: &PresentTarget,
+    ui: Option<(&Overlay, OverlayFrame)>,
     display: &DisplaySettings,
     extras: Extras,
 ) -> anyhow::Result<Readbacks> {
     // The acquire semaphore is waited on at this stage, and the contents are discarded.
-    target.image.set_tracked_state(ResourceState {
+    target.image().set_tracked_state(ResourceState {
         layout: vk::ImageLayout::UNDEFINED,
         stage: acquire_wait_stage(),
         access: vk::AccessFlags2::NONE,
     });
-    let desc = target.image.desc();
-    let swap = graph.import_image("swapchain", target.image.clone());
+    let desc = target.image().desc();
+    let swap = graph.import_image("swapchain", target.image().clone());
     let mut readbacks = Readbacks::default();
     let swap = match hdr {
         Some(hdr) => {
@@ -76,7 +67,10 @@ pub fn add(
         }
         None => clear(graph, swap),
     };
-    let swap = overlay.add_pass(graph, swap, target.index, ui)?;
+    let swap = match ui {
+        Some((overlay, frame)) => overlay.add_pass(graph, swap, target.index(), frame)?,
+        None => swap,
+    };
     let swap = if extras.screenshot {
         readbacks.screen = Some(graph.readback(swap));
         settle_reads(graph, swap)

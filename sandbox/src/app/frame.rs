@@ -1,15 +1,14 @@
-//! One frame of the window: recreate the swapchain when needed, acquire, run the UI, build the
-//! render graph (frame source, tone mapping, UI, present), submit, present, and deliver what
-//! earlier frames read back.
+//! One frame of the window: let the presenter prepare the swapchain and acquire an image, run the
+//! UI, build the render graph (frame source, tone mapping, UI, present), submit and present, and
+//! deliver what earlier frames read back.
 
-use super::compose::{self, Extras, Target};
+use super::compose::{self, Extras};
 use super::frame_source::FrameRequest;
-use super::gpu::Acquired;
+use super::gpu::PresentTarget;
 use super::pending::{CaptureJob, Pending};
 use super::session::{Flow, Session};
 use super::{capture, ui};
-use anyhow::Context as _;
-use lucid_engine::graph::{RenderGraph, SubmitOptions};
+use lucid_engine::graph::{CompiledGraph, RenderGraph};
 use std::time::{SystemTime, UNIX_EPOCH};
 
 /// Frames that may fail in a row before the app gives up.
@@ -47,49 +46,33 @@ impl Session {
         self.last_frame = now;
         self.update_camera(now, dt);
         self.reload_shaders(now);
-        if self.needs_recreate || !self.swapchain.is_usable() {
-            self.recreate()?;
-        }
-        if !self.swapchain.is_usable() {
-            return Ok(Flow::Continue);
-        }
-        if let Some((outputs, pending)) = self.ring.wait_next(self.source.executor())? {
+        self.window_test_step()?;
+        let began = self.presenter.begin(self.source.executor())?;
+        for (outputs, pending) in began.finished {
             self.deliver(pending.finish(&outputs)?);
         }
-        let index = match self
-            .swapchain
-            .acquire(self.ring.acquire_semaphore(), &self.window)?
-        {
-            Acquired::Image { index, suboptimal } => {
-                self.needs_recreate |= suboptimal;
-                index
-            }
-            Acquired::OutOfDate => {
-                self.needs_recreate = true;
-                return Ok(self.flow());
-            }
-            Acquired::NotReady => return Ok(self.flow()),
+        let swapchain = self.presenter.swapchain();
+        if began.recreated && swapchain.is_usable() {
+            self.overlay
+                .set_targets(swapchain.format(), swapchain.views(), swapchain.extent())?;
+        }
+        let Some(target) = began.target else {
+            return self.flow();
         };
-        let reads_back = match self.submit(index, now) {
+        let reads_back = match self.submit(target, now) {
             Ok(reads_back) => {
                 self.failures_in_a_row = 0;
                 reads_back
             }
             Err(e) => {
-                self.ring.consume_acquire()?;
-                self.ctx.wait_idle()?;
-                self.needs_recreate = true;
                 self.failures_in_a_row += 1;
                 if self.failures_in_a_row >= MAX_FAILURES_IN_A_ROW {
                     return Err(e.context("rendering failed repeatedly"));
                 }
                 self.state.message = Some(format!("frame failed: {e:#}"));
-                return Ok(self.flow());
+                return self.flow();
             }
         };
-        if self.swapchain.present(index, &self.window)? {
-            self.needs_recreate = true;
-        }
         self.frames_presented += 1;
         self.stats.push(now, dt);
         if reads_back {
@@ -97,15 +80,20 @@ impl Session {
             // different plan, so a frame with readbacks is waited for at once.
             self.finish_all()?;
         }
-        Ok(self.flow())
+        self.flow()
     }
 
-    fn flow(&self) -> Flow {
-        if self.exit {
-            Flow::Exit
-        } else {
-            Flow::Continue
+    fn flow(&self) -> anyhow::Result<Flow> {
+        if !self.exit {
+            return Ok(Flow::Continue);
         }
+        if let Some(test) = &self.window_test {
+            anyhow::ensure!(
+                test.is_done(),
+                "the window test had not taken every step by the screenshot; take it later"
+            );
+        }
+        Ok(Flow::Exit)
     }
 
     pub(super) fn deliver(&mut self, finished: super::pending::Finished) {
@@ -116,37 +104,38 @@ impl Session {
     }
 
     /// Waits for every frame in flight and delivers what they read back.
-    fn finish_all(&mut self) -> anyhow::Result<()> {
-        for (outputs, pending) in self.ring.drain(self.source.executor())? {
+    pub(super) fn finish_all(&mut self) -> anyhow::Result<()> {
+        for (outputs, pending) in self.presenter.finish(self.source.executor())? {
             self.deliver(pending.finish(&outputs)?);
         }
         Ok(())
     }
 
-    /// Recreates the swapchain and the UI framebuffers for the window's size.
-    fn recreate(&mut self) -> anyhow::Result<()> {
-        self.finish_all()?;
-        self.ctx.wait_idle()?;
-        let size = self.window.inner_size();
-        self.swapchain
-            .recreate([size.width, size.height])
-            .context("recreating the swapchain")?;
-        if self.swapchain.is_usable() {
-            self.overlay.set_targets(
-                self.swapchain.format(),
-                self.swapchain.views(),
-                self.swapchain.extent(),
-            )?;
+    /// Records the frame for `target`, submits and presents it; returns whether it reads anything
+    /// back. A frame that cannot be recorded gives its image up.
+    fn submit(&mut self, target: PresentTarget, now: f64) -> anyhow::Result<bool> {
+        match self.record(&target, now) {
+            Ok((graph, pending)) => {
+                let reads_back = pending.capture.is_some() || pending.screenshot.is_some();
+                let executor = self.source.executor();
+                self.presenter.submit(executor, target, graph, pending)?;
+                Ok(reads_back)
+            }
+            Err(e) => {
+                self.presenter.abandon(target)?;
+                Err(e)
+            }
         }
-        self.needs_recreate = false;
-        Ok(())
     }
 
-    /// Runs the UI, records and submits the frame for swapchain image `index`; returns whether it
-    /// reads anything back.
-    fn submit(&mut self, index: u32, now: f64) -> anyhow::Result<bool> {
-        let extent = self.swapchain.extent();
-        let size = [extent.width, extent.height];
+    /// Runs the UI and builds the frame's graph for `target`; returns it compiled, with what the
+    /// frame must deliver once done.
+    fn record(
+        &mut self,
+        target: &PresentTarget,
+        now: f64,
+    ) -> anyhow::Result<(CompiledGraph, Pending)> {
+        let size = target.extent();
         let memory = self.ctx.memory_report();
         let pass_timings = self.source.executor().pass_timings().to_vec();
         let readouts = ui::Readouts {
@@ -158,6 +147,7 @@ impl Session {
             source: self.source.name(),
             device: &self.ctx.info().name,
             extent: size,
+            split: self.source.split_stats(),
         };
         let state = &mut self.state;
         let mut requests = ui::Requests::default();
@@ -194,6 +184,7 @@ impl Session {
             settings: &self.state.render,
             extent: size,
             time: now as f32,
+            split: self.state.split.as_ref(),
         };
         let mut graph = RenderGraph::new();
         let hdr = match self.source.render(&mut graph, &request) {
@@ -204,15 +195,12 @@ impl Session {
                 None
             }
         };
-        let image = &self.swapchain.images()[index as usize];
-        let target = || Target { image, index };
         let display = self.state.display;
         pending.readbacks = compose::add(
             &mut graph,
             hdr,
-            target(),
-            &self.overlay,
-            overlay_frame.clone(),
+            target,
+            Some((&self.overlay, overlay_frame.clone())),
             &display,
             extras,
         )?;
@@ -224,9 +212,8 @@ impl Session {
                 pending.readbacks = compose::add(
                     &mut fallback,
                     None,
-                    target(),
-                    &self.overlay,
-                    overlay_frame,
+                    target,
+                    Some((&self.overlay, overlay_frame)),
                     &display,
                     extras,
                 )?;
@@ -234,13 +221,6 @@ impl Session {
             }
             Err(e) => return Err(e.into()),
         };
-        let submit = SubmitOptions {
-            wait: vec![(self.ring.acquire_semaphore(), compose::acquire_wait_stage())],
-            signal: vec![self.swapchain.render_finished(index)],
-        };
-        let frame = self.source.executor().execute_with(compiled, &submit)?;
-        let reads_back = pending.capture.is_some() || pending.screenshot.is_some();
-        self.ring.submitted(frame, pending);
-        Ok(reads_back)
+        Ok((compiled, pending))
     }
 }

@@ -1,7 +1,7 @@
 //! The winit application handler: creates the session when the event loop starts, routes events
 //! to it, keeps frames coming (slowly while minimized), and remembers a fatal error.
 
-use super::options::AppOptions;
+use super::options::{AppOptions, Startup};
 use super::session::{Flow, Session};
 use lucid_engine::Context;
 use std::time::{Duration, Instant};
@@ -16,16 +16,19 @@ const MINIMIZED_POLL: Duration = Duration::from_millis(100);
 /// The sandbox as a winit application.
 pub struct App {
     options: AppOptions,
+    startup: Startup,
     session: Option<Session>,
     context: Option<Context>,
     error: Option<anyhow::Error>,
 }
 
 impl App {
-    /// An app that opens a window with `options` when the event loop starts.
-    pub fn new(options: AppOptions) -> Self {
+    /// An app that opens a window with `options`, rendering as `startup` says, when the event
+    /// loop starts.
+    pub fn new(options: AppOptions, startup: Startup) -> Self {
         Self {
             options,
+            startup,
             session: None,
             context: None,
             error: None,
@@ -54,7 +57,7 @@ impl ApplicationHandler for App {
         if self.session.is_some() || self.error.is_some() {
             return;
         }
-        match Session::new(event_loop, &self.options) {
+        match Session::new(event_loop, &self.options, &self.startup) {
             Ok(session) => {
                 self.context = Some(session.context().clone());
                 self.session = Some(session);

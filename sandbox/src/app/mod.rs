@@ -1,8 +1,9 @@
 //! `lucid_sandbox`: the interactive sandbox behind `lucid` and `lucid view`: a window showing the frame source's output through a fly camera,
 //! with egui panels for the scene, renderer and display settings and live statistics.
 //!
-//! The renderer plugs in through [`frame_source::FrameSource`]; today the engine's test pattern
-//! stands in for it.
+//! The renderer plugs in through `frame_source::FrameSource`: Lucid's renderer on the loaded scene
+//! (two of them side by side in the split view), or the engine's test pattern while no scene could
+//! be loaded.
 
 mod camera;
 mod capture;
@@ -23,23 +24,32 @@ mod state;
 mod stats;
 mod tonemap;
 mod ui;
+mod window_test;
 
-pub use options::{AppOptions, Screenshot};
+pub use display::available as display_available;
+pub use gpu::{Began, PresentTarget, Presenter};
+pub use options::{AppOptions, Screenshot, Startup};
 pub use scene::DEFAULT_SCENE;
+pub use settings::{Algorithm, Denoiser, DisplaySettings, RenderSettings, ToneMapper};
 
 use anyhow::Context as _;
 use lucid_engine::Validation;
 use winit::event_loop::EventLoop;
 
-/// Opens the sandbox window and runs until it is closed (or the screenshot is taken). Fails when
-/// there is no display, on errors the app cannot show, and when validation is on and reported
-/// anything.
+/// Opens the sandbox window with the default renderer settings and runs until it is closed (or the
+/// screenshot is taken). Fails when there is no display, on errors the app cannot show, and when
+/// validation is on and reported anything.
 pub fn run(options: AppOptions) -> anyhow::Result<()> {
+    run_with(options, Startup::default())
+}
+
+/// Like [`run`], starting with the renderer configurations of `startup` (e.g. in the split view).
+pub fn run_with(options: AppOptions, startup: Startup) -> anyhow::Result<()> {
     display::check()?;
     let event_loop = EventLoop::new().map_err(|e| {
         anyhow::anyhow!("cannot open the display ({e}): use `lucid render` for headless output")
     })?;
-    let mut app = handler::App::new(options);
+    let mut app = handler::App::new(options, startup);
     let ran = event_loop.run_app(&mut app);
     let (result, ctx) = app.finish();
     ran.context("the window event loop failed")?;

@@ -1,5 +1,6 @@
 //! How the sandbox was asked to start.
 
+use super::settings::RenderSettings;
 use std::path::PathBuf;
 
 /// Read back the window after some frames, save it and exit.
@@ -22,4 +23,18 @@ pub struct AppOptions {
     pub capture_dir: PathBuf,
     /// Take one screenshot and exit.
     pub screenshot: Option<Screenshot>,
+}
+
+/// How the window starts beyond [`AppOptions`]: the renderer configurations (the panels change
+/// them later) and an optional self-test.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct Startup {
+    /// The configuration of the image (of its left half in a split view).
+    pub render: RenderSettings,
+    /// Start in the split view, with this configuration on the right half.
+    pub split: Option<RenderSettings>,
+    /// Over the first frames, shrink the window, report it minimized, restore it and report its
+    /// surface lost, printing each step (a self-test of presentation; the screenshot, if any, fails
+    /// unless every step was taken first).
+    pub window_test: bool,
 }

@@ -2,13 +2,14 @@
 //! and how window events change them.
 
 use super::frame_source::{FrameSource, RendererSource, TestPatternSource};
-use super::gpu::{create_context, FrameRing, Swapchain};
+use super::gpu::Presenter;
 use super::input::{Action, Input};
-use super::options::AppOptions;
+use super::options::{AppOptions, Startup};
 use super::overlay::Overlay;
 use super::pending::Pending;
 use super::state::{AppState, PathMode};
 use super::stats::FrameStats;
+use super::window_test::WindowTest;
 use super::{scene, ui};
 use anyhow::Context as _;
 use glam::Vec2;
@@ -33,16 +34,16 @@ pub enum Flow {
     Exit,
 }
 
-/// Everything that lives as long as the window. Fields drop in order: GPU users before the
-/// swapchain, the swapchain (and surface) before the context, the window last.
+/// Everything that lives as long as the window. Fields drop in order: GPU users (the UI's
+/// framebuffers use the swapchain's images) before the presenter, which drops the swapchain (and
+/// surface) before its window.
 pub struct Session {
     pub(super) state: AppState,
     pub(super) input: Input,
     pub(super) stats: FrameStats,
     pub(super) source: Box<dyn FrameSource>,
-    pub(super) ring: FrameRing<Pending>,
     pub(super) overlay: Overlay,
-    pub(super) swapchain: Swapchain,
+    pub(super) presenter: Presenter<Pending>,
     pub(super) ctx: Context,
     pub(super) window: Arc<Window>,
     pub(super) options: AppOptions,
@@ -50,17 +51,22 @@ pub struct Session {
     pub(super) last_frame: f64,
     pub(super) frames_presented: u64,
     pub(super) failures_in_a_row: u32,
-    pub(super) needs_recreate: bool,
     /// Recompiles shaders edited under `shaders/` while the app runs.
     pub(super) shader_watcher: lucid_passes::hot_reload::ShaderWatcher,
     pub(super) last_shader_check: f64,
     pub(super) capture_requested: bool,
     pub(super) exit: bool,
+    /// The window self-test, when asked for.
+    pub(super) window_test: Option<WindowTest>,
 }
 
 impl Session {
-    /// Opens the window and sets up Vulkan, the UI and the scene.
-    pub fn new(event_loop: &ActiveEventLoop, options: &AppOptions) -> anyhow::Result<Self> {
+    /// Opens the window and sets up Vulkan, the UI and the scene, rendering as `startup` says.
+    pub fn new(
+        event_loop: &ActiveEventLoop,
+        options: &AppOptions,
+        startup: &Startup,
+    ) -> anyhow::Result<Self> {
         let attributes = Window::default_attributes()
             .with_title(format!("Lucid — {}", options.scene))
             .with_inner_size(PhysicalSize::new(options.size[0], options.size[1]));
@@ -69,12 +75,14 @@ impl Session {
                 .create_window(attributes)
                 .context("opening the window")?,
         );
-        let (ctx, surface) = create_context(&window)?;
-        let size = window.inner_size();
-        let swapchain = Swapchain::new(&ctx, surface, [size.width, size.height])?;
+        let presenter = Presenter::new(window.clone())?;
+        let ctx = presenter.context().clone();
+        let swapchain = presenter.swapchain();
         let mut overlay = Overlay::new(&ctx, &window, swapchain.format())?;
         overlay.set_targets(swapchain.format(), swapchain.views(), swapchain.extent())?;
-        let state = AppState::new(&options.scene, scene::load(&options.scene));
+        let mut state = AppState::new(&options.scene, scene::load(&options.scene));
+        state.render = startup.render;
+        state.split = startup.split;
         let extent = swapchain.extent();
         let source = frame_source_for(&ctx, &state, [extent.width, extent.height])?;
         Ok(Self {
@@ -82,9 +90,8 @@ impl Session {
             input: Input::default(),
             stats: FrameStats::default(),
             source,
-            ring: FrameRing::new(&ctx)?,
             overlay,
-            swapchain,
+            presenter,
             ctx,
             window,
             options: options.clone(),
@@ -92,13 +99,13 @@ impl Session {
             last_frame: 0.0,
             frames_presented: 0,
             failures_in_a_row: 0,
-            needs_recreate: false,
             shader_watcher: lucid_passes::hot_reload::ShaderWatcher::new(
                 lucid_passes::hot_reload::source_shader_dir(),
             ),
             last_shader_check: 0.0,
             capture_requested: false,
             exit: false,
+            window_test: startup.window_test.then(|| WindowTest::new(options.size)),
         })
     }
 
@@ -114,7 +121,7 @@ impl Session {
 
     /// Whether there is nothing to draw on (zero-size window).
     pub fn is_minimized(&self) -> bool {
-        !self.swapchain.is_usable()
+        self.presenter.is_minimized()
     }
 
     /// Handles one window event (except redraws).
@@ -122,8 +129,10 @@ impl Session {
         let consumed = self.overlay.on_window_event(&self.window, event);
         match event {
             WindowEvent::CloseRequested | WindowEvent::Destroyed => return Flow::Exit,
-            WindowEvent::Resized(_) | WindowEvent::ScaleFactorChanged { .. } => {
-                self.needs_recreate = true;
+            WindowEvent::Resized(size) => self.presenter.resized([size.width, size.height]),
+            WindowEvent::ScaleFactorChanged { .. } => {
+                let size = self.window.inner_size();
+                self.presenter.resized([size.width, size.height]);
             }
             WindowEvent::Focused(false) => self.input.release_all(),
             WindowEvent::ModifiersChanged(m) => self.input.set_shift(m.state().shift_key()),
@@ -181,10 +190,8 @@ impl Session {
 
     /// Renders the newly loaded scene: waits for the frames of the old source first.
     fn replace_source(&mut self) -> anyhow::Result<()> {
-        for (outputs, pending) in self.ring.drain(self.source.executor())? {
-            self.deliver(pending.finish(&outputs)?);
-        }
-        let extent = self.swapchain.extent();
+        self.finish_all()?;
+        let extent = self.presenter.swapchain().extent();
         self.source = frame_source_for(&self.ctx, &self.state, [extent.width, extent.height])?;
         Ok(())
     }

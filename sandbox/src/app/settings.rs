@@ -24,6 +24,14 @@ impl Algorithm {
             Self::Bidirectional => "bidirectional",
         }
     }
+
+    /// The other algorithm (what the split view compares with by default).
+    pub fn other(self) -> Self {
+        match self {
+            Self::PathTracing => Self::Bidirectional,
+            Self::Bidirectional => Self::PathTracing,
+        }
+    }
 }
 
 /// The denoiser applied to the noisy frame.
@@ -64,6 +72,31 @@ pub struct RenderSettings {
     pub accumulate: bool,
     /// The image shown: final, or an intermediate of the frame.
     pub view: lucid_passes::debug_view::View,
+}
+
+impl RenderSettings {
+    /// The split view's default second configuration: these settings with the other algorithm.
+    pub fn compared(&self) -> Self {
+        Self {
+            algorithm: self.algorithm.other(),
+            ..*self
+        }
+    }
+
+    /// A short description for the split view's labels, e.g. `path tracing, SVGF, 1 spp, depth 8`.
+    pub fn summary(&self) -> String {
+        let mut text = format!(
+            "{}, {}, {} spp, depth {}",
+            self.algorithm.label(),
+            self.denoiser.label(),
+            self.spp,
+            self.max_depth
+        );
+        if self.view != lucid_passes::debug_view::View::Final {
+            text.push_str(&format!(", {}", self.view.label()));
+        }
+        text
+    }
 }
 
 impl Default for RenderSettings {
@@ -130,5 +163,31 @@ impl DisplaySettings {
             exposure: self.exposure,
             tone: self.tone_mapper.curve(),
         }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn the_compared_configuration_differs_only_in_the_algorithm() {
+        let left = RenderSettings {
+            spp: 4,
+            denoiser: Denoiser::None,
+            ..RenderSettings::default()
+        };
+        let right = left.compared();
+        assert_eq!(right.algorithm, Algorithm::Bidirectional);
+        assert_eq!(right.compared(), left);
+        assert_eq!(left.summary(), "path tracing, none, 4 spp, depth 8");
+        let depth_view = RenderSettings {
+            view: lucid_passes::debug_view::View::Depth,
+            ..right
+        };
+        assert_eq!(
+            depth_view.summary(),
+            "bidirectional, none, 4 spp, depth 8, depth"
+        );
     }
 }

@@ -20,8 +20,10 @@ pub struct AppState {
     pub scene: Result<SceneInfo, String>,
     /// The scene field of the panel (name or file).
     pub scene_field: String,
-    /// Renderer settings.
+    /// Renderer settings (of the left half while the split view is on).
     pub render: RenderSettings,
+    /// The right half's renderer settings while the split view is on.
+    pub split: Option<RenderSettings>,
     /// Display settings.
     pub display: DisplaySettings,
     /// The camera.
@@ -54,6 +56,7 @@ impl AppState {
             message: scene.as_ref().err().cloned(),
             scene,
             render: RenderSettings::default(),
+            split: None,
             display: DisplaySettings::default(),
             camera: FlyCamera::new(pose, 1.0),
             bookmarks: Bookmarks::default(),

@@ -10,6 +10,7 @@ mod scene_source;
 mod scenes;
 mod sequence;
 mod size;
+mod split;
 mod view;
 
 use clap::{Parser, Subcommand};

@@ -6,7 +6,7 @@ use lucid_engine::capture::{PngEncoding, ToneCurve};
 use lucid_passes::renderer::{Algorithm, Denoiser, Settings};
 
 /// The light-transport algorithm on the command line.
-#[derive(Clone, Copy, Debug, ValueEnum)]
+#[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
 pub enum AlgoArg {
     /// Path tracing (NEE, MIS, Russian roulette).
     Pt,
@@ -15,7 +15,7 @@ pub enum AlgoArg {
 }
 
 /// The denoiser on the command line.
-#[derive(Clone, Copy, Debug, ValueEnum)]
+#[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
 pub enum DenoiseArg {
     /// No denoiser.
     None,

@@ -1,9 +1,11 @@
 //! `lucid view` (and `lucid` without arguments): the interactive sandbox window.
 
+use super::render_options::{AlgoArg, DenoiseArg};
 use super::size::Size;
+use super::split::{algorithm, denoiser, SplitSpec};
 use anyhow::Context as _;
 use clap::Args;
-use lucid_sandbox::{AppOptions, Screenshot, DEFAULT_SCENE};
+use lucid_sandbox::{AppOptions, RenderSettings, Screenshot, Startup, DEFAULT_SCENE};
 use std::path::PathBuf;
 
 /// Options of `lucid view`.
@@ -21,6 +23,27 @@ pub struct ViewArgs {
     /// After N frames, save the window (UI included) as a PNG and exit.
     #[arg(long, num_args = 2, value_names = ["N", "FILE"])]
     screenshot_after: Option<Vec<String>>,
+    /// Light-transport algorithm (of the left half in a split view).
+    #[arg(long, value_enum, default_value_t = AlgoArg::Pt)]
+    algo: AlgoArg,
+    /// Denoiser (of the left half in a split view).
+    #[arg(long, value_enum, default_value_t = DenoiseArg::Svgf)]
+    denoise: DenoiseArg,
+    /// Samples per pixel per frame.
+    #[arg(long, default_value_t = 1, value_parser = clap::value_parser!(u32).range(1..=1024))]
+    spp: u32,
+    /// Longest path.
+    #[arg(long, default_value_t = 8, value_parser = clap::value_parser!(u32).range(1..=64))]
+    max_depth: u32,
+    /// Start in the split view: the right half renders ALGO/DENOISER[/SPP[/DEPTH]] (e.g.
+    /// `bdpt/none`), the left half the options above, both from the same camera.
+    #[arg(long, value_name = "ALGO/DENOISER[/SPP[/DEPTH]]")]
+    split: Option<SplitSpec>,
+    /// Self-test of the window code: over the first frames, shrink the window, report it minimized,
+    /// restore it and report its surface lost, printing each step (use with --screenshot-after 10
+    /// or more).
+    #[arg(long)]
+    window_test: bool,
 }
 
 /// Opens the window.
@@ -36,10 +59,23 @@ pub fn run(args: &ViewArgs) -> anyhow::Result<()> {
         }),
         _ => None,
     };
-    lucid_sandbox::run(AppOptions {
+    let render = RenderSettings {
+        algorithm: algorithm(args.algo),
+        denoiser: denoiser(args.denoise),
+        spp: args.spp,
+        max_depth: args.max_depth,
+        ..RenderSettings::default()
+    };
+    let options = AppOptions {
         scene: args.scene.clone(),
         size: [args.size.width, args.size.height],
         capture_dir: args.capture_dir.clone(),
         screenshot,
-    })
+    };
+    let startup = Startup {
+        render,
+        split: args.split.map(|spec| spec.apply(&render)),
+        window_test: args.window_test,
+    };
+    lucid_sandbox::run_with(options, startup)
 }

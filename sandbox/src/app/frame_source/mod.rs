@@ -3,13 +3,16 @@
 //! draws the UI over it and presents it.
 
 mod renderer;
+mod side_by_side;
+mod split;
 mod test_pattern;
 
 pub use renderer::RendererSource;
+pub use side_by_side::split_column;
 pub use test_pattern::TestPatternSource;
 
 use super::settings::RenderSettings;
-use lucid_engine::graph::{Executor, ImageHandle, RenderGraph};
+use lucid_engine::graph::{Executor, ImageHandle, PassTiming, RenderGraph};
 use lucid_engine::scene::Camera;
 
 /// Everything a frame source is asked to render one frame with.
@@ -23,6 +26,17 @@ pub struct FrameRequest<'a> {
     pub extent: [u32; 2],
     /// Seconds since the app started (for animated content).
     pub time: f32,
+    /// The right half's settings while the split view is on (the left half uses `settings`).
+    pub split: Option<&'a RenderSettings>,
+}
+
+/// The numbers shown on one half of the split view.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct SideStats {
+    /// Samples per pixel accumulated.
+    pub samples: u64,
+    /// GPU milliseconds of the half's renderer in its last completed frame.
+    pub gpu_ms: f64,
 }
 
 /// Renders the scene into an HDR image each frame.
@@ -45,4 +59,44 @@ pub trait FrameSource {
 
     /// Samples per pixel accumulated in the current output.
     fn samples_accumulated(&self) -> u64;
+
+    /// The left and right halves' numbers while the output is a split view.
+    fn split_stats(&self) -> Option<[SideStats; 2]> {
+        None
+    }
+}
+
+/// GPU milliseconds of a renderer's passes among `timings`: the app's own passes (`sandbox.*` and
+/// the display's tone mapping) do not count.
+pub fn renderer_ms(timings: &[PassTiming]) -> f64 {
+    timings
+        .iter()
+        .filter(|t| !t.name.starts_with("sandbox.") && t.name != "tonemap")
+        .map(|t| t.ms)
+        .sum()
+}
+
+#[cfg(test)]
+mod tests;
+
+#[cfg(test)]
+mod timing_tests {
+    use super::*;
+
+    #[test]
+    fn renderer_time_leaves_out_the_apps_passes() {
+        let timing = |name: &str, ms| PassTiming {
+            name: name.into(),
+            ms,
+        };
+        let timings = [
+            timing("gbuffer", 1.0),
+            timing("path_trace", 2.5),
+            timing("sandbox.side_by_side", 0.25),
+            timing("tonemap", 0.5),
+            timing("sandbox.ui", 0.125),
+        ];
+        assert_eq!(renderer_ms(&timings), 3.5);
+        assert_eq!(renderer_ms(&[]), 0.0);
+    }
 }

@@ -1,7 +1,9 @@
 //! The real renderer as a [`FrameSource`]: `lucid_passes::Renderer` on the loaded scene, driven by
-//! the panels' settings and the fly camera.
+//! the panels' settings and the fly camera; with a split view, a second renderer draws the right
+//! half.
 
-use super::{FrameRequest, FrameSource};
+use super::split::SplitRenderer;
+use super::{renderer_ms, side_by_side, FrameRequest, FrameSource, SideStats};
 use crate::settings::{Algorithm, Denoiser, RenderSettings};
 use lucid_engine::graph::{Executor, ImageHandle, RenderGraph};
 use lucid_engine::scene::Scene;
@@ -11,6 +13,8 @@ use lucid_passes::renderer::{self, Renderer, Settings};
 /// Renders the loaded scene with the chosen algorithm and denoiser.
 pub struct RendererSource {
     renderer: Renderer,
+    /// The right half's renderer while the split view is on.
+    split: Option<SplitRenderer>,
     name: String,
 }
 
@@ -25,12 +29,16 @@ impl RendererSource {
             extent[1].max(1),
             Settings::default(),
         )?;
-        Ok(Self { renderer, name })
+        Ok(Self {
+            renderer,
+            split: None,
+            name,
+        })
     }
 }
 
 /// The renderer settings the panels describe (display settings are the app's own).
-fn settings(base: &Settings, panel: &RenderSettings) -> Settings {
+pub fn renderer_settings(base: &Settings, panel: &RenderSettings) -> Settings {
     Settings {
         algorithm: match panel.algorithm {
             Algorithm::PathTracing => renderer::Algorithm::PathTracing,
@@ -47,6 +55,11 @@ fn settings(base: &Settings, panel: &RenderSettings) -> Settings {
     }
 }
 
+/// Samples per pixel in a renderer's current output.
+pub fn samples_accumulated(renderer: &Renderer) -> u64 {
+    u64::from(renderer.accumulated_frames()) * u64::from(renderer.settings().samples_per_pixel)
+}
+
 impl FrameSource for RendererSource {
     fn name(&self) -> &str {
         &self.name
@@ -59,17 +72,27 @@ impl FrameSource for RendererSource {
     ) -> anyhow::Result<ImageHandle> {
         self.renderer.resize(request.extent[0], request.extent[1])?;
         self.renderer.set_camera(*request.camera);
-        let next = settings(self.renderer.settings(), request.settings);
+        let next = renderer_settings(self.renderer.settings(), request.settings);
         self.renderer.set_settings(next);
         let (images, _) = self.renderer.add_frame(graph);
         let [w, h] = request.extent;
-        Ok(lucid_passes::debug_view::add(
-            graph,
-            &images,
-            request.settings.view,
-            w,
-            h,
-        ))
+        let shown = lucid_passes::debug_view::add(graph, &images, request.settings.view, w, h);
+        let Some(right_settings) = request.split else {
+            self.split = None;
+            return Ok(shown);
+        };
+        let split = match &mut self.split {
+            Some(split) => split,
+            None => {
+                let ctx = self.renderer.executor().context().clone();
+                let scene = self.renderer.scene().clone();
+                self.split
+                    .insert(SplitRenderer::new(&ctx, scene, request.extent)?)
+            }
+        };
+        let right = split.render(request, right_settings)?;
+        let right = graph.import_image("sandbox.split_right", right);
+        Ok(side_by_side::add(graph, shown, right, request.extent))
     }
 
     fn executor(&mut self) -> &mut Executor {
@@ -77,7 +100,14 @@ impl FrameSource for RendererSource {
     }
 
     fn samples_accumulated(&self) -> u64 {
-        u64::from(self.renderer.accumulated_frames())
-            * u64::from(self.renderer.settings().samples_per_pixel)
+        samples_accumulated(&self.renderer)
+    }
+
+    fn split_stats(&self) -> Option<[SideStats; 2]> {
+        let left = SideStats {
+            samples: samples_accumulated(&self.renderer),
+            gpu_ms: renderer_ms(self.renderer.executor().pass_timings()),
+        };
+        self.split.as_ref().map(|right| [left, right.stats()])
     }
 }

@@ -1,13 +1,17 @@
-//! Vulkan for the window: the context with a surface, the swapchain, and the ring of frames in
-//! flight with their acquire semaphores.
+//! Vulkan for the window: the context with a surface, the swapchain, the ring of frames in flight
+//! with their acquire semaphores, and the presenter that decides (through `SurfaceState`, plain
+//! data) what they need.
 
 mod frames;
+mod presenter;
 mod surface;
+mod surface_state;
 mod swapchain;
 
 pub use frames::FrameRing;
+pub use presenter::{Began, PresentTarget, Presenter};
 pub use surface::{create_context, WindowSurface};
-pub use swapchain::{Acquired, Swapchain};
+pub use swapchain::Swapchain;
 
 use ash::vk;
 

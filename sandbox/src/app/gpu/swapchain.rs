@@ -1,6 +1,6 @@
-//! The swapchain: created for the window's current size, recreated on resize, out-of-date or
-//! suboptimal reports and lost surfaces, and absent while the window has zero size (minimized).
-//! Its images are wrapped as engine images so that a render graph can import them.
+//! The swapchain: created for the window's size, recreated (by its presenter's decision) on
+//! resizes, out-of-date or suboptimal reports and lost surfaces, and absent while the surface has
+//! zero size. Its images are wrapped as engine images so that a render graph can import them.
 
 use super::{vk_error, WindowSurface};
 use anyhow::{bail, Context as _};
@@ -19,22 +19,6 @@ const FORMATS: [vk::Format; 2] = [vk::Format::B8G8R8A8_UNORM, vk::Format::R8G8B8
 const REQUIRED_USAGE: vk::ImageUsageFlags = vk::ImageUsageFlags::from_raw(
     vk::ImageUsageFlags::COLOR_ATTACHMENT.as_raw() | vk::ImageUsageFlags::TRANSFER_DST.as_raw(),
 );
-
-/// The result of acquiring an image.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub enum Acquired {
-    /// Image `index` is ours; `suboptimal` asks for a recreation after this frame.
-    Image {
-        /// Index into [`Swapchain::images`].
-        index: u32,
-        /// The swapchain no longer matches the surface exactly.
-        suboptimal: bool,
-    },
-    /// The swapchain must be recreated before rendering.
-    OutOfDate,
-    /// No image became available in time; try again next frame.
-    NotReady,
-}
 
 /// The swapchain and everything sized with it.
 pub struct Swapchain {
@@ -241,33 +225,19 @@ impl Swapchain {
         })
     }
 
-    /// Acquires the next image, signalling `semaphore` when it is ready. Reports a lost surface
-    /// as out of date after making a new one for `window`.
-    pub fn acquire(
-        &mut self,
-        semaphore: vk::Semaphore,
-        window: &Window,
-    ) -> anyhow::Result<Acquired> {
+    /// Acquires the next image, signalling `semaphore` when it is ready: its index and whether the
+    /// swapchain is suboptimal, or Vulkan's error (which `SurfaceState::acquired` interprets).
+    pub fn acquire(&self, semaphore: vk::Semaphore) -> Result<(u32, bool), vk::Result> {
         // SAFETY: the swapchain is valid and the semaphore unsignalled with no pending operation.
-        let result = unsafe {
+        unsafe {
             self.loader
                 .acquire_next_image(self.raw, 1_000_000_000, semaphore, vk::Fence::null())
-        };
-        match result {
-            Ok((index, suboptimal)) => Ok(Acquired::Image { index, suboptimal }),
-            Err(vk::Result::ERROR_OUT_OF_DATE_KHR) => Ok(Acquired::OutOfDate),
-            Err(vk::Result::TIMEOUT | vk::Result::NOT_READY) => Ok(Acquired::NotReady),
-            Err(vk::Result::ERROR_SURFACE_LOST_KHR) => {
-                self.replace_surface(window)?;
-                Ok(Acquired::OutOfDate)
-            }
-            Err(e) => Err(vk_error("vkAcquireNextImageKHR")(e).into()),
         }
     }
 
-    /// Presents image `index` after its frame signalled [`Self::render_finished`]; returns whether
-    /// the swapchain must be recreated.
-    pub fn present(&mut self, index: u32, window: &Window) -> anyhow::Result<bool> {
+    /// Presents image `index` after its frame signalled [`Self::render_finished`]: whether the
+    /// swapchain is suboptimal, or Vulkan's error (which `SurfaceState::presented` interprets).
+    pub fn present(&self, index: u32) -> Result<bool, vk::Result> {
         let waits = [self.render_finished(index)];
         let swapchains = [self.raw];
         let indices = [index];
@@ -276,21 +246,13 @@ impl Swapchain {
             .swapchains(&swapchains)
             .image_indices(&indices);
         // SAFETY: the image was acquired and its frame submitted with the semaphore to signal.
-        let result = self
-            .ctx
-            .with_queue(|queue| unsafe { self.loader.queue_present(queue, &info) });
-        match result {
-            Ok(suboptimal) => Ok(suboptimal),
-            Err(vk::Result::ERROR_OUT_OF_DATE_KHR) => Ok(true),
-            Err(vk::Result::ERROR_SURFACE_LOST_KHR) => {
-                self.replace_surface(window)?;
-                Ok(true)
-            }
-            Err(e) => Err(vk_error("vkQueuePresentKHR")(e).into()),
-        }
+        self.ctx
+            .with_queue(|queue| unsafe { self.loader.queue_present(queue, &info) })
     }
 
-    fn replace_surface(&mut self, window: &Window) -> anyhow::Result<()> {
+    /// Replaces a lost surface with a new one for `window`, destroying the swapchain (recreate it
+    /// next); waits for the GPU first.
+    pub fn replace_surface(&mut self, window: &Window) -> anyhow::Result<()> {
         tracing::warn!("the window surface was lost; creating a new one");
         self.ctx.wait_idle()?;
         self.destroy();

@@ -1,9 +1,12 @@
-//! The egui panels: settings on the right, live numbers and charts below them.
+//! The egui panels: settings on the right, live numbers and charts below them, and the split
+//! view's divider and labels over the image.
 
 mod charts;
 mod settings_panel;
+mod split_view;
 mod stats_panel;
 
+use super::frame_source::SideStats;
 use super::state::AppState;
 use super::stats::Fps;
 use lucid_engine::graph::PassTiming;
@@ -27,6 +30,8 @@ pub struct Readouts<'a> {
     pub device: &'a str,
     /// The output size.
     pub extent: [u32; 2],
+    /// The halves' numbers while the output is a split view.
+    pub split: Option<[SideStats; 2]>,
 }
 
 /// What the user asked for with buttons this frame.
@@ -60,6 +65,9 @@ pub fn draw(ctx: &egui::Context, state: &mut AppState, readouts: &Readouts<'_>) 
         egui::TopBottomPanel::bottom("lucid.message").show(ctx, |ui| {
             ui.label(message.as_str());
         });
+    }
+    if let (Some(right), Some(stats)) = (&state.split, readouts.split) {
+        split_view::show(ctx, readouts.extent, [&state.render, right], stats);
     }
     requests
 }

@@ -1,7 +1,7 @@
 //! The editable sections: scene, renderer, display and camera.
 
 use super::Requests;
-use crate::settings::{Algorithm, Denoiser, ToneMapper};
+use crate::settings::{Algorithm, Denoiser, RenderSettings, ToneMapper};
 use crate::state::{AppState, PathMode};
 use lucid_engine::scene::SceneFeatures;
 
@@ -12,7 +12,15 @@ pub fn show(ui: &mut egui::Ui, state: &mut AppState, requests: &mut Requests) {
         .show(ui, |ui| scene(ui, state, requests));
     egui::CollapsingHeader::new("Renderer")
         .default_open(true)
-        .show(ui, |ui| renderer(ui, state));
+        .show(ui, |ui| {
+            if state.split.is_some() {
+                ui.label("left half");
+            }
+            renderer(ui, &mut state.render)
+        });
+    egui::CollapsingHeader::new("Split view")
+        .default_open(true)
+        .show(ui, |ui| split(ui, state));
     egui::CollapsingHeader::new("Display")
         .default_open(true)
         .show(ui, |ui| display(ui, state, requests));
@@ -68,8 +76,7 @@ fn feature_list(f: &SceneFeatures) -> [(&'static str, bool); 10] {
     ]
 }
 
-fn renderer(ui: &mut egui::Ui, state: &mut AppState) {
-    let r = &mut state.render;
+fn renderer(ui: &mut egui::Ui, r: &mut RenderSettings) {
     egui::ComboBox::from_label("algorithm")
         .selected_text(r.algorithm.label())
         .show_ui(ui, |ui| {
@@ -102,6 +109,22 @@ fn renderer(ui: &mut egui::Ui, state: &mut AppState) {
                 ui.selectable_value(&mut r.view, v, v.label());
             }
         });
+}
+
+/// The toggle of the split view and the right half's settings (a copy of the left half's with the
+/// other algorithm when it is turned on).
+fn split(ui: &mut egui::Ui, state: &mut AppState) {
+    let mut on = state.split.is_some();
+    if ui
+        .checkbox(&mut on, "compare two configurations side by side")
+        .changed()
+    {
+        state.split = on.then(|| state.render.compared());
+    }
+    if let Some(right) = &mut state.split {
+        ui.label("right half");
+        ui.push_id("split", |ui| renderer(ui, right));
+    }
 }
 
 fn display(ui: &mut egui::Ui, state: &mut AppState, requests: &mut Requests) {

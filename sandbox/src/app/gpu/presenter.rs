@@ -1,0 +1,222 @@
+//! Presenting render-graph frames to a window, for the sandbox and for applications embedding
+//! Lucid: the context with a surface, the swapchain, the frames in flight, and what
+//! [`SurfaceState`] decides on resizes, minimization, out-of-date swapchains and lost surfaces.
+
+use super::surface_state::{Prepare, SurfaceState};
+use super::{create_context, FrameRing, Swapchain};
+use crate::compose::{self, Extras};
+use crate::settings::DisplaySettings;
+use anyhow::Context as _;
+use lucid_engine::graph::SubmitOptions;
+use lucid_engine::graph::{CompiledGraph, Executor, FrameOutputs, ImageHandle, RenderGraph};
+use lucid_engine::memory::Image;
+use lucid_engine::Context;
+use std::sync::Arc;
+use winit::window::Window;
+
+/// The swapchain image a frame draws on.
+pub struct PresentTarget {
+    index: u32,
+    image: Arc<Image>,
+}
+
+impl PresentTarget {
+    /// The image's size in pixels (the size to render at).
+    pub fn extent(&self) -> [u32; 2] {
+        let desc = self.image.desc();
+        [desc.width, desc.height]
+    }
+
+    /// Adds the passes that tone-map `hdr` (a float image of [`Self::extent`], read as
+    /// `Access::ComputeSampled`) into the image with `display` and leave it ready to present.
+    pub fn add_display(
+        &self,
+        graph: &mut RenderGraph,
+        hdr: ImageHandle,
+        display: &DisplaySettings,
+    ) -> anyhow::Result<()> {
+        compose::add(graph, Some(hdr), self, None, display, Extras::default())?;
+        Ok(())
+    }
+
+    /// The image.
+    pub(crate) fn image(&self) -> &Arc<Image> {
+        &self.image
+    }
+
+    /// Its index in the swapchain.
+    pub(crate) fn index(&self) -> u32 {
+        self.index
+    }
+}
+
+/// What [`Presenter::begin`] found.
+pub struct Began<T> {
+    /// The image to draw on, or `None` when this frame is skipped (minimized window, swapchain
+    /// being recreated, no image in time).
+    pub target: Option<PresentTarget>,
+    /// Frames that completed meanwhile, with the payloads they were submitted with, oldest first.
+    pub finished: Vec<(FrameOutputs, T)>,
+    /// The swapchain was recreated (its images and size changed).
+    pub recreated: bool,
+}
+
+/// A window's presentation. `T` is what each frame carries until it completes (e.g. where to save
+/// its readbacks).
+///
+/// ```no_run
+/// # fn frame(presenter: &mut lucid_sandbox::Presenter, renderer: &mut lucid_passes::renderer::Renderer) -> anyhow::Result<()> {
+/// // Each redraw: take an image, render at its size, draw on it, present.
+/// let began = presenter.begin(renderer.executor_mut())?;
+/// if let Some(target) = began.target {
+///     let [width, height] = target.extent();
+///     renderer.resize(width, height)?;
+///     let mut graph = lucid_engine::graph::RenderGraph::new();
+///     let (images, _) = renderer.add_frame(&mut graph);
+///     target.add_display(&mut graph, images.hdr, &lucid_sandbox::DisplaySettings::default())?;
+///     presenter.submit(renderer.executor_mut(), target, graph.compile()?, ())?;
+/// }
+/// # Ok(()) }
+/// ```
+pub struct Presenter<T = ()> {
+    state: SurfaceState,
+    ring: FrameRing<T>,
+    swapchain: Swapchain,
+    ctx: Context,
+    window: Arc<Window>,
+}
+
+impl<T> Presenter<T> {
+    /// Creates a Vulkan context (validation and device from the environment) that can present to
+    /// `window`, and the window's swapchain.
+    ///
+    /// ```no_run
+    /// # fn open(event_loop: &winit::event_loop::ActiveEventLoop) -> anyhow::Result<()> {
+    /// use std::sync::Arc;
+    /// let window = Arc::new(event_loop.create_window(Default::default())?);
+    /// let presenter: lucid_sandbox::Presenter = lucid_sandbox::Presenter::new(window)?;
+    /// let ctx = presenter.context(); // create the renderer on it
+    /// # Ok(()) }
+    /// ```
+    pub fn new(window: Arc<Window>) -> anyhow::Result<Self> {
+        let (ctx, surface) = create_context(&window)?;
+        let size = window.inner_size();
+        let size = [size.width, size.height];
+        let swapchain = Swapchain::new(&ctx, surface, size)?;
+        Ok(Self {
+            state: SurfaceState::new(size),
+            ring: FrameRing::new(&ctx)?,
+            swapchain,
+            ctx,
+            window,
+        })
+    }
+
+    /// The context (create the renderer on it).
+    pub fn context(&self) -> &Context {
+        &self.ctx
+    }
+
+    /// The window.
+    pub fn window(&self) -> &Arc<Window> {
+        &self.window
+    }
+
+    /// Tells the presenter the window's new size, from `WindowEvent::Resized` (zero when
+    /// minimized) or after `WindowEvent::ScaleFactorChanged`.
+    pub fn resized(&mut self, size: [u32; 2]) {
+        self.state.resized(size);
+    }
+
+    /// Whether there is nothing to draw on (a zero-size window, or a surface without a size); an
+    /// event loop can poll slowly meanwhile.
+    pub fn is_minimized(&self) -> bool {
+        self.state.is_minimized() || !self.swapchain.is_usable()
+    }
+
+    /// Starts a frame: recreates the swapchain (and surface) when needed, waits for the frame slot
+    /// that is reused next, and acquires an image. `executor` runs the frames.
+    pub fn begin(&mut self, executor: &mut Executor) -> anyhow::Result<Began<T>> {
+        let mut began = Began {
+            target: None,
+            finished: Vec::new(),
+            recreated: false,
+        };
+        match self.state.prepare(self.swapchain.is_usable()) {
+            Prepare::Skip => return Ok(began),
+            Prepare::Recreate { surface } => {
+                began.finished = self.ring.drain(executor)?;
+                self.ctx.wait_idle()?;
+                if surface {
+                    self.swapchain.replace_surface(&self.window)?;
+                }
+                self.swapchain
+                    .recreate(self.state.size())
+                    .context("recreating the swapchain")?;
+                self.state.recreated();
+                began.recreated = true;
+                if !self.swapchain.is_usable() {
+                    return Ok(began);
+                }
+            }
+            Prepare::Draw => {}
+        }
+        began.finished.extend(self.ring.wait_next(executor)?);
+        let acquired = self.swapchain.acquire(self.ring.acquire_semaphore());
+        began.target = self.state.acquired(acquired)?.map(|index| PresentTarget {
+            index,
+            image: self.swapchain.images()[index as usize].clone(),
+        });
+        Ok(began)
+    }
+
+    /// Submits `graph`, which draws on `target` and leaves it ready to present (e.g. through
+    /// [`PresentTarget::add_display`]), on `executor` and presents it. `payload` comes back with
+    /// the frame's outputs from a later [`Self::begin`] or [`Self::finish`].
+    pub fn submit(
+        &mut self,
+        executor: &mut Executor,
+        target: PresentTarget,
+        graph: CompiledGraph,
+        payload: T,
+    ) -> anyhow::Result<()> {
+        let submit = SubmitOptions {
+            wait: vec![(self.ring.acquire_semaphore(), compose::acquire_wait_stage())],
+            signal: vec![self.swapchain.render_finished(target.index)],
+        };
+        let frame = match executor.execute_with(graph, &submit) {
+            Ok(frame) => frame,
+            Err(e) => {
+                self.abandon(target)?;
+                return Err(e.into());
+            }
+        };
+        self.ring.submitted(frame, payload);
+        let presented = self.swapchain.present(target.index);
+        self.state.presented(presented)
+    }
+
+    /// Gives up a frame whose image was acquired but that could not be submitted (the target is
+    /// used up); the swapchain is recreated before the next frame.
+    pub fn abandon(&mut self, _target: PresentTarget) -> anyhow::Result<()> {
+        self.ring.consume_acquire()?;
+        self.ctx.wait_idle()?;
+        self.state.frame_failed();
+        Ok(())
+    }
+
+    /// Waits for every frame in flight; returns their outputs and payloads, oldest first.
+    pub fn finish(&mut self, executor: &mut Executor) -> anyhow::Result<Vec<(FrameOutputs, T)>> {
+        self.ring.drain(executor)
+    }
+
+    /// The swapchain (for the UI's framebuffers).
+    pub(crate) fn swapchain(&self) -> &Swapchain {
+        &self.swapchain
+    }
+
+    /// Reports the surface lost, as the window system would (the window self-test).
+    pub(crate) fn surface_lost(&mut self) -> anyhow::Result<()> {
+        self.state.lost()
+    }
+}

@@ -1,0 +1,3 @@
+//! Helpers shared by the sandbox's tests.
+
+pub mod xvfb;
