@@ -1,5 +1,25 @@
-//! `lucid_sandbox`: the interactive sandbox behind `lucid` and `lucid view`: a window showing the frame source's output through a fly camera,
-//! with egui panels for the scene, renderer and display settings and live statistics.
+//! `lucid_sandbox`: the interactive sandbox behind `lucid` and `lucid view`: a window showing the
+//! frame source's output through a fly camera, with egui panels for the scene, renderer and display
+//! settings and live statistics, and a split view comparing two configurations. Its [`Presenter`]
+//! shows an embedding application's own frames in a window (see the `game_loop` example).
+//!
+//! ```no_run
+//! use lucid_sandbox::{AppOptions, RenderSettings, Startup};
+//! let options = AppOptions {
+//!     scene: lucid_sandbox::DEFAULT_SCENE.into(),
+//!     size: [1280, 720],
+//!     capture_dir: ".".into(),
+//!     screenshot: None,
+//! };
+//! let left = RenderSettings::default();
+//! let startup = Startup {
+//!     render: left,
+//!     split: Some(left.compared()), // the other algorithm on the right half
+//!     window_test: false,
+//! };
+//! lucid_sandbox::run_with(options, startup)?;
+//! # anyhow::Ok(())
+//! ```
 //!
 //! The renderer plugs in through `frame_source::FrameSource`: Lucid's renderer on the loaded scene
 //! (two of them side by side in the split view), or the engine's test pattern while no scene could
@@ -39,11 +59,26 @@ use winit::event_loop::EventLoop;
 /// Opens the sandbox window with the default renderer settings and runs until it is closed (or the
 /// screenshot is taken). Fails when there is no display, on errors the app cannot show, and when
 /// validation is on and reported anything.
+///
+/// ```no_run
+/// // `lucid view classroom --screenshot-after 30 shot.png`
+/// lucid_sandbox::run(lucid_sandbox::AppOptions {
+///     scene: "classroom".into(),
+///     size: [800, 600],
+///     capture_dir: std::env::temp_dir(),
+///     screenshot: Some(lucid_sandbox::Screenshot {
+///         after_frames: 30,
+///         path: "shot.png".into(),
+///     }),
+/// })?;
+/// # anyhow::Ok(())
+/// ```
 pub fn run(options: AppOptions) -> anyhow::Result<()> {
     run_with(options, Startup::default())
 }
 
-/// Like [`run`], starting with the renderer configurations of `startup` (e.g. in the split view).
+/// Like [`run`], starting with the renderer configurations of `startup` (e.g. in the split view;
+/// see the crate's example).
 pub fn run_with(options: AppOptions, startup: Startup) -> anyhow::Result<()> {
     display::check()?;
     let event_loop = EventLoop::new().map_err(|e| {

@@ -4,6 +4,14 @@ use super::settings::RenderSettings;
 use std::path::PathBuf;
 
 /// Read back the window after some frames, save it and exit.
+///
+/// ```
+/// let shot = lucid_sandbox::Screenshot {
+///     after_frames: 5,
+///     path: "window.png".into(),
+/// };
+/// assert_eq!(shot.path.extension().unwrap(), "png");
+/// ```
 #[derive(Clone, Debug, PartialEq, Eq)]
 pub struct Screenshot {
     /// The frame (counting from 1) to save.
@@ -13,6 +21,16 @@ pub struct Screenshot {
 }
 
 /// Start-up options of the interactive sandbox.
+///
+/// ```
+/// let options = lucid_sandbox::AppOptions {
+///     scene: "scene.glb".into(), // or a built-in name such as lucid_sandbox::DEFAULT_SCENE
+///     size: [1280, 720],
+///     capture_dir: "captures".into(),
+///     screenshot: None,
+/// };
+/// # assert_eq!(options.size[0], 1280);
+/// ```
 #[derive(Clone, Debug, PartialEq, Eq)]
 pub struct AppOptions {
     /// A built-in scene name or a `.gltf` / `.glb` file.
@@ -27,6 +45,21 @@ pub struct AppOptions {
 
 /// How the window starts beyond [`AppOptions`]: the renderer configurations (the panels change
 /// them later) and an optional self-test.
+///
+/// ```
+/// use lucid_sandbox::{Algorithm, Denoiser, RenderSettings, Startup};
+/// // `lucid view --split pt/none`: SVGF on the left, the raw estimate on the right.
+/// let left = RenderSettings::default();
+/// let startup = Startup {
+///     render: left,
+///     split: Some(RenderSettings {
+///         denoiser: Denoiser::None,
+///         ..left
+///     }),
+///     ..Startup::default()
+/// };
+/// assert_eq!(startup.split.unwrap().algorithm, Algorithm::PathTracing);
+/// ```
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
 pub struct Startup {
     /// The configuration of the image (of its left half in a split view).

@@ -6,6 +6,10 @@ use lucid_engine::scene::{builtin, load_gltf, Camera, Scene, SceneFeatures};
 use std::path::Path;
 
 /// The scene `lucid` opens without arguments.
+///
+/// ```
+/// assert!(lucid_engine::scene::builtin::names().contains(&lucid_sandbox::DEFAULT_SCENE));
+/// ```
 pub const DEFAULT_SCENE: &str = "cornell-box";
 
 /// What the app knows about the loaded scene.

@@ -4,6 +4,14 @@
 use lucid_engine::capture::{PngEncoding, ToneCurve};
 
 /// The light-transport algorithm.
+///
+/// ```
+/// use lucid_sandbox::Algorithm;
+/// for algorithm in Algorithm::ALL {
+///     println!("{}", algorithm.label()); // "path tracing", "bidirectional"
+/// }
+/// assert_eq!(Algorithm::PathTracing.other(), Algorithm::Bidirectional);
+/// ```
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub enum Algorithm {
     /// Unidirectional path tracing with next-event estimation.
@@ -35,6 +43,12 @@ impl Algorithm {
 }
 
 /// The denoiser applied to the noisy frame.
+///
+/// ```
+/// use lucid_sandbox::Denoiser;
+/// assert_eq!(Denoiser::default(), Denoiser::Svgf);
+/// assert_eq!(Denoiser::None.label(), "none");
+/// ```
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub enum Denoiser {
     /// The raw estimate.
@@ -58,6 +72,17 @@ impl Denoiser {
 }
 
 /// What the renderer is asked to do each frame.
+///
+/// ```
+/// use lucid_sandbox::{Denoiser, RenderSettings};
+/// let settings = RenderSettings {
+///     spp: 4,
+///     denoiser: Denoiser::None,
+///     ..RenderSettings::default()
+/// };
+/// assert_eq!(settings.summary(), "path tracing, none, 4 spp, depth 8");
+/// assert_eq!(settings.compared().summary(), "bidirectional, none, 4 spp, depth 8");
+/// ```
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct RenderSettings {
     /// The light-transport algorithm.
@@ -113,6 +138,12 @@ impl Default for RenderSettings {
 }
 
 /// The tone curve of the display transform.
+///
+/// ```
+/// use lucid_sandbox::ToneMapper;
+/// assert_eq!(ToneMapper::AgX.curve(), lucid_engine::capture::ToneCurve::AgX);
+/// assert_eq!(ToneMapper::ALL.map(ToneMapper::label), ["ACES", "AgX", "clamp"]);
+/// ```
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub enum ToneMapper {
     /// The ACES filmic fit.
@@ -148,6 +179,15 @@ impl ToneMapper {
 }
 
 /// How the HDR output becomes display pixels.
+///
+/// ```
+/// use lucid_sandbox::{DisplaySettings, ToneMapper};
+/// let display = DisplaySettings {
+///     exposure: 1.0, // one stop brighter
+///     tone_mapper: ToneMapper::AgX,
+/// };
+/// assert_eq!(display.png_encoding().exposure, 1.0);
+/// ```
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
 pub struct DisplaySettings {
     /// Exposure in stops.

@@ -30,12 +30,13 @@ pub enum Step {
 enum Stage {
     Shrink,
     Minimize,
-    Restore { skipped: u32 },
-    LoseSurface,
+    Restore { shrunk: [u32; 2], skipped: u32 },
+    LoseSurface { shrunk: [u32; 2] },
     Done,
 }
 
-/// Where the self-test is.
+/// Where the self-test is. Each step waits until the window system has carried out the one before
+/// (its resize events arrive when they arrive) and some frames were presented since.
 #[derive(Clone, Debug)]
 pub struct WindowTest {
     stage: Stage,
@@ -53,23 +54,33 @@ impl WindowTest {
         }
     }
 
-    /// Before a frame, with `presented` frames presented so far and the window `minimized` or
-    /// not: the step to take now, if any.
-    pub fn next(&mut self, presented: u64, minimized: bool) -> Option<Step> {
+    /// Before a frame, with `presented` frames presented so far and the window's `size` as last
+    /// reported (zero when minimized): the step to take now, if any.
+    pub fn next(&mut self, presented: u64, size: [u32; 2]) -> Option<Step> {
         let waited = presented >= self.since + FRAMES_BETWEEN;
+        let minimized = size.contains(&0);
         let (stage, step) = match self.stage {
             Stage::Shrink if waited => (Stage::Minimize, Step::Shrink),
-            Stage::Minimize if waited => (Stage::Restore { skipped: 0 }, Step::Minimize),
-            Stage::Restore { skipped } if minimized => {
+            Stage::Minimize if waited && !minimized && size != self.original => (
+                Stage::Restore {
+                    shrunk: size,
+                    skipped: 0,
+                },
+                Step::Minimize,
+            ),
+            Stage::Restore { shrunk, skipped } if minimized => {
                 if skipped + 1 < MINIMIZED_FRAMES {
                     self.stage = Stage::Restore {
+                        shrunk,
                         skipped: skipped + 1,
                     };
                     return None;
                 }
-                (Stage::LoseSurface, Step::Restore(self.original))
+                (Stage::LoseSurface { shrunk }, Step::Restore(self.original))
             }
-            Stage::LoseSurface if waited => (Stage::Done, Step::LoseSurface),
+            Stage::LoseSurface { shrunk } if waited && !minimized && size != shrunk => {
+                (Stage::Done, Step::LoseSurface)
+            }
             _ => return None,
         };
         self.stage = stage;
@@ -87,15 +98,14 @@ impl Session {
     /// Takes the window test's next step, if it is time for one, and prints it.
     pub(super) fn window_test_step(&mut self) -> anyhow::Result<()> {
         let presented = self.frames_presented;
-        let minimized = self.presenter.is_minimized();
+        let reported = self.presenter.size();
         let Some(step) = self
             .window_test
             .as_mut()
-            .and_then(|t| t.next(presented, minimized))
+            .and_then(|t| t.next(presented, reported))
         else {
             return Ok(());
         };
-        let size = self.window.inner_size();
         match step {
             Step::Shrink => {
                 let [w, h] = TINY;
@@ -104,14 +114,13 @@ impl Session {
             }
             Step::Minimize => {
                 self.presenter.resized([0, 0]);
-                eprintln!(
-                    "window test: frame {presented}: minimized at {}x{}",
-                    size.width, size.height
-                );
+                let [w, h] = reported;
+                eprintln!("window test: frame {presented}: minimized at {w}x{h}");
             }
             Step::Restore([w, h]) => {
                 let _ = self.window.request_inner_size(PhysicalSize::new(w, h));
-                self.presenter.resized([size.width, size.height]);
+                let now = self.window.inner_size();
+                self.presenter.resized([now.width, now.height]);
                 eprintln!(
                     "window test: frame {presented}: restored after {MINIMIZED_FRAMES} skipped \
                      frames, asked for {w}x{h}"
@@ -131,26 +140,26 @@ mod tests {
     use super::*;
 
     #[test]
-    fn steps_follow_presented_frames_and_minimized_frames_are_counted() {
-        let mut test = WindowTest::new([640, 360]);
-        assert_eq!(test.next(0, false), None);
-        assert_eq!(test.next(1, false), None);
-        assert_eq!(test.next(2, false), Some(Step::Shrink));
-        assert_eq!(test.next(3, false), None);
-        assert_eq!(test.next(4, false), Some(Step::Minimize));
-        assert_eq!(
-            test.next(4, false),
-            None,
-            "waits for the window to be minimized"
-        );
+    fn steps_wait_for_frames_and_for_the_window_system() {
+        let original = [640, 360];
+        let mut test = WindowTest::new(original);
+        assert_eq!(test.next(1, original), None);
+        assert_eq!(test.next(2, original), Some(Step::Shrink));
+        assert_eq!(test.next(4, original), None, "the resize has not arrived");
+        assert_eq!(test.next(5, TINY), Some(Step::Minimize));
+        assert_eq!(test.next(5, TINY), None, "waits for the zero size");
         for _ in 1..MINIMIZED_FRAMES {
-            assert_eq!(test.next(4, true), None);
+            assert_eq!(test.next(5, [0, 0]), None);
         }
-        assert_eq!(test.next(4, true), Some(Step::Restore([640, 360])));
-        assert_eq!(test.next(5, false), None);
+        assert_eq!(test.next(5, [0, 0]), Some(Step::Restore(original)));
+        assert_eq!(
+            test.next(8, TINY),
+            None,
+            "the restoring resize has not arrived"
+        );
         assert!(!test.is_done());
-        assert_eq!(test.next(6, false), Some(Step::LoseSurface));
+        assert_eq!(test.next(8, original), Some(Step::LoseSurface));
         assert!(test.is_done());
-        assert_eq!(test.next(100, true), None);
+        assert_eq!(test.next(100, [0, 0]), None);
     }
 }

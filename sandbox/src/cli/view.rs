@@ -40,7 +40,7 @@ pub struct ViewArgs {
     #[arg(long, value_name = "ALGO/DENOISER[/SPP[/DEPTH]]")]
     split: Option<SplitSpec>,
     /// Self-test of the window code: over the first frames, shrink the window, report it minimized,
-    /// restore it and report its surface lost, printing each step (use with --screenshot-after 10
+    /// restore it and report its surface lost, printing each step (use with --screenshot-after 14
     /// or more).
     #[arg(long)]
     window_test: bool,

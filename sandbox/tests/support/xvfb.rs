@@ -1,7 +1,7 @@
 //! Running a program in a window under Xvfb (a virtual X server) in tests: start a server on a free
 //! display, run the program on it with validation on, and give up after a timeout.
 
-use std::path::{Path, PathBuf};
+use std::io::{BufRead, BufReader};
 use std::process::{Child, Command, Output, Stdio};
 use std::time::{Duration, Instant};
 
@@ -15,39 +15,33 @@ pub struct Xvfb {
 }
 
 impl Xvfb {
-    /// Starts a 1024x768 server on the first free display from :90.
+    /// Starts a 1024x768 server on a display it picks itself (`-displayfd`), so that tests and
+    /// other programs starting servers at the same time never share one.
     pub fn start() -> Result<Self, String> {
-        for n in 90..140 {
-            let socket = PathBuf::from(format!("/tmp/.X11-unix/X{n}"));
-            if socket.exists() || Path::new(&format!("/tmp/.X{n}-lock")).exists() {
-                continue;
+        let mut process = Command::new("Xvfb")
+            .args(["-displayfd", "1", "-screen", "0", "1024x768x24", "-nolisten", "tcp"])
+            .stdout(Stdio::piped())
+            .stderr(Stdio::null())
+            .spawn()
+            .map_err(|e| {
+                format!("Xvfb is not installed ({e}): scripts/setup.sh installs it (apt-get install xvfb)")
+            })?;
+        let stdout = process.stdout.take().expect("piped stdout");
+        let (sender, receiver) = std::sync::mpsc::channel();
+        std::thread::spawn(move || {
+            let mut line = String::new();
+            let read = BufReader::new(stdout).read_line(&mut line);
+            let _ = sender.send(read.map(|_| line));
+        });
+        let display = match receiver.recv_timeout(Duration::from_secs(10)) {
+            Ok(Ok(line)) if line.trim().parse::<u32>().is_ok() => format!(":{}", line.trim()),
+            other => {
+                let _ = process.kill();
+                let _ = process.wait();
+                return Err(format!("Xvfb did not report its display: {other:?}"));
             }
-            let mut process = Command::new("Xvfb")
-                .arg(format!(":{n}"))
-                .args(["-screen", "0", "1024x768x24", "-nolisten", "tcp"])
-                .stdout(Stdio::null())
-                .stderr(Stdio::null())
-                .spawn()
-                .map_err(|e| {
-                    format!("Xvfb is not installed ({e}): scripts/setup.sh installs it (apt-get install xvfb)")
-                })?;
-            let start = Instant::now();
-            while start.elapsed() < Duration::from_secs(10) {
-                if socket.exists() {
-                    return Ok(Self {
-                        process,
-                        display: format!(":{n}"),
-                    });
-                }
-                if process.try_wait().map_err(|e| e.to_string())?.is_some() {
-                    break;
-                }
-                std::thread::sleep(Duration::from_millis(50));
-            }
-            let _ = process.kill();
-            let _ = process.wait();
-        }
-        Err("Xvfb could not start on any display from :90 to :139".into())
+        };
+        Ok(Self { process, display })
     }
 
     /// Runs `command` on this display with validation on; fails after [`TIMEOUT`].

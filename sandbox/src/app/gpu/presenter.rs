@@ -14,7 +14,16 @@ use lucid_engine::Context;
 use std::sync::Arc;
 use winit::window::Window;
 
-/// The swapchain image a frame draws on.
+/// The swapchain image a frame draws on, from [`Presenter::begin`].
+///
+/// ```no_run
+/// # fn draw(target: lucid_sandbox::PresentTarget, presenter: &mut lucid_sandbox::Presenter, executor: &mut lucid_engine::graph::Executor, hdr_pass: impl FnOnce(&mut lucid_engine::graph::RenderGraph, [u32; 2]) -> lucid_engine::graph::ImageHandle) -> anyhow::Result<()> {
+/// let mut graph = lucid_engine::graph::RenderGraph::new();
+/// let hdr = hdr_pass(&mut graph, target.extent()); // any float image of the target's size
+/// target.add_display(&mut graph, hdr, &lucid_sandbox::DisplaySettings::default())?;
+/// presenter.submit(executor, target, graph.compile()?, ())?;
+/// # Ok(()) }
+/// ```
 pub struct PresentTarget {
     index: u32,
     image: Arc<Image>,
@@ -51,6 +60,20 @@ impl PresentTarget {
 }
 
 /// What [`Presenter::begin`] found.
+///
+/// ```no_run
+/// # fn frame(presenter: &mut lucid_sandbox::Presenter<Option<lucid_engine::graph::ReadbackId>>, executor: &mut lucid_engine::graph::Executor) -> anyhow::Result<()> {
+/// let began = presenter.begin(executor)?;
+/// for (outputs, readback) in began.finished {
+///     if let Some(id) = readback {
+///         let image = outputs.image(id)?; // what that frame read back
+///     }
+/// }
+/// if began.target.is_none() {
+///     return Ok(()); // minimized or recreating: nothing to draw this time
+/// }
+/// # Ok(()) }
+/// ```
 pub struct Began<T> {
     /// The image to draw on, or `None` when this frame is skipped (minimized window, swapchain
     /// being recreated, no image in time).
@@ -124,12 +147,45 @@ impl<T> Presenter<T> {
 
     /// Tells the presenter the window's new size, from `WindowEvent::Resized` (zero when
     /// minimized) or after `WindowEvent::ScaleFactorChanged`.
+    ///
+    /// ```no_run
+    /// # fn on_event(presenter: &mut lucid_sandbox::Presenter, event: winit::event::WindowEvent) {
+    /// use winit::event::WindowEvent;
+    /// match event {
+    ///     WindowEvent::Resized(size) => presenter.resized([size.width, size.height]),
+    ///     WindowEvent::ScaleFactorChanged { .. } => {
+    ///         let size = presenter.window().inner_size();
+    ///         presenter.resized([size.width, size.height]);
+    ///     }
+    ///     _ => {}
+    /// }
+    /// # }
+    /// ```
     pub fn resized(&mut self, size: [u32; 2]) {
         self.state.resized(size);
     }
 
+    /// The window's size as last told by [`Self::resized`] (at first, its size when the presenter
+    /// was made).
+    pub fn size(&self) -> [u32; 2] {
+        self.state.size()
+    }
+
     /// Whether there is nothing to draw on (a zero-size window, or a surface without a size); an
     /// event loop can poll slowly meanwhile.
+    ///
+    /// ```no_run
+    /// # fn about_to_wait(presenter: &lucid_sandbox::Presenter, event_loop: &winit::event_loop::ActiveEventLoop) {
+    /// use std::time::{Duration, Instant};
+    /// use winit::event_loop::ControlFlow;
+    /// event_loop.set_control_flow(if presenter.is_minimized() {
+    ///     ControlFlow::WaitUntil(Instant::now() + Duration::from_millis(100))
+    /// } else {
+    ///     ControlFlow::Poll
+    /// });
+    /// presenter.window().request_redraw();
+    /// # }
+    /// ```
     pub fn is_minimized(&self) -> bool {
         self.state.is_minimized() || !self.swapchain.is_usable()
     }
@@ -198,6 +254,18 @@ impl<T> Presenter<T> {
 
     /// Gives up a frame whose image was acquired but that could not be submitted (the target is
     /// used up); the swapchain is recreated before the next frame.
+    ///
+    /// ```no_run
+    /// # fn frame(presenter: &mut lucid_sandbox::Presenter, target: lucid_sandbox::PresentTarget, build: impl FnOnce() -> anyhow::Result<lucid_engine::graph::RenderGraph>, executor: &mut lucid_engine::graph::Executor) -> anyhow::Result<()> {
+    /// match build().and_then(|graph| Ok(graph.compile()?)) {
+    ///     Ok(compiled) => presenter.submit(executor, target, compiled, ())?,
+    ///     Err(e) => {
+    ///         presenter.abandon(target)?;
+    ///         eprintln!("frame skipped: {e:#}");
+    ///     }
+    /// }
+    /// # Ok(()) }
+    /// ```
     pub fn abandon(&mut self, _target: PresentTarget) -> anyhow::Result<()> {
         self.ring.consume_acquire()?;
         self.ctx.wait_idle()?;
@@ -206,6 +274,13 @@ impl<T> Presenter<T> {
     }
 
     /// Waits for every frame in flight; returns their outputs and payloads, oldest first.
+    ///
+    /// ```no_run
+    /// # fn shut_down(mut presenter: lucid_sandbox::Presenter, mut renderer: lucid_passes::renderer::Renderer) -> anyhow::Result<()> {
+    /// presenter.finish(renderer.executor_mut())?; // before the renderer goes
+    /// drop(renderer);
+    /// # Ok(()) }
+    /// ```
     pub fn finish(&mut self, executor: &mut Executor) -> anyhow::Result<Vec<(FrameOutputs, T)>> {
         self.ring.drain(executor)
     }
