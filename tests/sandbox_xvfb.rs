@@ -6,11 +6,15 @@
 //! Xvfb, then runs itself again as the app process (`LUCID_SANDBOX_TEST_SHOT` set), and checks
 //! that process's exit status, output and screenshot.
 
+#[allow(dead_code)]
+#[path = "../sandbox/tests/support/xvfb.rs"]
+mod xvfb;
+
 use lucid_engine::capture::{load_png, ImageData};
 use lucid_sandbox::{AppOptions, Screenshot};
-use std::path::{Path, PathBuf};
-use std::process::{Child, Command, ExitCode, Output, Stdio};
-use std::time::{Duration, Instant};
+use std::path::PathBuf;
+use std::process::{Command, ExitCode};
+use xvfb::{check_clean_exit, Xvfb};
 
 /// Set in the app process: where to write the screenshot.
 const CHILD_VAR: &str = "LUCID_SANDBOX_TEST_SHOT";
@@ -18,8 +22,6 @@ const WIDTH: u32 = 800;
 const HEIGHT: u32 = 600;
 /// Frames before the screenshot.
 const FRAMES: u64 = 5;
-/// The app process must finish within this (lavapipe in a debug build is slow).
-const APP_TIMEOUT: Duration = Duration::from_secs(300);
 
 fn main() -> ExitCode {
     if let Some(shot) = std::env::var_os(CHILD_VAR) {
@@ -60,55 +62,16 @@ fn app(shot: PathBuf) -> ExitCode {
 
 fn check_sandbox() -> Result<(), String> {
     let shot = std::env::temp_dir().join(format!("lucid-sandbox-{}.png", std::process::id()));
-    let mut xvfb = Xvfb::start()?;
-    let output = run_app(&xvfb.display, &shot);
-    xvfb.stop();
-    let output = output?;
-    let stderr = String::from_utf8_lossy(&output.stderr);
-    if !output.status.success() {
-        return Err(format!(
-            "the sandbox exited with {}:\n{stderr}",
-            output.status
-        ));
-    }
-    if stderr.contains("VUID") || stderr.to_lowercase().contains("validation message") {
-        return Err(format!("validation reported problems:\n{stderr}"));
-    }
+    let xvfb = Xvfb::start()?;
+    let exe = std::env::current_exe().map_err(|e| e.to_string())?;
+    let mut app = Command::new(exe);
+    app.env(CHILD_VAR, &shot);
+    let output = xvfb.run(app);
+    drop(xvfb);
+    check_clean_exit(&output?)?;
     let image = load_png(&shot).map_err(|e| format!("reading the screenshot: {e}"))?;
     std::fs::remove_file(&shot).map_err(|e| e.to_string())?;
     check_screenshot(&image)
-}
-
-fn run_app(display: &str, shot: &Path) -> Result<Output, String> {
-    let exe = std::env::current_exe().map_err(|e| e.to_string())?;
-    let child = Command::new(exe)
-        .env(CHILD_VAR, shot)
-        .env("DISPLAY", display)
-        .env_remove("WAYLAND_DISPLAY")
-        .env("LUCID_VALIDATION", "1")
-        .stdout(Stdio::piped())
-        .stderr(Stdio::piped())
-        .spawn()
-        .map_err(|e| format!("starting the app process: {e}"))?;
-    wait_with_timeout(child, APP_TIMEOUT)
-}
-
-fn wait_with_timeout(mut child: Child, timeout: Duration) -> Result<Output, String> {
-    let start = Instant::now();
-    loop {
-        match child.try_wait().map_err(|e| e.to_string())? {
-            Some(_) => return child.wait_with_output().map_err(|e| e.to_string()),
-            None if start.elapsed() > timeout => {
-                let _ = child.kill();
-                let output = child.wait_with_output().map_err(|e| e.to_string())?;
-                return Err(format!(
-                    "the sandbox did not exit within {timeout:?}:\n{}",
-                    String::from_utf8_lossy(&output.stderr)
-                ));
-            }
-            None => std::thread::sleep(Duration::from_millis(100)),
-        }
-    }
 }
 
 /// The screenshot has the window's size, the scene on the left and the egui panel on the right (a
@@ -171,59 +134,4 @@ fn std_dev(values: impl Iterator<Item = f32> + Clone) -> f32 {
     let n = values.clone().count() as f32;
     let mean = values.clone().sum::<f32>() / n;
     (values.map(|v| (v - mean).powi(2)).sum::<f32>() / n).sqrt()
-}
-
-/// An Xvfb server on a free display, stopped on drop.
-struct Xvfb {
-    process: Option<Child>,
-    display: String,
-}
-
-impl Xvfb {
-    fn start() -> Result<Self, String> {
-        for n in 90..140 {
-            let socket = PathBuf::from(format!("/tmp/.X11-unix/X{n}"));
-            if socket.exists() || Path::new(&format!("/tmp/.X{n}-lock")).exists() {
-                continue;
-            }
-            let mut process = Command::new("Xvfb")
-                .arg(format!(":{n}"))
-                .args(["-screen", "0", "1024x768x24", "-nolisten", "tcp"])
-                .stdout(Stdio::null())
-                .stderr(Stdio::null())
-                .spawn()
-                .map_err(|e| {
-                    format!("Xvfb is not installed ({e}): scripts/setup.sh installs it (apt-get install xvfb)")
-                })?;
-            let start = Instant::now();
-            while start.elapsed() < Duration::from_secs(10) {
-                if socket.exists() {
-                    return Ok(Self {
-                        process: Some(process),
-                        display: format!(":{n}"),
-                    });
-                }
-                if process.try_wait().map_err(|e| e.to_string())?.is_some() {
-                    break;
-                }
-                std::thread::sleep(Duration::from_millis(50));
-            }
-            let _ = process.kill();
-            let _ = process.wait();
-        }
-        Err("Xvfb could not start on any display from :90 to :139".into())
-    }
-
-    fn stop(&mut self) {
-        if let Some(mut process) = self.process.take() {
-            let _ = process.kill();
-            let _ = process.wait();
-        }
-    }
-}
-
-impl Drop for Xvfb {
-    fn drop(&mut self) {
-        self.stop();
-    }
 }
