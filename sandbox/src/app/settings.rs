@@ -97,6 +97,8 @@ pub struct RenderSettings {
     pub accumulate: bool,
     /// The image shown: final, or an intermediate of the frame.
     pub view: lucid_passes::debug_view::View,
+    /// SVGF's mode and parameters (used when `denoiser` is SVGF).
+    pub svgf: lucid_passes::svgf::SvgfParams,
 }
 
 impl RenderSettings {
@@ -133,6 +135,7 @@ impl Default for RenderSettings {
             denoiser: Denoiser::default(),
             accumulate: true,
             view: lucid_passes::debug_view::View::Final,
+            svgf: lucid_passes::svgf::SvgfParams::default(),
         }
     }
 }

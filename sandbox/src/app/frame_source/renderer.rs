@@ -51,6 +51,7 @@ pub fn renderer_settings(base: &Settings, panel: &RenderSettings) -> Settings {
             Denoiser::None => renderer::Denoiser::None,
             Denoiser::Svgf => renderer::Denoiser::Svgf,
         },
+        svgf: panel.svgf,
         ..*base
     }
 }

@@ -5,6 +5,7 @@ mod charts;
 mod settings_panel;
 mod split_view;
 mod stats_panel;
+mod svgf_panel;
 
 use super::frame_source::SideStats;
 use super::state::AppState;

@@ -101,6 +101,9 @@ fn renderer(ui: &mut egui::Ui, r: &mut RenderSettings) {
                 ui.selectable_value(&mut r.denoiser, d, d.label());
             }
         });
+    if r.denoiser == Denoiser::Svgf {
+        super::svgf_panel::svgf(ui, &mut r.svgf);
+    }
     ui.checkbox(&mut r.accumulate, "accumulate");
     egui::ComboBox::from_label("view")
         .selected_text(r.view.label())
