@@ -152,6 +152,18 @@ impl Renderer {
     }
 
     /// Changes settings; anything but display settings restarts accumulation.
+    ///
+    /// ```no_run
+    /// # fn demo() -> lucid_engine::Result<()> {
+    /// # let mut renderer: lucid_passes::renderer::Renderer = unimplemented!();
+    /// use lucid_passes::renderer::{Algorithm, Denoiser, Settings};
+    /// renderer.set_settings(Settings {
+    ///     algorithm: Algorithm::Bidirectional,
+    ///     denoiser: Denoiser::Svgf,
+    ///     ..*renderer.settings()
+    /// });
+    /// # Ok(()) }
+    /// ```
     pub fn set_settings(&mut self, settings: Settings) {
         if self.settings.restarts_accumulation(&settings) {
             self.accumulated = 0;
@@ -165,6 +177,16 @@ impl Renderer {
     }
 
     /// Moves the camera; a change restarts accumulation.
+    ///
+    /// ```no_run
+    /// # fn demo() -> lucid_engine::Result<()> {
+    /// # let mut renderer: lucid_passes::renderer::Renderer = unimplemented!();
+    /// use glam::Vec3;
+    /// use lucid_engine::scene::Camera;
+    /// let eye = Vec3::new(0.0, 1.0, 4.0);
+    /// renderer.set_camera(Camera::look_at(eye, Vec3::ZERO, Vec3::Y, 45.0));
+    /// # Ok(()) }
+    /// ```
     pub fn set_camera(&mut self, camera: Camera) {
         if camera != self.camera {
             self.accumulated = 0;
@@ -178,6 +200,16 @@ impl Renderer {
     }
 
     /// Changes the output size (zero sizes are rejected; skip rendering while minimised instead).
+    ///
+    /// ```no_run
+    /// # fn demo() -> lucid_engine::Result<()> {
+    /// # let mut renderer: lucid_passes::renderer::Renderer = unimplemented!();
+    /// let (width, height) = (1280, 720); // the window's new inner size
+    /// if width > 0 && height > 0 {
+    ///     renderer.resize(width, height)?;
+    /// }
+    /// # Ok(()) }
+    /// ```
     pub fn resize(&mut self, width: u32, height: u32) -> Result<()> {
         check_size(width, height)?;
         if (width, height) != (self.width, self.height) {
@@ -190,6 +222,14 @@ impl Renderer {
 
     /// Places instance `index` of the scene at `transform`. The first move of an instance takes it out
     /// of the flattened static geometry (a full rebuild, once); later moves rebuild only the top level.
+    ///
+    /// ```no_run
+    /// # fn demo() -> lucid_engine::Result<()> {
+    /// # let mut renderer: lucid_passes::renderer::Renderer = unimplemented!();
+    /// use glam::{Affine3A, Vec3};
+    /// renderer.set_instance_transform(0, Affine3A::from_translation(Vec3::new(0.1, 0.0, 0.0)))?;
+    /// # Ok(()) }
+    /// ```
     pub fn set_instance_transform(
         &mut self,
         index: usize,
@@ -218,6 +258,15 @@ impl Renderer {
     }
 
     /// Replaces material `index` of the scene (e.g. switches a light off); restarts accumulation.
+    ///
+    /// ```no_run
+    /// # fn demo() -> lucid_engine::Result<()> {
+    /// # let mut renderer: lucid_passes::renderer::Renderer = unimplemented!();
+    /// use glam::Vec3;
+    /// use lucid_engine::scene::Material;
+    /// renderer.set_material(0, Material::diffuse("light off", Vec3::splat(0.8)))?;
+    /// # Ok(()) }
+    /// ```
     pub fn set_material(&mut self, index: usize, material: Material) -> Result<()> {
         let slot = self.scene.materials.get_mut(index).ok_or_else(|| {
             EngineError::InvalidArgument(format!("scene has no material {index}"))
@@ -254,12 +303,35 @@ impl Renderer {
     }
 
     /// Counts from the last completed frame.
+    ///
+    /// ```no_run
+    /// # fn demo() -> lucid_engine::Result<()> {
+    /// # let mut renderer: lucid_passes::renderer::Renderer = unimplemented!();
+    /// renderer.render_and_read()?;
+    /// let stats = renderer.stats();
+    /// println!("{} rays, {} NaN/Inf samples dropped", stats.rays, stats.non_finite_samples);
+    /// # Ok(()) }
+    /// ```
     pub fn stats(&self) -> FrameStats {
         self.stats
     }
 
     /// Adds this frame's passes to `g` and advances the frame state; run `g` on
     /// [`Renderer::executor_mut`]. Returns the frame's images and the stats readback.
+    ///
+    /// ```no_run
+    /// # fn demo() -> lucid_engine::Result<()> {
+    /// # let mut renderer: lucid_passes::renderer::Renderer = unimplemented!();
+    /// use lucid_engine::graph::RenderGraph;
+    /// let mut g = RenderGraph::new();
+    /// let (images, stats) = renderer.add_frame(&mut g);
+    /// let shown = g.readback(images.ldr); // or add passes of your own that read images.hdr
+    /// let frame = renderer.executor_mut().execute(g.compile()?)?;
+    /// let outputs = renderer.executor_mut().wait(frame)?;
+    /// renderer.collect_stats(&outputs, stats)?;
+    /// let ldr = outputs.image(shown)?;
+    /// # Ok(()) }
+    /// ```
     pub fn add_frame(&mut self, g: &mut RenderGraph) -> (FrameImages, ReadbackId) {
         let (w, h) = (self.width, self.height);
         let camera = gpu::camera(&self.camera);
@@ -350,6 +422,14 @@ impl Renderer {
 
     /// The compiled plan of the next frame (passes, barriers, lifetimes, aliasing), without rendering
     /// it or changing any state.
+    ///
+    /// ```no_run
+    /// # fn demo() -> lucid_engine::Result<()> {
+    /// # let mut renderer: lucid_passes::renderer::Renderer = unimplemented!();
+    /// let plan = renderer.frame_plan()?;
+    /// println!("{}", plan.dump());
+    /// # Ok(()) }
+    /// ```
     pub fn frame_plan(&mut self) -> Result<lucid_engine::graph::Plan> {
         let saved = (
             self.prev_camera,
@@ -388,6 +468,16 @@ impl Renderer {
 
     /// Renders one frame without waiting for it (frames in flight); stats of finished frames are
     /// collected as they complete.
+    ///
+    /// ```no_run
+    /// # fn demo() -> lucid_engine::Result<()> {
+    /// # let mut renderer: lucid_passes::renderer::Renderer = unimplemented!();
+    /// for _ in 0..60 {
+    ///     renderer.render()?;
+    /// }
+    /// renderer.finish()?;
+    /// # Ok(()) }
+    /// ```
     pub fn render(&mut self) -> Result<FrameId> {
         let mut g = RenderGraph::new();
         let (_, stats) = self.add_frame(&mut g);
@@ -401,6 +491,14 @@ impl Renderer {
 
     /// Renders one frame, waits for it and returns its HDR output (the accumulated image when
     /// accumulation is on).
+    ///
+    /// ```no_run
+    /// # fn demo() -> lucid_engine::Result<()> {
+    /// # let mut renderer: lucid_passes::renderer::Renderer = unimplemented!();
+    /// let hdr = renderer.render_and_read()?;
+    /// println!("{}x{} linear RGBA pixels", hdr.width, hdr.height);
+    /// # Ok(()) }
+    /// ```
     pub fn render_and_read(&mut self) -> Result<ImageData> {
         let mut g = RenderGraph::new();
         let (images, stats) = self.add_frame(&mut g);
