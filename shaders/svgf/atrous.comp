@@ -6,10 +6,10 @@
 
 layout(local_size_x = 8, local_size_y = 8) in;
 
-layout(set = 0, binding = 0, rgba32f) uniform readonly image2D u_in;
+layout(set = 0, binding = 0, rgba16f) uniform readonly image2D u_in;
 layout(set = 0, binding = 1, r32f) uniform readonly image2D u_depth;
 layout(set = 0, binding = 2, rgba16f) uniform readonly image2D u_normal_roughness;
-layout(set = 0, binding = 3, rgba32f) uniform writeonly image2D u_out;
+layout(set = 0, binding = 3, rgba16f) uniform writeonly image2D u_out;
 
 layout(push_constant) uniform Params {
     int step;

@@ -1,6 +1,7 @@
 // One iteration of SVGF's edge-avoiding a-trous wavelet filter. Requires math.glsl,
 // svgf/common.glsl, svgf/depth_slope.glsl, the images `u_in` (illumination rgb, variance a),
 // `u_depth`, `u_normal_roughness`, and `params` with `step`, `sigma_z`, `sigma_n`, `sigma_l`.
+// Texels are packed by svgf_pack_filtered (standard deviation in alpha).
 #ifndef LUCID_SVGF_ATROUS_GLSL
 #define LUCID_SVGF_ATROUS_GLSL
 
@@ -13,6 +14,7 @@ vec4 svgf_atrous(ivec2 pixel, ivec2 size) {
     if (z <= 0.0) {
         return centre;
     }
+    centre.a = svgf_filtered_variance(centre);
     vec3 n = imageLoad(u_normal_roughness, pixel).xyz;
     float slope = svgf_depth_slope(pixel, size);
     float l = luminance(centre.rgb);
@@ -21,7 +23,7 @@ vec4 svgf_atrous(ivec2 pixel, ivec2 size) {
     for (int dy = -1; dy <= 1; ++dy) {
         for (int dx = -1; dx <= 1; ++dx) {
             ivec2 q = clamp(pixel + ivec2(dx, dy), ivec2(0), size - 1);
-            blurred_variance += gauss[abs(dx)] * gauss[abs(dy)] * 4.0 * imageLoad(u_in, q).a;
+            blurred_variance += gauss[abs(dx)] * gauss[abs(dy)] * 4.0 * svgf_filtered_variance(imageLoad(u_in, q));
         }
     }
     float sigma_l_std = params.sigma_l * sqrt(max(blurred_variance, 0.0));
@@ -48,11 +50,11 @@ vec4 svgf_atrous(ivec2 pixel, ivec2 size) {
                                    imageLoad(u_normal_roughness, q).xyz, l, luminance(tap.rgb),
                                    sigma_l_std, params.sigma_z, params.sigma_n);
             color_sum += w * tap.rgb;
-            variance_sum += w * w * tap.a;
+            variance_sum += w * w * svgf_filtered_variance(tap);
             weight_sum += w;
         }
     }
-    return vec4(color_sum / weight_sum, variance_sum / (weight_sum * weight_sum));
+    return svgf_pack_filtered(color_sum / weight_sum, variance_sum / (weight_sum * weight_sum));
 }
 
 #endif

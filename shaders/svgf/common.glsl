@@ -12,6 +12,18 @@ vec3 svgf_demodulate(vec3 radiance, vec3 emission, vec3 albedo) {
     return max(radiance - emission, vec3(0.0)) / max(albedo, vec3(1e-3));
 }
 
+// What the a-trous iterations read and write (rgba16f): illumination clamped to half precision's
+// range, and the standard deviation rather than the variance, whose small values half precision
+// would flush to zero.
+vec4 svgf_pack_filtered(vec3 illumination, float variance) {
+    return vec4(min(illumination, vec3(60000.0)), sqrt(max(variance, 0.0)));
+}
+
+// The variance of a texel written by svgf_pack_filtered.
+float svgf_filtered_variance(vec4 texel) {
+    return texel.a * texel.a;
+}
+
 // Octahedral encoding of a unit vector into [-1, 1]^2.
 vec2 svgf_oct_encode(vec3 n) {
     n /= abs(n.x) + abs(n.y) + abs(n.z);

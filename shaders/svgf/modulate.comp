@@ -5,7 +5,7 @@
 
 layout(local_size_x = 8, local_size_y = 8) in;
 
-layout(set = 0, binding = 0, rgba32f) uniform readonly image2D u_illumination;
+layout(set = 0, binding = 0, rgba16f) uniform readonly image2D u_illumination;
 layout(set = 0, binding = 1, rgba32f) uniform readonly image2D u_albedo;
 layout(set = 0, binding = 2, rgba32f) uniform readonly image2D u_emission;
 layout(set = 0, binding = 3, rgba32f) uniform writeonly image2D u_out;

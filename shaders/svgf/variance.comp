@@ -2,7 +2,8 @@
 // SVGF variance estimate: the temporal luminance moments give variance = E[l^2] - E[l]^2. Where
 // the history is shorter than 4 frames (disocclusions, the first frame, the per-frame filter) the
 // moments and the illumination are instead averaged over a 7x7 neighbourhood with depth and normal
-// edge stopping. Writes illumination (rgb) and variance (a).
+// edge stopping. Writes illumination (rgb) and the standard deviation (a) in half precision
+// (svgf_pack_filtered).
 #include "common/math.glsl"
 #include "common/image_coords.glsl"
 #include "svgf/common.glsl"
@@ -13,7 +14,7 @@ layout(set = 0, binding = 0, rgba32f) uniform readonly image2D u_color;
 layout(set = 0, binding = 1, rgba32f) uniform readonly image2D u_moments;
 layout(set = 0, binding = 2, r32f) uniform readonly image2D u_depth;
 layout(set = 0, binding = 3, rgba16f) uniform readonly image2D u_normal_roughness;
-layout(set = 0, binding = 4, rgba32f) uniform writeonly image2D u_out;
+layout(set = 0, binding = 4, rgba16f) uniform writeonly image2D u_out;
 
 #include "svgf/depth_slope.glsl"
 
@@ -34,7 +35,7 @@ void main() {
     float z = imageLoad(u_depth, pixel).x;
     if (history >= 4.0 || z <= 0.0) {
         float variance = max(moments.y - moments.x * moments.x, 0.0);
-        imageStore(u_out, pixel, vec4(color, variance));
+        imageStore(u_out, pixel, svgf_pack_filtered(color, variance));
         return;
     }
     vec3 n = imageLoad(u_normal_roughness, pixel).xyz;
@@ -65,5 +66,5 @@ void main() {
     float variance = max(moment_sum.y - moment_sum.x * moment_sum.x, 0.0);
     // Few frames of history underestimate variance: boost it as the SVGF reference does.
     variance *= history > 0.0 ? 4.0 / history : 1.0;
-    imageStore(u_out, pixel, vec4(color_sum, variance));
+    imageStore(u_out, pixel, svgf_pack_filtered(color_sum, variance));
 }

@@ -49,7 +49,8 @@ pub(super) fn add(
     feedback: Option<ImageHandle>,
     (width, height): (u32, u32),
 ) -> ImageHandle {
-    let desc = ImageDesc::rgba32f(width, height);
+    // Half precision for the filter chain (svgf_pack_filtered): the iterations are memory-bound.
+    let desc = ImageDesc::rgba16f(width, height);
     let mut p = g.add_pass("svgf.variance");
     let color = p.read(demodulated.illumination, Access::ComputeRead);
     let moments = p.read(moments, Access::ComputeRead);
