@@ -17,7 +17,9 @@ fn gradients_vanish_when_only_the_camera_moves() {
     let path = cornell.camera_path.clone().expect("a default path");
     let mut outputs = Vec::new();
     for method in [Method::Svgf, Method::SvgfWithoutGradients] {
-        let mut r = renderer(&ctx, cornell.clone(), settings(method, 8));
+        let mut s = settings(method, 8);
+        s.svgf.gradients_every_frame = true;
+        let mut r = renderer(&ctx, cornell.clone(), s);
         let frames: Vec<_> = (0..6)
             .map(|i| {
                 r.set_camera(path.sample(0.1 * i as f32));

@@ -75,6 +75,9 @@ pub struct Renderer {
     width: u32,
     height: u32,
     accumulated: u32,
+    /// The scene or the light transport changed since the last frame was added (SVGF then
+    /// re-traces its temporal gradients; in a static scene they are exactly zero).
+    scene_changed: bool,
     frame_index: u32,
     pending_stats: Option<(FrameId, ReadbackId)>,
     stats: FrameStats,
@@ -119,6 +122,7 @@ impl Renderer {
             width,
             height,
             accumulated: 0,
+            scene_changed: false,
             frame_index: 0,
             pending_stats: None,
             stats: FrameStats::default(),
@@ -167,6 +171,7 @@ impl Renderer {
     pub fn set_settings(&mut self, settings: Settings) {
         if self.settings.restarts_accumulation(&settings) {
             self.accumulated = 0;
+            self.scene_changed = true;
         }
         self.settings = settings;
     }
@@ -240,6 +245,7 @@ impl Renderer {
         })?;
         instance.transform = transform;
         self.accumulated = 0;
+        self.scene_changed = true;
         match self.flat.instance_of(index) {
             Some(flat_index) => {
                 self.flat.scene.instances[flat_index].transform = transform;
@@ -274,6 +280,7 @@ impl Renderer {
         let emission_changed = slot.is_emissive() != material.is_emissive();
         *slot = material.clone();
         self.accumulated = 0;
+        self.scene_changed = true;
         if emission_changed {
             // Emitters are never merged: which instances are flattened changes.
             return self.rebuild_gpu_scene();
@@ -335,6 +342,7 @@ impl Renderer {
     pub fn add_frame(&mut self, g: &mut RenderGraph) -> (FrameImages, ReadbackId) {
         let (w, h) = (self.width, self.height);
         let camera = gpu::camera(&self.camera);
+        let scene_changed = std::mem::take(&mut self.scene_changed);
         let accumulated = if self.settings.accumulate {
             self.accumulated
         } else {
@@ -388,6 +396,7 @@ impl Renderer {
                     transport: traced,
                     accumulated: hdr,
                     accumulated_frames: accumulated,
+                    scene_changed,
                     gbuffer,
                     scene: &scene,
                     frame,
@@ -436,6 +445,7 @@ impl Renderer {
             self.prev_transforms.clone(),
             self.frame_index,
             self.accumulated,
+            self.scene_changed,
         );
         let mut g = RenderGraph::new();
         self.add_frame(&mut g);
@@ -444,6 +454,7 @@ impl Renderer {
             self.prev_transforms,
             self.frame_index,
             self.accumulated,
+            self.scene_changed,
         ) = saved;
         Ok(g.compile()?.plan)
     }

@@ -4,9 +4,10 @@
 //! Temporal mode, per frame:
 //! 1. **Gradients** (`gradient`): per stratum of n x n pixels ([`SvgfParams::gradient_stratum`]),
 //!    one pixel's path of last frame is re-traced in the current scene with last frame's camera and
-//!    random numbers and compared with what the path tracer produced for it; the differences are spread over 7x7 strata. Where only the camera
-//!    moved they are exactly zero; where a light or an object changed they measure the share of
-//!    shading that changed.
+//!    random numbers and compared with what the path tracer produced for it; the differences are
+//!    spread over 7x7 strata. Where only the camera moved they are exactly zero, so they are only
+//!    re-traced on frames after the scene changed (unless [`SvgfParams::gradients_every_frame`]);
+//!    where a light or an object changed they measure the share of shading that changed.
 //! 2. **Temporal accumulation** (`temporal`): the light-transport pass demodulated each sample by
 //!    its own first hit, `(radiance - emission) / albedo` ([`transport::Outputs`]); reproject the
 //!    history with the motion vectors (bilinear taps validated by depth, normal and object id,
@@ -71,6 +72,9 @@ pub struct FrameInputs<'a> {
     pub accumulated: ImageHandle,
     /// Frames averaged into `accumulated` before this one (0: it is this frame's radiance).
     pub accumulated_frames: u32,
+    /// The scene (instances, materials, lights) or the light transport's settings changed since
+    /// the last frame: only then can shading have changed where the camera alone did not move it.
+    pub scene_changed: bool,
     /// Primary visibility.
     pub gbuffer: GBuffer,
     /// The scene (the gradient pass re-traces paths).
@@ -134,7 +138,9 @@ pub fn add_temporal(
             spec: inputs.spec,
             motion: inputs.gbuffer.motion,
             prev_surface: history.surface.prev,
-            enabled: params.gradients && continues,
+            enabled: params.gradients
+                && continues
+                && (inputs.scene_changed || params.gradients_every_frame),
             stratum: params.gradient_stratum,
             width: inputs.width,
             height: inputs.height,

@@ -41,6 +41,9 @@ pub struct SvgfParams {
     /// Side in pixels of the strata that get one re-traced gradient sample each (A-SVGF uses 3;
     /// 4 re-traces 44% fewer paths and measured as good on the disocclusion and light tests).
     pub gradient_stratum: u32,
+    /// Re-trace the gradients every frame, not only after the scene changed (in a static scene
+    /// they are exactly zero, which `tests/svgf_history.rs` checks with this set).
+    pub gradients_every_frame: bool,
 }
 
 impl Default for SvgfParams {
@@ -56,6 +59,7 @@ impl Default for SvgfParams {
             sigma_l: 4.0,
             gradients: true,
             gradient_stratum: 4,
+            gradients_every_frame: false,
         }
     }
 }

@@ -60,6 +60,10 @@ pub fn svgf(ui: &mut egui::Ui, params: &mut SvgfParams) {
             ui.add(egui::Slider::new(&mut params.sigma_n, 1.0..=256.0).text("sigma n"));
             ui.add(egui::Slider::new(&mut params.sigma_l, 0.5..=16.0).text("sigma l"));
             ui.checkbox(&mut params.gradients, "temporal gradients (A-SVGF)");
+            ui.checkbox(
+                &mut params.gradients_every_frame,
+                "re-trace gradients in a static scene too",
+            );
             ui.add(egui::Slider::new(&mut params.gradient_stratum, 2..=8).text("gradient stratum"));
         });
 }
