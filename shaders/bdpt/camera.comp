@@ -283,7 +283,7 @@ void main() {
     vec3 albedo = albedo_sum / float(spp);
     vec3 emission = emission_sum / float(spp);
     imageStore(u_radiance, pixel, vec4(radiance, 1.0));
-    imageStore(u_demodulated, pixel, vec4(max(radiance - emission, vec3(0.0)) / max(albedo, vec3(1e-3)), 1.0));
+    imageStore(u_demodulated, pixel, vec4(demodulate(radiance, emission, albedo), 1.0));
     imageStore(u_albedo, pixel, vec4(albedo, 1.0));
     imageStore(u_emission, pixel, vec4(emission, 1.0));
 }

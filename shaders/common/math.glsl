@@ -57,6 +57,12 @@ float power_heuristic(float a, float b) {
     return a2 + b2 > 0.0 ? a2 / (a2 + b2) : 0.0;
 }
 
+// Radiance without the directly seen emission, divided by the first-hit albedo: the smooth
+// signal denoisers filter (emission and albedo are added back after filtering).
+vec3 demodulate(vec3 radiance, vec3 emission, vec3 albedo) {
+    return max(radiance - emission, vec3(0.0)) / max(albedo, vec3(1e-3));
+}
+
 // Offsets a ray origin along the geometric normal, on the side of `dir`.
 vec3 offset_origin(vec3 p, vec3 ng, vec3 dir) {
     float scale = RAY_EPSILON * max(1.0, max3(abs(p)));

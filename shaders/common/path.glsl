@@ -93,9 +93,4 @@ PathResult trace_path(vec3 o, vec3 d, inout uint rng, uint max_depth, uint rr_de
     return r;
 }
 
-// The radiance with the first hit's emission removed and divided by its albedo: what SVGF filters.
-vec3 path_demodulated(PathResult r) {
-    return max(r.radiance - r.first_emission, vec3(0.0)) / max(r.first_albedo, vec3(1e-3));
-}
-
 #endif

@@ -53,7 +53,7 @@ void main() {
             continue;
         }
         sum += path.radiance;
-        demodulated_sum += path_demodulated(path);
+        demodulated_sum += demodulate(path.radiance, path.first_emission, path.first_albedo);
         emission_sum += path.first_emission;
     }
     if (dropped > 0u) {

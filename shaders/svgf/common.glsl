@@ -6,12 +6,6 @@
 // The object id the G-buffer writes where the sky is seen.
 const uint SVGF_SKY = 0xffffffffu;
 
-// Radiance without the directly seen emission, divided by the first-hit albedo: the smooth
-// signal the filter works on (emission and albedo are added back after filtering).
-vec3 svgf_demodulate(vec3 radiance, vec3 emission, vec3 albedo) {
-    return max(radiance - emission, vec3(0.0)) / max(albedo, vec3(1e-3));
-}
-
 // What the a-trous iterations read and write (rgba16f): illumination clamped to half precision's
 // range, and the standard deviation rather than the variance, whose small values half precision
 // would flush to zero.

@@ -1,8 +1,8 @@
 #version 460
 // Demodulation of accumulated radiance for the spatial filter: (radiance - emission) / albedo,
 // with the first hit's emission and albedo accumulated over the same frames.
+#include "common/math.glsl"
 #include "common/image_coords.glsl"
-#include "svgf/common.glsl"
 
 layout(local_size_x = 8, local_size_y = 8) in;
 
@@ -19,5 +19,5 @@ void main() {
     vec3 radiance = imageLoad(u_radiance, pixel).rgb;
     vec3 albedo = imageLoad(u_albedo, pixel).rgb;
     vec3 emission = imageLoad(u_emission, pixel).rgb;
-    imageStore(u_illumination, pixel, vec4(svgf_demodulate(radiance, emission, albedo), 0.0));
+    imageStore(u_illumination, pixel, vec4(demodulate(radiance, emission, albedo), 0.0));
 }

@@ -19,6 +19,7 @@ pub(super) struct GradientInputs<'a> {
     pub motion: ImageHandle,
     pub prev_surface: ImageHandle,
     pub enabled: bool,
+    /// Side of a stratum in pixels, at least 1.
     pub stratum: u32,
     pub width: u32,
     pub height: u32,
@@ -26,7 +27,7 @@ pub(super) struct GradientInputs<'a> {
 
 /// Adds the gradient passes; returns per stratum (filtered luminance difference, normaliser).
 pub(super) fn add(g: &mut RenderGraph, inputs: &GradientInputs<'_>) -> ImageHandle {
-    let stratum = inputs.stratum.max(1);
+    let stratum = inputs.stratum;
     let (gw, gh) = (
         inputs.width.div_ceil(stratum),
         inputs.height.div_ceil(stratum),

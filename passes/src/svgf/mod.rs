@@ -121,6 +121,11 @@ pub fn add_temporal(
     params: &SvgfParams,
     continues: bool,
 ) -> ImageHandle {
+    let params = SvgfParams {
+        iterations: params.iterations.max(1),
+        gradient_stratum: params.gradient_stratum.max(1),
+        ..*params
+    };
     let size = (inputs.width, inputs.height);
     let (color_desc, surface_desc) = temporal::history_descs(inputs.width, inputs.height);
     let history = Histories {
@@ -152,13 +157,9 @@ pub fn add_temporal(
         &inputs.gbuffer,
         gradient,
         (&history, continues),
-        params,
+        &params,
         size,
     );
-    let params = SvgfParams {
-        iterations: params.iterations.max(1),
-        ..*params
-    };
     filter::add(
         g,
         (&integrated.demodulated, integrated.moments),

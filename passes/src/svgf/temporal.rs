@@ -66,20 +66,15 @@ pub(super) fn add(
     let surface = p.write(history.surface.cur, Access::ComputeWrite);
     let albedo_out = p.write(history.albedo.cur, Access::ComputeWrite);
     let emission_out = p.write(history.emission.cur, Access::ComputeWrite);
-    let (alpha, moments_alpha, surface_alpha, stratum) = (
-        params.alpha,
-        params.moments_alpha,
-        params.surface_alpha,
-        params.gradient_stratum,
-    );
+    let params = *params;
     p.execute(move |ctx| {
         let push = Params {
-            alpha,
-            moments_alpha,
+            alpha: params.alpha,
+            moments_alpha: params.moments_alpha,
             history_valid: u32::from(continues && ctx.history_valid(prev_color)),
-            stratum: stratum.max(1),
+            stratum: params.gradient_stratum,
             max_history: MAX_HISTORY,
-            surface_alpha,
+            surface_alpha: params.surface_alpha,
             pad: [0.0; 2],
         };
         ctx.compute(&TEMPORAL)

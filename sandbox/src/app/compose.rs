@@ -2,7 +2,7 @@
 //! swapchain image (or clear it when there is no output), draw the UI over it, optionally read
 //! back the HDR output and the final image, and leave the image ready to present.
 
-use super::gpu::PresentTarget;
+use super::gpu::{image_copy, PresentTarget};
 use super::overlay::{Overlay, OverlayFrame};
 use super::settings::DisplaySettings;
 use super::tonemap;
@@ -101,28 +101,12 @@ fn copy(graph: &mut RenderGraph, src: ImageHandle, dst: ImageHandle) -> ImageHan
     let dst = p.write(dst, Access::TransferWrite);
     p.execute(move |pcx| {
         let (from, to) = (pcx.image(src)?, pcx.image(dst)?);
-        let layers = vk::ImageSubresourceLayers {
-            aspect_mask: vk::ImageAspectFlags::COLOR,
-            mip_level: 0,
-            base_array_layer: 0,
-            layer_count: 1,
-        };
         let region = vk::ImageCopy::default()
-            .src_subresource(layers)
-            .dst_subresource(layers)
+            .src_subresource(image_copy::COLOR_LAYER)
+            .dst_subresource(image_copy::COLOR_LAYER)
             .extent(to.desc().extent());
-        // SAFETY: cmd is recording; the graph put both images in the transfer layouts and they
-        // have the same size and texel size.
-        unsafe {
-            pcx.context().device().cmd_copy_image(
-                pcx.command_buffer(),
-                from.raw(),
-                vk::ImageLayout::TRANSFER_SRC_OPTIMAL,
-                to.raw(),
-                vk::ImageLayout::TRANSFER_DST_OPTIMAL,
-                &[region],
-            )
-        };
+        // The window image and the tone-mapped output have the same size and texel size.
+        image_copy::record(pcx, from, to, region);
         Ok(())
     });
     dst

@@ -1,6 +1,7 @@
 //! The split view's picture: columns of one HDR image beside columns of another, copied into a new
 //! image.
 
+use crate::gpu::image_copy;
 use ash::vk;
 use lucid_engine::graph::{Access, ImageHandle, PassContext, RenderGraph};
 use lucid_engine::memory::ImageDesc;
@@ -65,12 +66,7 @@ pub fn copy_columns(
         return Ok(());
     }
     let (from, to) = (pcx.image(src)?, pcx.image(dst)?);
-    let layers = vk::ImageSubresourceLayers {
-        aspect_mask: vk::ImageAspectFlags::COLOR,
-        mip_level: 0,
-        base_array_layer: 0,
-        layer_count: 1,
-    };
+    let layers = image_copy::COLOR_LAYER;
     for image in [from, to] {
         let desc = image.desc();
         if desc.width < columns.end || desc.height < height || desc.format != FORMAT {
@@ -102,17 +98,6 @@ pub fn copy_columns(
             height,
             depth: 1,
         });
-    // SAFETY: cmd is recording; the graph put both images in the transfer layouts; they have the
-    // same format and the region lies in both (checked above).
-    unsafe {
-        pcx.context().device().cmd_copy_image(
-            pcx.command_buffer(),
-            from.raw(),
-            vk::ImageLayout::TRANSFER_SRC_OPTIMAL,
-            to.raw(),
-            vk::ImageLayout::TRANSFER_DST_OPTIMAL,
-            &[region],
-        )
-    };
+    image_copy::record(pcx, from, to, region);
     Ok(())
 }

@@ -3,6 +3,7 @@
 //! data) what they need.
 
 mod frames;
+pub mod image_copy;
 mod presenter;
 mod surface;
 mod surface_state;
