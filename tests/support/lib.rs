@@ -30,17 +30,9 @@ pub fn executor(sync: bool) -> (Context, Executor) {
 
 /// Panics with every collected validation message, if any.
 pub fn assert_no_validation_messages(ctx: &Context) {
-    let messages = ctx.validation_log().take();
-    assert!(
-        messages.is_empty(),
-        "{} validation message(s):\n{}",
-        messages.len(),
-        messages
-            .iter()
-            .map(|m| m.to_string())
-            .collect::<Vec<_>>()
-            .join("\n")
-    );
+    if let Some(report) = ctx.validation_log().take_report() {
+        panic!("{report}");
+    }
 }
 
 pub mod render;

@@ -31,6 +31,20 @@ impl ValidationLog {
         std::mem::take(&mut *self.lock())
     }
 
+    /// Removes every message collected so far and, if there were any, returns them as one text:
+    /// a count, then one message per line.
+    pub fn take_report(&self) -> Option<String> {
+        let messages = self.take();
+        (!messages.is_empty()).then(|| {
+            let lines: Vec<String> = messages.iter().map(|m| m.to_string()).collect();
+            format!(
+                "{} Vulkan validation message(s):\n{}",
+                messages.len(),
+                lines.join("\n")
+            )
+        })
+    }
+
     /// The number of messages collected so far.
     pub fn len(&self) -> usize {
         self.lock().len()

@@ -126,19 +126,10 @@ impl App<'_> {
         let ctx = running.presenter.context().clone();
         let summary = running.summary();
         drop(running);
-        let messages = ctx.validation_log().take();
-        self.result = result.and_then(|()| {
-            anyhow::ensure!(
-                messages.is_empty(),
-                "{} Vulkan validation message(s):\n{}",
-                messages.len(),
-                messages
-                    .iter()
-                    .map(|m| m.to_string())
-                    .collect::<Vec<_>>()
-                    .join("\n")
-            );
-            Ok(summary)
+        let report = ctx.validation_log().take_report();
+        self.result = result.and_then(|()| match report {
+            Some(report) => Err(anyhow::anyhow!(report)),
+            None => Ok(summary),
         });
     }
 }

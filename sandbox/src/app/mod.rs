@@ -92,14 +92,9 @@ pub fn run_with(options: AppOptions, startup: Startup) -> anyhow::Result<()> {
     let Some(ctx) = ctx else {
         return Ok(());
     };
-    let messages = ctx.validation_log().take();
-    if ctx.validation() != Validation::Off && !messages.is_empty() {
-        let text: Vec<String> = messages.iter().map(|m| m.to_string()).collect();
-        anyhow::bail!(
-            "{} Vulkan validation message(s):\n{}",
-            messages.len(),
-            text.join("\n")
-        );
+    let report = ctx.validation_log().take_report();
+    if let Some(report) = report.filter(|_| ctx.validation() != Validation::Off) {
+        anyhow::bail!(report);
     }
     Ok(())
 }

@@ -22,19 +22,24 @@ impl RendererSource {
     /// Uploads `scene` and prepares rendering at `extent`.
     pub fn new(ctx: &Context, scene: Scene, extent: [u32; 2]) -> anyhow::Result<Self> {
         let name = format!("{} renderer", scene.name);
-        let renderer = Renderer::new(
-            ctx,
-            scene,
-            extent[0].max(1),
-            extent[1].max(1),
-            Settings::default(),
-        )?;
         Ok(Self {
-            renderer,
+            renderer: new_renderer(ctx, scene, extent)?,
             split: None,
             name,
         })
     }
+}
+
+/// A renderer of `scene` at `extent` (at least 1x1) with default settings; the panels' settings
+/// are applied before each frame.
+pub fn new_renderer(ctx: &Context, scene: Scene, extent: [u32; 2]) -> anyhow::Result<Renderer> {
+    Ok(Renderer::new(
+        ctx,
+        scene,
+        extent[0].max(1),
+        extent[1].max(1),
+        Settings::default(),
+    )?)
 }
 
 /// The renderer settings the panels describe (display settings are the app's own).

@@ -4,7 +4,7 @@
 //! app's graph imports. Both submissions go to the context's one queue, so the barrier the app's
 //! graph derives from the image's tracked state orders its read after this write.
 
-use super::renderer::{renderer_settings, samples_accumulated};
+use super::renderer::{new_renderer, renderer_settings, samples_accumulated};
 use super::side_by_side::{self, copy_columns, settle_reads, split_column};
 use super::{renderer_ms, FrameRequest, SideStats};
 use crate::settings::RenderSettings;
@@ -14,7 +14,7 @@ use lucid_engine::memory::{Image, ImageDesc};
 use lucid_engine::scene::Scene;
 use lucid_engine::Context;
 use lucid_passes::debug_view;
-use lucid_passes::renderer::{Renderer, Settings};
+use lucid_passes::renderer::Renderer;
 use std::sync::Arc;
 
 /// The renderer of the right half and the image it leaves its output in.
@@ -27,15 +27,8 @@ pub struct SplitRenderer {
 impl SplitRenderer {
     /// Uploads `scene` for a second renderer at `extent`.
     pub fn new(ctx: &Context, scene: Scene, extent: [u32; 2]) -> anyhow::Result<Self> {
-        let renderer = Renderer::new(
-            ctx,
-            scene,
-            extent[0].max(1),
-            extent[1].max(1),
-            Settings::default(),
-        )?;
         Ok(Self {
-            renderer,
+            renderer: new_renderer(ctx, scene, extent)?,
             output: None,
             ctx: ctx.clone(),
         })
