@@ -26,6 +26,10 @@ if [ "${SVGF:-1}" = 1 ]; then
       --frames "$frames" --warmup 10 --json "$runs/svgf_classroom_${size}.json" > /dev/null
     echo "done svgf $size"
   done
+  # A frame after a scene change: the path tracer replays SVGF's gradient paths.
+  "$lucid" bench --scene classroom --algo pt --denoise svgf --size 1920x1080 --spp 1 --max-depth 8 \
+    --frames "$frames" --warmup 10 --dynamic --json "$runs/svgf_classroom_1920x1080_dynamic.json" > /dev/null
+  echo "done svgf dynamic"
 fi
 if [ -d /tmp/mitsuba ]; then
   PYTHONPATH=/tmp/mitsuba python3 bench/mitsuba/bench_cornell.py --size 1920x1080 --spp 64 \

@@ -1,37 +1,99 @@
-//! SVGF's histories: the temporal gradients are exactly zero when only the camera moves (the
-//! re-traced paths match the path tracer's bit for bit), and a resize or a history reset starts
-//! the histories afresh without a stale frame showing.
+//! SVGF's histories: the light transport's replayed paths (A-SVGF's gradient samples) give exactly
+//! what last frame's pixel gave when only the camera moves, so the temporal gradients are exactly
+//! zero then; and a resize or a history reset starts the histories afresh without a stale frame
+//! showing.
 
 #[allow(dead_code)]
 #[path = "svgf_common.rs"]
 mod common;
 
-use common::{frame, mean_luminance, renderer, settings, Method};
+use common::{frame, mean_luminance, renderer, settings, Method, SIZE};
+use lucid_engine::capture::ImageData;
+use lucid_engine::graph::RenderGraph;
+use lucid_passes::renderer::Renderer;
 use lucid_tests::render::scene;
 use lucid_tests::{assert_no_validation_messages, context};
 
+/// Renders the next frame; returns its noisy radiance and its motion vectors.
+fn radiance_and_motion(r: &mut Renderer) -> (ImageData, ImageData) {
+    let mut g = RenderGraph::new();
+    let (images, _) = r.add_frame(&mut g);
+    let radiance = g.readback(images.radiance);
+    let motion = g.readback(images.gbuffer.motion);
+    let executor = r.executor_mut();
+    let frame = executor
+        .execute(g.compile().expect("graph"))
+        .expect("frame");
+    let outputs = executor.wait(frame).expect("frame");
+    (
+        outputs.image(radiance).expect("radiance"),
+        outputs.image(motion).expect("motion"),
+    )
+}
+
+/// Share of the 4x4 strata of frame `cur` holding a pixel whose radiance equals, bit for bit, that
+/// of the pixel of frame `prev` its motion vector leads to, where that radiance is unique in `prev`
+/// (noise makes it so; constant regions such as an emitter seen directly would match by chance).
+fn share_of_strata_replaying(prev: &ImageData, (cur, motion): &(ImageData, ImageData)) -> f64 {
+    let size = SIZE as i64;
+    let bits = |p: [f32; 4]| p.map(f32::to_bits);
+    let mut occurrences = std::collections::HashMap::new();
+    for &p in &prev.pixels {
+        *occurrences.entry(bits(p)).or_insert(0u32) += 1;
+    }
+    let mut replayed = std::collections::HashSet::new();
+    for y in 0..size {
+        for x in 0..size {
+            let m = motion.pixels[(y * size + x) as usize];
+            let qx = (x as f32 + m[0] + 0.5).floor() as i64;
+            let qy = (y as f32 + m[1] + 0.5).floor() as i64;
+            if !(0..size).contains(&qx) || !(0..size).contains(&qy) {
+                continue;
+            }
+            let now = bits(cur.pixels[(y * size + x) as usize]);
+            let then = bits(prev.pixels[(qy * size + qx) as usize]);
+            if now == then && occurrences[&then] == 1 {
+                replayed.insert((x / 4, y / 4));
+            }
+        }
+    }
+    replayed.len() as f64 / (size / 4 * size / 4) as f64
+}
+
 #[test]
-fn gradients_vanish_when_only_the_camera_moves() {
+fn replayed_paths_match_last_frame_exactly_when_only_the_camera_moves() {
     let ctx = context(false);
     let cornell = scene("cornell-box");
     let path = cornell.camera_path.clone().expect("a default path");
-    let mut outputs = Vec::new();
+    let mut shares = Vec::new();
     for method in [Method::Svgf, Method::SvgfWithoutGradients] {
         let mut s = settings(method, 8);
         s.svgf.gradients_every_frame = true;
         let mut r = renderer(&ctx, cornell.clone(), s);
-        let frames: Vec<_> = (0..6)
+        let frames: Vec<_> = (0..4)
             .map(|i| {
                 r.set_camera(path.sample(0.1 * i as f32));
-                frame(&mut r)
+                radiance_and_motion(&mut r)
             })
             .collect();
-        outputs.push(frames);
+        let share = frames
+            .windows(2)
+            .map(|w| share_of_strata_replaying(&w[0].0, &w[1]))
+            .fold(f64::INFINITY, f64::min);
+        shares.push(share);
     }
     assert_no_validation_messages(&ctx);
-    assert_eq!(
-        outputs[0], outputs[1],
-        "a gradient appeared where only the camera moved: the re-traced paths differ from the path tracer's"
+    let (with_replay, without) = (shares[0], shares[1]);
+    eprintln!("strata with an exact replay: {with_replay:.3} (gradients on), {without:.3} (off)");
+    // Measured 0.730 (lavapipe): the rest are strata whose pick sees the emitter, came from
+    // outside the image or from last frame's pick.
+    assert!(
+        with_replay > 0.6,
+        "only {with_replay:.3} of the strata replayed last frame's path exactly: the gradients would not vanish"
+    );
+    assert!(
+        without < 0.1,
+        "{without:.3} of the strata matched without replay: the check cannot tell replay from chance"
     );
 }
 

@@ -4,6 +4,30 @@
 use lucid_engine::graph::{Access, BufferHandle, ImageHandle, PassBuilder};
 use lucid_engine::memory::ImageDesc;
 
+/// Which pixels replay last frame's paths this frame, as the shaders see it (`ReplayParams` in
+/// `shaders/common/replay.glsl`): one pixel per stratum of `stratum` x `stratum` pixels traces, in
+/// the current scene, the path that last frame's pixel it came from traced (last frame's camera and
+/// random numbers), so that a temporal denoiser can compare the two (A-SVGF's gradients).
+#[repr(C)]
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, bytemuck::Pod, bytemuck::Zeroable)]
+pub struct ReplayParams {
+    /// Side of the strata in pixels; 0: nothing is replayed this frame.
+    pub stratum: u32,
+    /// Last frame's `stratum` (0 when it replayed nothing): a pixel that replayed last frame did
+    /// not use its own random numbers, so it is not replayed again.
+    pub prev_stratum: u32,
+}
+
+/// What a light-transport pass that can replay paths reads to do so.
+#[derive(Clone, Copy, Debug)]
+pub struct Replay {
+    /// Which pixels replay.
+    pub params: ReplayParams,
+    /// The G-buffer's motion vectors (`rgba16f`, pixels to last frame's position in xy), which
+    /// lead a picked pixel to last frame's pixel.
+    pub motion: ImageHandle,
+}
+
 /// A light-transport pass's images and counters for one frame.
 #[derive(Clone, Copy, Debug)]
 pub struct Outputs {

@@ -1,7 +1,9 @@
 #version 460
 #extension GL_KHR_shader_subgroup_arithmetic : require
 #extension GL_KHR_shader_subgroup_basic : require
-// Unidirectional path tracing (common/path.glsl), `spp` samples per pixel, one thread per pixel.
+// Unidirectional path tracing (common/path.glsl), `spp` samples per pixel, one thread per pixel;
+// on frames with replay on, a pixel per stratum replays last frame's paths instead
+// (common/replay.glsl) so that the denoiser gets noise-free temporal gradients at no extra paths.
 // Writes the noisy radiance, the radiance demodulated by the first hit (emission removed, divided
 // by albedo) and that hit's albedo and emission. Non-finite samples are dropped and counted in
 // b_stats, as are the rays traced (for rays/s figures).
@@ -15,6 +17,7 @@
 #include "common/surface.glsl"
 #include "common/camera.glsl"
 #include "common/path.glsl"
+#include "common/replay.glsl"
 
 layout(local_size_x = 8, local_size_y = 8) in;
 
@@ -23,6 +26,9 @@ layout(set = 0, binding = 17, rgba32f) uniform writeonly image2D u_demodulated;
 layout(set = 0, binding = 18, rgba32f) uniform writeonly image2D u_albedo;
 layout(set = 0, binding = 19, rgba32f) uniform writeonly image2D u_emission;
 layout(set = 0, binding = 20, std430) buffer Stats { uint non_finite; uint rays; uint pad0; uint pad1; } b_stats;
+layout(set = 0, binding = 21, rgba16f) uniform readonly image2D u_motion;
+
+layout(push_constant) uniform Push { ReplayParams replay; } push;
 
 void main() {
     ivec2 pixel = ivec2(gl_GlobalInvocationID.xy);
@@ -30,7 +36,20 @@ void main() {
     if (any(greaterThanEqual(uvec2(pixel), size))) {
         return;
     }
-    uint rng = rng_init(uvec2(pixel), b_frame.f.frame.x, b_frame.f.frame.y);
+    uint frame = b_frame.f.frame.x;
+    // The pixel whose random numbers and camera this thread's paths use: its own, or on a replay
+    // pick, last frame's pixel it came from.
+    ivec2 source = pixel;
+    Camera camera = b_frame.f.camera;
+    if (replay_picked(pixel, push.replay, frame, ivec2(size))) {
+        ivec2 q = replay_source(pixel, imageLoad(u_motion, pixel).xy, push.replay, frame, ivec2(size));
+        if (q != NO_REPLAY) {
+            source = q;
+            frame -= 1u;
+            camera = b_frame.f.prev_camera;
+        }
+    }
+    uint rng = rng_init(uvec2(source), frame, b_frame.f.frame.y);
     uint spp = max(b_frame.f.frame.z, 1u);
     uint max_depth = b_frame.f.frame.w;
     uint rr_depth = uint(b_frame.f.params.x);
@@ -42,10 +61,10 @@ void main() {
     vec3 albedo_sum = vec3(0.0);
     vec3 emission_sum = vec3(0.0);
     for (uint i = 0u; i < spp; ++i) {
-        vec2 ndc = film_ndc(vec2(pixel), rng_next2(rng), vec2(size));
+        vec2 ndc = film_ndc(vec2(source), rng_next2(rng), vec2(size));
         vec3 origin;
         vec3 dir;
-        camera_ray(b_frame.f.camera, ndc, aspect, rng_next2(rng), origin, dir);
+        camera_ray(camera, ndc, aspect, rng_next2(rng), origin, dir);
         PathResult path = trace_path(origin, dir, rng, max_depth, rr_depth, rays);
         albedo_sum += path.first_albedo;
         if (any(isnan(path.radiance)) || any(isinf(path.radiance))) {

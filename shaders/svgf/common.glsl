@@ -37,7 +37,7 @@ vec3 svgf_oct_decode(vec2 e) {
 }
 
 // What the history keeps of a pixel's surface: view depth, normal, object id, and the luminance of
-// the frame's raw radiance (the gradient pass compares re-traced samples against it).
+// the frame's raw radiance (the gradient pass compares replayed samples against it).
 struct SvgfSurface {
     float depth;
     vec3 normal;

@@ -1,26 +1,30 @@
 //! Path tracing: next-event estimation with multiple importance sampling, Russian roulette,
-//! N samples per pixel (`shaders/path_trace/path_trace.comp`, `shaders/common/path.glsl`).
+//! N samples per pixel (`shaders/path_trace/path_trace.comp`, `shaders/common/path.glsl`); replays
+//! last frame's paths where asked ([`Replay`]).
 
 use crate::scene_buffers::SceneHandles;
 use crate::shaders::path_trace::PATH_TRACE;
-use crate::transport::{Images, Outputs};
+use crate::transport::{Images, Outputs, Replay};
 use lucid_engine::graph::{Access, BufferHandle, RenderGraph};
 use lucid_engine::shader::Specialization;
 
-/// Adds the path tracer at `width`×`height`, reading the scene and the frame constants.
+/// Adds the path tracer at `width`×`height`, reading the scene and the frame constants; the pixels
+/// `replay` picks replay last frame's paths.
 pub fn add(
     g: &mut RenderGraph,
     scene: &SceneHandles,
     frame: BufferHandle,
     spec: &Specialization,
-    width: u32,
-    height: u32,
+    replay: &Replay,
+    (width, height): (u32, u32),
 ) -> Outputs {
     let stats = crate::stats::add_counter(g, "path_trace.stats");
     let mut p = g.add_pass("path_trace");
     scene.read(&mut p);
     let frame = p.read(frame, Access::ComputeRead);
     let stats = p.write(stats, Access::ComputeReadWrite);
+    let motion = p.read(replay.motion, Access::ComputeRead);
+    let replay = replay.params;
     let images = Images::create(&mut p, "path_trace", width, height);
     let (scene, spec) = (*scene, spec.clone());
     p.execute(move |ctx| {
@@ -32,7 +36,9 @@ pub fn add(
             .image("u_radiance", images.radiance)
             .image("u_demodulated", images.demodulated)
             .image("u_albedo", images.albedo)
-            .image("u_emission", images.emission);
+            .image("u_emission", images.emission)
+            .image("u_motion", motion)
+            .push(&replay);
         scene.bind(dispatch).dispatch_threads([width, height, 1])
     });
     images.with_stats(stats)

@@ -22,6 +22,7 @@ pub use settings::{Algorithm, Denoiser, Settings};
 use crate::frame_constants::{self, FrameConstants};
 use crate::gbuffer::{self, GBuffer};
 use crate::scene_buffers::{specialization, SceneBuffers};
+use crate::transport::{Replay, ReplayParams};
 use crate::{accumulate, bdpt, path_trace, svgf, tonemap};
 use lucid_engine::bvh::Bvh;
 use lucid_engine::capture::ImageData;
@@ -75,9 +76,12 @@ pub struct Renderer {
     width: u32,
     height: u32,
     accumulated: u32,
-    /// The scene or the light transport changed since the last frame was added (SVGF then
-    /// re-traces its temporal gradients; in a static scene they are exactly zero).
+    /// The scene or the light transport changed since the last frame was added (the light
+    /// transport then replays paths for SVGF's temporal gradients; in a static scene they are
+    /// exactly zero).
     scene_changed: bool,
+    /// The stratum of the path replay of the last frame added (0: none).
+    prev_replay_stratum: u32,
     frame_index: u32,
     pending_stats: Option<(FrameId, ReadbackId)>,
     stats: FrameStats,
@@ -123,6 +127,7 @@ impl Renderer {
             height,
             accumulated: 0,
             scene_changed: false,
+            prev_replay_stratum: 0,
             frame_index: 0,
             pending_stats: None,
             stats: FrameStats::default(),
@@ -364,13 +369,39 @@ impl Renderer {
         let scene = self.buffers.import(g);
         let prev_transforms = add_prev_transforms(g, &self.prev_transforms);
         let gbuffer = gbuffer::add(g, &scene, frame, prev_transforms, &self.spec, w, h);
+        let spp = self.settings.samples_per_pixel.max(1);
+        let svgf_params = self.settings.svgf;
+        let svgf_apply = match self.settings.denoiser {
+            Denoiser::None => None,
+            Denoiser::Svgf => Some(self.svgf_schedule.decide(
+                svgf_params.mode,
+                self.frame_index,
+                accumulated,
+                spp,
+            )),
+        };
+        let replay = ReplayParams {
+            stratum: match svgf_apply {
+                Some(apply) if self.settings.algorithm.replays_paths() => {
+                    svgf::replay(&svgf_params, apply, scene_changed)
+                }
+                _ => 0,
+            },
+            prev_stratum: self.prev_replay_stratum,
+        };
         let traced = match self.settings.algorithm {
-            Algorithm::PathTracing => path_trace::add(g, &scene, frame, &self.spec, w, h),
+            Algorithm::PathTracing => {
+                let replay = Replay {
+                    params: replay,
+                    motion: gbuffer.motion,
+                };
+                path_trace::add(g, &scene, frame, &self.spec, &replay, (w, h))
+            }
             Algorithm::Bidirectional => {
                 let sampling = bdpt::Frame {
                     width: w,
                     height: h,
-                    samples_per_pixel: self.settings.samples_per_pixel.max(1),
+                    samples_per_pixel: spp,
                     max_depth: self.settings.max_depth,
                 };
                 bdpt::add(
@@ -384,32 +415,26 @@ impl Renderer {
             }
         };
         let hdr = accumulate::add(g, traced.radiance, w, h, accumulated);
-        let hdr = match self.settings.denoiser {
-            Denoiser::None => hdr,
-            Denoiser::Svgf => {
-                let spp = self.settings.samples_per_pixel.max(1);
-                let params = self.settings.svgf;
-                let apply =
-                    self.svgf_schedule
-                        .decide(params.mode, self.frame_index, accumulated, spp);
+        let hdr = match svgf_apply {
+            None => hdr,
+            Some(apply) => {
                 let inputs = svgf::FrameInputs {
                     transport: traced,
                     accumulated: hdr,
                     accumulated_frames: accumulated,
-                    scene_changed,
+                    replay,
+                    frame_index: self.frame_index,
                     gbuffer,
-                    scene: &scene,
-                    frame,
-                    spec: &self.spec,
                     width: w,
                     height: h,
                 };
-                svgf::add(g, &inputs, &params, apply)
+                svgf::add(g, &inputs, &svgf_params, apply)
             }
         };
         let ldr = tonemap::add(g, hdr, w, h, self.settings.display);
         let stats = g.readback(traced.stats);
         self.prev_camera = camera;
+        self.prev_replay_stratum = replay.stratum;
         self.prev_transforms = transform_rows(&self.scene);
         self.frame_index = self.frame_index.wrapping_add(1);
         self.accumulated = if self.settings.accumulate {
@@ -446,6 +471,7 @@ impl Renderer {
             self.frame_index,
             self.accumulated,
             self.scene_changed,
+            self.prev_replay_stratum,
         );
         let mut g = RenderGraph::new();
         self.add_frame(&mut g);
@@ -455,6 +481,7 @@ impl Renderer {
             self.frame_index,
             self.accumulated,
             self.scene_changed,
+            self.prev_replay_stratum,
         ) = saved;
         Ok(g.compile()?.plan)
     }

@@ -17,6 +17,13 @@ impl Algorithm {
     /// Every algorithm, for menus and argument parsing.
     pub const ALL: [Algorithm; 2] = [Algorithm::PathTracing, Algorithm::Bidirectional];
 
+    /// Whether the algorithm can replay last frame's paths where asked (SVGF's temporal gradients
+    /// need it; `shaders/common/replay.glsl`). Bidirectional path tracing cannot: its camera paths
+    /// connect to this frame's light vertex cache.
+    pub fn replays_paths(self) -> bool {
+        self == Algorithm::PathTracing
+    }
+
     /// The short name used on the command line (`pt`, `bdpt`).
     pub fn short_name(self) -> &'static str {
         match self {

@@ -28,7 +28,7 @@ pub(super) struct Demodulated {
 /// the filter starts).
 pub(super) fn accumulate_surface(
     g: &mut RenderGraph,
-    inputs: &FrameInputs<'_>,
+    inputs: &FrameInputs,
 ) -> (ImageHandle, ImageHandle) {
     let (w, h, n) = (inputs.width, inputs.height, inputs.accumulated_frames);
     let albedo = accumulate::add_keyed(
@@ -53,7 +53,7 @@ pub(super) fn accumulate_surface(
 /// (albedo, emission).
 pub(super) fn add(
     g: &mut RenderGraph,
-    inputs: &FrameInputs<'_>,
+    inputs: &FrameInputs,
     (albedo, emission): (ImageHandle, ImageHandle),
 ) -> Demodulated {
     if inputs.accumulated_frames == 0 {

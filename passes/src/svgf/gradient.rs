@@ -1,61 +1,73 @@
-//! A-SVGF temporal gradients (`shaders/svgf/gradient.comp`, `gradient_filter.comp`): re-traced
-//! samples per stratum compared with last frame's radiance, then spread over a neighbourhood.
+//! A-SVGF temporal gradients (`shaders/svgf/gradient.comp`, `gradient_filter.comp`): per stratum,
+//! the light transport's replay of last frame's path compared with what that path gave last frame,
+//! then spread over a neighbourhood.
 
-use crate::scene_buffers::SceneHandles;
 use crate::shaders::svgf::{GRADIENT, GRADIENT_FILTER};
-use lucid_engine::graph::{Access, BufferHandle, ImageHandle, RenderGraph};
+use crate::transport::ReplayParams;
+use lucid_engine::graph::{Access, ImageHandle, RenderGraph};
 use lucid_engine::memory::ImageDesc;
-use lucid_engine::shader::Specialization;
 
 /// A-trous iterations over the stratum gradients (3x3 boxes 1 and 2 strata apart: a 7x7-stratum
 /// footprint).
 const FILTER_ITERATIONS: u32 = 2;
 
+/// Push constants of `gradient.comp`.
+#[repr(C)]
+#[derive(Clone, Copy, bytemuck::Pod, bytemuck::Zeroable)]
+struct Push {
+    replay: ReplayParams,
+    frame: u32,
+}
+
 /// What the gradient passes read.
-pub(super) struct GradientInputs<'a> {
-    pub scene: &'a SceneHandles,
-    pub frame: BufferHandle,
-    pub spec: &'a Specialization,
+pub(super) struct GradientInputs {
+    /// This frame's noisy radiance, replayed at the picked pixels.
+    pub radiance: ImageHandle,
     pub motion: ImageHandle,
     pub prev_surface: ImageHandle,
-    pub enabled: bool,
-    /// Side of a stratum in pixels, at least 1.
+    /// What the light transport replayed this frame (stratum 0: nothing; the gradients are zero).
+    pub replay: ReplayParams,
+    /// This frame's index (the replay picks depend on it).
+    pub frame_index: u32,
+    /// Side of a stratum in pixels, at least 1 (the gradient image has one texel per stratum).
     pub stratum: u32,
     pub width: u32,
     pub height: u32,
 }
 
 /// Adds the gradient passes; returns per stratum (filtered luminance difference, normaliser).
-pub(super) fn add(g: &mut RenderGraph, inputs: &GradientInputs<'_>) -> ImageHandle {
+pub(super) fn add(g: &mut RenderGraph, inputs: &GradientInputs) -> ImageHandle {
     let stratum = inputs.stratum;
     let (gw, gh) = (
         inputs.width.div_ceil(stratum),
         inputs.height.div_ceil(stratum),
     );
     let mut p = g.add_pass("svgf.gradient");
-    inputs.scene.read(&mut p);
-    let frame = p.read(inputs.frame, Access::ComputeRead);
+    let radiance = p.read(inputs.radiance, Access::ComputeRead);
     let motion = p.read(inputs.motion, Access::ComputeRead);
     let prev_surface = p.read(inputs.prev_surface, Access::ComputeRead);
     let out = p.create_image("svgf.gradient", ImageDesc::rgba32f(gw, gh));
     let out = p.write(out, Access::ComputeWrite);
-    let (scene, spec) = (*inputs.scene, inputs.spec.clone());
-    let push = [u32::from(inputs.enabled), stratum];
+    let push = Push {
+        replay: inputs.replay,
+        frame: inputs.frame_index,
+    };
     p.execute(move |ctx| {
-        let enabled = if ctx.history_valid(prev_surface) {
+        let push = if ctx.history_valid(prev_surface) {
             push
         } else {
-            [0, stratum]
+            Push {
+                replay: ReplayParams::default(),
+                ..push
+            }
         };
-        let dispatch = ctx
-            .compute(&GRADIENT)
-            .specialization(&spec)
-            .buffer("b_frame", frame)
+        ctx.compute(&GRADIENT)
             .image("u_motion", motion)
+            .image("u_radiance", radiance)
             .image("u_prev_surface", prev_surface)
             .image("u_gradient", out)
-            .push(&enabled);
-        scene.bind(dispatch).dispatch_threads([gw, gh, 1])
+            .push(&push)
+            .dispatch_threads([gw, gh, 1])
     });
     (0..FILTER_ITERATIONS).fold(out, |input, i| {
         let mut p = g.add_pass("svgf.gradient_filter");

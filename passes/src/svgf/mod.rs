@@ -2,12 +2,14 @@
 //! (Schied et al. 2018), in compute passes over the G-buffer (`shaders/svgf/`).
 //!
 //! Temporal mode, per frame:
-//! 1. **Gradients** (`gradient`): per stratum of n x n pixels ([`SvgfParams::gradient_stratum`]),
-//!    one pixel's path of last frame is re-traced in the current scene with last frame's camera and
-//!    random numbers and compared with what the path tracer produced for it; the differences are
-//!    spread over 7x7 strata. Where only the camera moved they are exactly zero, so they are only
-//!    re-traced on frames after the scene changed (unless [`SvgfParams::gradients_every_frame`]);
-//!    where a light or an object changed they measure the share of shading that changed.
+//! 1. **Gradients** (`gradient`): on frames after the scene changed (every frame with
+//!    [`SvgfParams::gradients_every_frame`]), the light transport replays, at one pixel per stratum
+//!    of n x n pixels ([`SvgfParams::gradient_stratum`]), the path last frame's pixel it came from
+//!    traced, with last frame's camera and random numbers ([`replay`] decides,
+//!    `shaders/common/replay.glsl` picks the pixels); the difference from what that path gave last
+//!    frame is spread over 7x7 strata. Where only the camera moved it is exactly zero (hence not
+//!    replayed then); where a light or an object changed it measures the share of shading that
+//!    changed. The replay costs no extra paths: the picked pixel's sample is the replayed one.
 //! 2. **Temporal accumulation** (`temporal`): the light-transport pass demodulated each sample by
 //!    its own first hit, `(radiance - emission) / albedo` ([`transport::Outputs`]); reproject the
 //!    history with the motion vectors (bilinear taps validated by depth, normal and object id,
@@ -39,10 +41,8 @@ pub use params::{SvgfMode, SvgfParams};
 pub use schedule::{Apply, Schedule};
 
 use crate::gbuffer::GBuffer;
-use crate::scene_buffers::SceneHandles;
-use crate::transport;
-use lucid_engine::graph::{BufferHandle, ImageHandle, RenderGraph, TemporalImage};
-use lucid_engine::shader::Specialization;
+use crate::transport::{self, ReplayParams};
+use lucid_engine::graph::{ImageHandle, RenderGraph, TemporalImage};
 
 /// History key of the filtered illumination (output of the first a-trous iteration).
 pub const COLOR_KEY: &str = "svgf.color";
@@ -65,28 +65,38 @@ struct Histories {
 }
 
 /// What the denoiser reads of a frame.
-pub struct FrameInputs<'a> {
+pub struct FrameInputs {
     /// This frame's light transport (the temporal filter's input).
     pub transport: transport::Outputs,
     /// The (accumulated) output the spatial modes filter.
     pub accumulated: ImageHandle,
     /// Frames averaged into `accumulated` before this one (0: it is this frame's radiance).
     pub accumulated_frames: u32,
-    /// The scene (instances, materials, lights) or the light transport's settings changed since
-    /// the last frame: only then can shading have changed where the camera alone did not move it.
-    pub scene_changed: bool,
+    /// What the light transport replayed this frame for the temporal gradients (see [`replay`];
+    /// stratum 0 when nothing, e.g. an algorithm that cannot replay paths).
+    pub replay: ReplayParams,
+    /// This frame's index (the replayed pixels depend on it).
+    pub frame_index: u32,
     /// Primary visibility.
     pub gbuffer: GBuffer,
-    /// The scene (the gradient pass re-traces paths).
-    pub scene: &'a SceneHandles,
-    /// The frame constants.
-    pub frame: BufferHandle,
-    /// The scene's specialization constants.
-    pub spec: &'a Specialization,
     /// Output width.
     pub width: u32,
     /// Output height.
     pub height: u32,
+}
+
+/// The stratum side at which the light transport should replay last frame's paths this frame for
+/// SVGF's temporal gradients (0: none): when `apply` continues the temporal filter with gradients
+/// on, and shading can have changed where the camera alone did not move it (`scene_changed`: the
+/// scene or the light transport's settings changed since last frame), or always with
+/// [`SvgfParams::gradients_every_frame`].
+pub fn replay(params: &SvgfParams, apply: Apply, scene_changed: bool) -> u32 {
+    let continues = matches!(apply, Apply::Temporal { continues: true });
+    if continues && params.gradients && (scene_changed || params.gradients_every_frame) {
+        params.gradient_stratum.max(1)
+    } else {
+        0
+    }
 }
 
 /// Adds what `apply` asks for; returns the denoised radiance (`inputs.accumulated` for
@@ -94,7 +104,7 @@ pub struct FrameInputs<'a> {
 /// filtered or not, so that they match the accumulated radiance once the filter starts.
 pub fn add(
     g: &mut RenderGraph,
-    inputs: &FrameInputs<'_>,
+    inputs: &FrameInputs,
     params: &SvgfParams,
     apply: Apply,
 ) -> ImageHandle {
@@ -117,7 +127,7 @@ pub fn add(
 /// ignored, as after a reset).
 pub fn add_temporal(
     g: &mut RenderGraph,
-    inputs: &FrameInputs<'_>,
+    inputs: &FrameInputs,
     params: &SvgfParams,
     continues: bool,
 ) -> ImageHandle {
@@ -138,14 +148,15 @@ pub fn add_temporal(
     let gradient = gradient::add(
         g,
         &gradient::GradientInputs {
-            scene: inputs.scene,
-            frame: inputs.frame,
-            spec: inputs.spec,
+            radiance: inputs.transport.radiance,
             motion: inputs.gbuffer.motion,
             prev_surface: history.surface.prev,
-            enabled: params.gradients
-                && continues
-                && (inputs.scene_changed || params.gradients_every_frame),
+            replay: if continues && inputs.replay.stratum == params.gradient_stratum {
+                inputs.replay
+            } else {
+                ReplayParams::default()
+            },
+            frame_index: inputs.frame_index,
             stratum: params.gradient_stratum,
             width: inputs.width,
             height: inputs.height,
@@ -175,7 +186,7 @@ pub fn add_temporal(
 /// (see [`demodulate::accumulate_surface`]).
 fn add_spatial(
     g: &mut RenderGraph,
-    inputs: &FrameInputs<'_>,
+    inputs: &FrameInputs,
     params: &SvgfParams,
     surface: (ImageHandle, ImageHandle),
 ) -> ImageHandle {

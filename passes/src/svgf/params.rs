@@ -38,11 +38,12 @@ pub struct SvgfParams {
     pub sigma_l: f32,
     /// Reject history where the temporal gradient shows that shading changed (A-SVGF).
     pub gradients: bool,
-    /// Side in pixels of the strata that get one re-traced gradient sample each (A-SVGF uses 3;
-    /// 4 re-traces 44% fewer paths and measured as good on the disocclusion and light tests).
+    /// Side in pixels of the strata that get one replayed gradient sample each (A-SVGF uses 3; 4
+    /// measured as good on the disocclusion and light tests, and keeps more of a changed frame's
+    /// samples fresh).
     pub gradient_stratum: u32,
-    /// Re-trace the gradients every frame, not only after the scene changed (in a static scene
-    /// they are exactly zero, which `tests/svgf_history.rs` checks with this set).
+    /// Replay gradient paths every frame, not only after the scene changed (in a static scene the
+    /// gradients are exactly zero, which `tests/svgf_history.rs` checks with this set).
     pub gradients_every_frame: bool,
 }
 

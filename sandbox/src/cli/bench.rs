@@ -25,6 +25,11 @@ pub struct BenchArgs {
     /// Also write the results as JSON to this file.
     #[arg(long)]
     json: Option<PathBuf>,
+    /// Time every frame as one after a scene change (an object or a light animating): SVGF's
+    /// temporal gradients are then replayed every frame. The GPU work is that of a changed
+    /// scene; the scene itself stays still, so the image stays comparable.
+    #[arg(long)]
+    dynamic: bool,
 }
 
 /// Mean, standard deviation, median, minimum and maximum of a sample.
@@ -54,7 +59,8 @@ pub fn run(args: &BenchArgs) -> anyhow::Result<()> {
         );
     }
     let (w, h) = (args.options.size.width, args.options.size.height);
-    let settings = args.options.settings(false);
+    let mut settings = args.options.settings(false);
+    settings.svgf.gradients_every_frame = args.dynamic;
     let mut renderer = Renderer::new(&ctx, scene, w, h, settings)?;
     for _ in 0..args.warmup {
         renderer.render()?;
@@ -96,6 +102,7 @@ pub fn run(args: &BenchArgs) -> anyhow::Result<()> {
         "spp": args.options.spp,
         "max_depth": args.options.max_depth,
         "frames": args.frames,
+        "dynamic": args.dynamic,
         "frame_ms": summary(&frame_ms),
         "passes_ms": passes.iter().map(|(k, v)| (k.clone(), summary(v))).collect::<BTreeMap<_, _>>(),
         "paths_per_second": paths / (mean_ms / 1e3),

@@ -62,7 +62,7 @@ pub fn svgf(ui: &mut egui::Ui, params: &mut SvgfParams) {
             ui.checkbox(&mut params.gradients, "temporal gradients (A-SVGF)");
             ui.checkbox(
                 &mut params.gradients_every_frame,
-                "re-trace gradients in a static scene too",
+                "replay gradient paths in a static scene too",
             );
             ui.add(egui::Slider::new(&mut params.gradient_stratum, 2..=8).text("gradient stratum"));
         });
