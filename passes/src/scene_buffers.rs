@@ -11,7 +11,7 @@ use lucid_engine::{Context, Result};
 use std::sync::Arc;
 
 /// The names of the scene buffers in the shaders, in [`SceneBuffers::buffers`] order.
-const NAMES: [&str; 13] = [
+const NAMES: [&str; 14] = [
     "b_vertices",
     "b_indices",
     "b_blas",
@@ -25,11 +25,12 @@ const NAMES: [&str; 13] = [
     "b_textures",
     "b_scene",
     "b_triangle_ids",
+    "b_triangles",
 ];
 
 /// Device-local copies of a packed scene.
 pub struct SceneBuffers {
-    buffers: [Arc<Buffer>; 13],
+    buffers: [Arc<Buffer>; 14],
     /// The features the scene uses (drive shader specialization).
     pub features: SceneFeatures,
 }
@@ -64,6 +65,7 @@ impl SceneBuffers {
                 upload(ctx, NAMES[10], &gpu.textures)?,
                 upload(ctx, NAMES[11], std::slice::from_ref(&gpu.params))?,
                 upload(ctx, NAMES[12], triangle_ids)?,
+                upload(ctx, NAMES[13], &gpu.triangles)?,
             ],
             features: gpu.features,
         })
@@ -102,7 +104,7 @@ impl SceneBuffers {
 /// The scene buffers of one frame's graph.
 #[derive(Clone, Copy, Debug)]
 pub struct SceneHandles {
-    handles: [BufferHandle; 13],
+    handles: [BufferHandle; 14],
 }
 
 impl SceneHandles {

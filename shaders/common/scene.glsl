@@ -1,11 +1,12 @@
 // The scene buffers, mirroring lucid_engine::scene::gpu (std430). Bound by name: b_vertices,
 // b_indices, b_blas, b_tlas, b_instances, b_spheres, b_materials, b_lights, b_light_table,
-// b_texels, b_textures, b_scene, b_triangle_ids. Bindings 0-11 and 13 (12 is the frame constants);
-// passes use 16 and up for their own resources.
+// b_texels, b_textures, b_scene, b_triangle_ids, b_triangles. Bindings 0-11, 13 and 14 (12 is the
+// frame constants); passes use 16 and up for their own resources.
 #ifndef LUCID_SCENE_GLSL
 #define LUCID_SCENE_GLSL
 
 struct Vertex { float px, py, pz; uint normal; uint uv; };
+struct Triangle { vec4 p0; vec4 e1; vec4 e2; }; // first vertex, p1 - p0, p2 - p0
 struct BvhNode { float min_x, min_y, min_z; uint left_or_first; float max_x, max_y, max_z; uint count; };
 struct Instance {
     vec4 object_to_world[3];
@@ -66,6 +67,8 @@ layout(set = 0, binding = 10, std430) readonly buffer Textures { TextureRecord r
 layout(set = 0, binding = 11, std430) readonly buffer ScenePayload { SceneParams p; } b_scene;
 // Per triangle of the flattened instance: material, original scene instance.
 layout(set = 0, binding = 13, std430) readonly buffer TriangleIds { uvec2 t[]; } b_triangle_ids;
+// Per triangle (in b_indices order): what ray intersection reads, in one load.
+layout(set = 0, binding = 14, std430) readonly buffer Triangles { Triangle t[]; } b_triangles;
 
 vec3 vertex_position(uint index) {
     Vertex v = b_vertices.v[index];

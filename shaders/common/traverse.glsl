@@ -36,11 +36,10 @@ vec3 safe_inverse(vec3 d) {
 
 // Moller-Trumbore; returns t (or T_INFINITY) and barycentrics.
 float intersect_triangle(uint tri, vec3 o, vec3 d, float t_max, out vec2 bary) {
-    vec3 p0 = vertex_position(b_indices.i[3u * tri]);
-    vec3 p1 = vertex_position(b_indices.i[3u * tri + 1u]);
-    vec3 p2 = vertex_position(b_indices.i[3u * tri + 2u]);
-    vec3 e1 = p1 - p0;
-    vec3 e2 = p2 - p0;
+    Triangle triangle = b_triangles.t[tri];
+    vec3 p0 = triangle.p0.xyz;
+    vec3 e1 = triangle.e1.xyz;
+    vec3 e2 = triangle.e2.xyz;
     vec3 pv = cross(d, e2);
     float det = dot(e1, pv);
     bary = vec2(0.0);

@@ -3,7 +3,7 @@
 use glam::Vec2;
 
 use super::encode::{encode_normal, encode_uv};
-use super::layout::{GpuSphere, GpuVertex};
+use super::layout::{GpuSphere, GpuTriangle, GpuVertex};
 use crate::bvh::{Bvh, BvhNode};
 use crate::scene::Scene;
 
@@ -14,6 +14,8 @@ pub struct PackedGeometry {
     /// Triangle vertex indices (absolute), each mesh's triangles in its
     /// BLAS leaf order.
     pub indices: Vec<u32>,
+    /// Every triangle's vertex and edges, in the order of `indices`.
+    pub triangles: Vec<GpuTriangle>,
     /// All BLAS nodes with absolute child and triangle indices.
     pub blas_nodes: Vec<BvhNode>,
     /// Root node of each BLAS in `blas_nodes` (same order as `Bvh::blases`).
@@ -30,6 +32,7 @@ pub fn pack(scene: &Scene, bvh: &Bvh) -> PackedGeometry {
     let mut out = PackedGeometry {
         vertices: Vec::with_capacity(vertex_total),
         indices: Vec::with_capacity(scene.unique_triangle_count() * 3),
+        triangles: Vec::with_capacity(scene.unique_triangle_count()),
         blas_nodes: Vec::with_capacity(bvh.blases.iter().map(|b| b.nodes.len()).sum()),
         blas_roots: Vec::with_capacity(bvh.blases.len()),
         triangle_base: Vec::with_capacity(scene.meshes.len()),
@@ -50,6 +53,14 @@ pub fn pack(scene: &Scene, bvh: &Bvh) -> PackedGeometry {
                 .iter()
                 .flat_map(|&t| (mesh.indices[t as usize] + vertex_base).to_array()),
         );
+        out.triangles.extend(blas.order.iter().map(|&t| {
+            let [p0, p1, p2] = mesh.triangle(t as usize);
+            GpuTriangle {
+                p0: p0.extend(0.0).to_array(),
+                e1: (p1 - p0).extend(0.0).to_array(),
+                e2: (p2 - p0).extend(0.0).to_array(),
+            }
+        }));
         push_nodes(&mut out, &blas.nodes, tri_base);
     }
     if let Some(blas) = bvh.blases.get(scene.meshes.len()) {

@@ -27,7 +27,7 @@ pub use flat::{fix_instances, pack_flat, INSTANCE_FLATTENED};
 pub use layout::{
     light_kind, material_kind, texture_format, GpuAliasEntry, GpuCamera, GpuEnvironment,
     GpuInstance, GpuLight, GpuMaterial, GpuSceneParams, GpuSphere, GpuSun, GpuTextureRecord,
-    GpuVertex,
+    GpuTriangle, GpuVertex,
 };
 pub use params::camera;
 
@@ -45,6 +45,8 @@ pub struct GpuScene {
     pub vertices: Vec<GpuVertex>,
     /// Triangle vertex indices, three per triangle.
     pub indices: Vec<u32>,
+    /// Triangles for ray intersection (first vertex and edges), in the order of `indices`.
+    pub triangles: Vec<GpuTriangle>,
     /// All bottom-level nodes.
     pub blas_nodes: Vec<BvhNode>,
     /// Top-level nodes.
@@ -79,6 +81,7 @@ impl GpuScene {
         let mut out = Self {
             vertices: geo.vertices,
             indices: geo.indices,
+            triangles: geo.triangles,
             blas_nodes: geo.blas_nodes,
             spheres: geo.spheres,
             materials: params::materials(scene),
@@ -185,6 +188,7 @@ impl GpuScene {
     pub fn geometry_bytes(&self) -> usize {
         self.vertices.len() * size_of::<GpuVertex>()
             + self.indices.len() * 4
+            + self.triangles.len() * size_of::<GpuTriangle>()
             + self.spheres.len() * size_of::<GpuSphere>()
     }
 
