@@ -4,16 +4,16 @@
 //! same original instance as the CPU's two-level BVH over the original scene.
 
 use ash::vk;
-use glam::Vec3;
+use glam::{Affine3A, Quat, Vec3};
 use lucid_engine::bvh::{Bvh, HitKind, Ray};
 use lucid_engine::graph::{Executor, RenderGraph};
 use lucid_engine::memory::Buffer;
 use lucid_engine::scene::builtin::{self, BuildOptions};
 use lucid_engine::scene::gpu::pack_flat;
-use lucid_engine::scene::FlatScene;
+use lucid_engine::scene::{FlatScene, Scene};
 use lucid_engine::shader::ShaderLibrary;
 use lucid_passes::ray_query::{self, QueryHit, QueryRay, SPHERE_BIT};
-use lucid_passes::scene_buffers::SceneBuffers;
+use lucid_passes::scene_buffers::{traversal_specialization, SceneBuffers};
 use lucid_tests::{assert_no_validation_messages, context};
 use std::sync::Arc;
 
@@ -36,21 +36,31 @@ impl Rng {
     }
 }
 
-fn check_scene(name: &str, rays_per_scene: usize) {
+/// Checks built-in scene `name` (reduced tessellation) with the renderer's packing: static
+/// instances flattened, those flagged in `dynamic` kept separate.
+fn check_builtin(name: &str, dynamic: impl Fn(usize) -> bool, rays_per_scene: usize) -> bool {
     let options = BuildOptions { detail: 0.02 };
     let mut scene = builtin::build_with(name, &options).unwrap();
     scene.validate().unwrap();
-    let bvh = Bvh::build(&scene);
-    // The GPU gets the renderer's packing: static instances flattened, every third kept dynamic.
-    let dynamic: Vec<bool> = (0..scene.instances.len()).map(|i| i % 3 == 1).collect();
-    let flat = FlatScene::new(&scene, &dynamic);
+    let dynamic: Vec<bool> = (0..scene.instances.len()).map(dynamic).collect();
+    check_scene(&scene, &dynamic, rays_per_scene)
+}
+
+/// Traces random rays through the validated `scene` packed as the renderer packs it, with the scene's
+/// specialization (the single-instance fast path included); returns whether the packing was a
+/// single instance.
+fn check_scene(scene: &Scene, dynamic: &[bool], rays_per_scene: usize) -> bool {
+    let name = scene.name.as_str();
+    let bvh = Bvh::build(scene);
+    let flat = FlatScene::new(scene, dynamic);
     let flat_bvh = Bvh::build(&flat.scene);
-    let (gpu, triangle_ids) = pack_flat(&flat, &scene, &flat_bvh);
+    let (gpu, triangle_ids) = pack_flat(&flat, scene, &flat_bvh);
     assert_eq!(
         gpu.features,
         scene.features(),
         "{name}: flattening must not hide features"
     );
+    let spec = traversal_specialization(&gpu);
     let ctx = context(false);
     let buffers = SceneBuffers::upload(&ctx, &gpu, &triangle_ids).unwrap();
     let mut executor = Executor::new(&ctx, ShaderLibrary::new(&ctx, None).unwrap()).unwrap();
@@ -98,7 +108,13 @@ fn check_scene(name: &str, rays_per_scene: usize) {
     let mut g = RenderGraph::new();
     let scene_handles = buffers.import(&mut g);
     let rays_handle = g.import_buffer("rays", ray_buffer);
-    let hits = ray_query::add(&mut g, &scene_handles, rays_handle, rays.len() as u32);
+    let hits = ray_query::add(
+        &mut g,
+        &scene_handles,
+        &spec,
+        rays_handle,
+        rays.len() as u32,
+    );
     let readback = g.readback(hits);
     let frame = executor.execute(g.compile().unwrap()).unwrap();
     let outputs = executor.wait(frame).unwrap();
@@ -107,8 +123,8 @@ fn check_scene(name: &str, rays_per_scene: usize) {
     let mut mismatches = Vec::new();
     let mut hits_seen = 0;
     for (i, (ray, got)) in rays.iter().zip(&gpu_hits).enumerate() {
-        let want = bvh.intersect(&scene, ray);
-        let occluded = bvh.occluded(&scene, ray);
+        let want = bvh.intersect(scene, ray);
+        let occluded = bvh.occluded(scene, ray);
         if want.is_some() {
             hits_seen += 1;
         }
@@ -149,11 +165,35 @@ fn check_scene(name: &str, rays_per_scene: usize) {
     );
     drop((executor, buffers));
     assert_no_validation_messages(&ctx);
+    gpu.single_instance()
 }
 
 #[test]
 fn gpu_traversal_matches_cpu_on_every_builtin_scene() {
+    // Every third instance kept dynamic, so most scenes keep a top level.
     for name in builtin::names() {
-        check_scene(name, 4000);
+        check_builtin(name, |i| i % 3 == 1, 4000);
     }
+}
+
+#[test]
+fn single_instance_fast_path_matches_cpu() {
+    assert!(
+        check_builtin("cornell-box", |_| false, 4000),
+        "a static Cornell box is one flattened instance"
+    );
+    // One dynamic instance, mirrored and rotated: the fast path keeps its transform.
+    let mut cornell = builtin::build("cornell-box").unwrap();
+    cornell.validate().unwrap();
+    let mut scene = FlatScene::new(&cornell, &[]).scene;
+    scene.name = "moved single instance".into();
+    scene.instances[0].transform = Affine3A::from_scale_rotation_translation(
+        Vec3::new(-1.0, 1.0, 1.0),
+        Quat::from_rotation_y(0.3),
+        Vec3::new(0.2, -0.1, 0.05),
+    );
+    assert!(
+        check_scene(&scene, &[true], 4000),
+        "a lone dynamic instance is a single instance"
+    );
 }

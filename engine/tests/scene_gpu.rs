@@ -5,8 +5,11 @@
 use glam::{Affine3A, Vec2, Vec3, Vec4};
 use lucid_engine::bvh::{ray_sphere, ray_triangle, Bvh, BvhNode};
 use lucid_engine::scene::builtin::{self, BuildOptions};
-use lucid_engine::scene::gpu::{light_kind, texture_format, GpuScene};
-use lucid_engine::scene::{luminance, Scene};
+use lucid_engine::scene::gpu::{
+    apply_flattening, decode_normal, light_kind, pack_flat, texture_format, GpuLight, GpuScene,
+    INSTANCE_FLATTENED,
+};
+use lucid_engine::scene::{luminance, FlatScene, Scene};
 
 const REDUCED: BuildOptions = BuildOptions { detail: 0.01 };
 
@@ -214,10 +217,154 @@ fn furnace_packs_a_single_sphere_instance() {
     let g = GpuScene::new(&scene, &Bvh::build(&scene));
     assert_eq!(g.instances.len(), 1);
     assert_eq!(g.instances[0].kind, 1);
+    assert!(
+        !g.single_instance(),
+        "a sphere instance takes the top level"
+    );
     assert!(g.lights.is_empty() && g.indices.is_empty());
     assert_eq!(g.bytes_per_triangle(), 0.0);
     assert_eq!(
         gpu_trace(&g, Vec3::new(0.0, 0.0, 4.0), Vec3::NEG_Z),
         Some(3.0)
     );
+}
+
+/// A light as comparable bits: kind, world vertices with area and emitting side, emission with
+/// power, and its selection pdf.
+fn light_records(g: &GpuScene) -> Vec<Vec<u32>> {
+    let mut records: Vec<Vec<u32>> = g
+        .lights
+        .iter()
+        .zip(&g.light_table)
+        .map(|(l, e)| {
+            let floats = [l.p0, l.p1, l.p2, l.emission].concat();
+            std::iter::once(l.kind)
+                .chain(floats.iter().map(|f| f.to_bits()))
+                .chain(std::iter::once(e.pdf.to_bits()))
+                .collect()
+        })
+        .collect();
+    records.sort();
+    records
+}
+
+/// World-space vertices of GPU triangle `t` of instance `slot`.
+fn gpu_triangle(g: &GpuScene, slot: u32, t: u32) -> [Vec3; 3] {
+    let inst = &g.instances[slot as usize];
+    std::array::from_fn(|k| {
+        let v = g.vertices[g.indices[3 * t as usize + k] as usize].position;
+        apply(&inst.object_to_world, Vec3::from(v).extend(1.0))
+    })
+}
+
+/// Checks that a triangle light names the GPU triangle it stands for, and that its emitting side is
+/// the side the packed shading normals point to.
+fn check_light_triangle(g: &GpuScene, ids: &[[u32; 2]], scene: &Scene, l: &GpuLight) {
+    let p = [l.p0, l.p1, l.p2].map(|p| Vec3::new(p[0], p[1], p[2]));
+    let q = gpu_triangle(g, l.instance, l.index);
+    for (a, b) in p.iter().zip(&q) {
+        assert!(
+            (*a - *b).length() <= 1e-4 * a.length().max(1.0),
+            "{p:?} vs {q:?}"
+        );
+    }
+    let inst = &g.instances[l.instance as usize];
+    let original = if inst.kind == INSTANCE_FLATTENED {
+        ids[l.index as usize][1]
+    } else {
+        inst.scene_instance
+    };
+    let material = &scene.materials[scene.instance_material(original as usize) as usize];
+    assert_eq!(material.emission.to_array(), l.emission[..3]);
+    let shading: Vec3 = (0..3)
+        .map(|k| decode_normal(g.vertices[g.indices[3 * l.index as usize + k] as usize].normal))
+        .sum();
+    // Normals transform by the transposed world-to-object matrix.
+    let world_shading: Vec3 = (0..3)
+        .map(|k| Vec3::from_slice(&inst.world_to_object[k][..3]) * shading[k])
+        .sum();
+    let front = (p[1] - p[0]).cross(p[2] - p[0]) * l.p1[3];
+    assert!(front.dot(world_shading) > 0.0, "emitting side of {p:?}");
+}
+
+/// The flattened packing (emitters merged, `dynamic` instances separate) has the same NEE lights as
+/// the packing of the original scene, and each light addresses its packed triangle.
+fn check_flat_lights(scene: &Scene, dynamic: &[bool]) {
+    let reference = GpuScene::new(scene, &Bvh::build(scene));
+    let flat = FlatScene::new(scene, dynamic);
+    let (g, ids) = pack_flat(&flat, scene, &Bvh::build(&flat.scene));
+    assert!(!g.lights.is_empty(), "{}: has lights", scene.name);
+    assert_eq!(
+        light_records(&g),
+        light_records(&reference),
+        "{}",
+        scene.name
+    );
+    assert_eq!(g.params.light, reference.params.light);
+    assert_eq!(g.params.counts0[3], reference.params.counts0[3]);
+    for l in g.lights.iter().filter(|l| l.kind == light_kind::TRIANGLE) {
+        check_light_triangle(&g, &ids, scene, l);
+    }
+}
+
+#[test]
+fn flattening_keeps_the_light_list() {
+    let cornell = builtin::build("cornell-box").unwrap();
+    check_flat_lights(&cornell, &[]);
+    let classroom = builtin::build_with("classroom", &REDUCED).unwrap();
+    check_flat_lights(&classroom, &[]);
+    let dynamic: Vec<bool> = (0..classroom.instances.len()).map(|i| i % 3 == 1).collect();
+    check_flat_lights(&classroom, &dynamic);
+}
+
+#[test]
+fn flattening_keeps_the_emitting_side_of_mirrored_lights() {
+    let mut scene = builtin::build("cornell-box").unwrap();
+    let mirror = Affine3A::from_scale(Vec3::new(-1.0, 1.0, 1.0));
+    for inst in &mut scene.instances {
+        inst.transform = mirror * inst.transform;
+    }
+    check_flat_lights(&scene, &[]);
+    let light = (0..scene.instances.len())
+        .find(|&i| scene.materials[scene.instance_material(i) as usize].is_emissive())
+        .unwrap();
+    let mut dynamic = vec![false; scene.instances.len()];
+    dynamic[light] = true;
+    check_flat_lights(&scene, &dynamic);
+}
+
+#[test]
+fn a_flattened_static_scene_is_a_single_instance() {
+    let scene = builtin::build("cornell-box").unwrap();
+    let flat = FlatScene::new(&scene, &[]);
+    let (g, _) = pack_flat(&flat, &scene, &Bvh::build(&flat.scene));
+    assert!(g.single_instance());
+    assert!(!GpuScene::new(&scene, &Bvh::build(&scene)).single_instance());
+}
+
+#[test]
+fn moving_a_dynamic_light_moves_its_light_entries() {
+    let mut scene = builtin::build("cornell-box").unwrap();
+    let light = (0..scene.instances.len())
+        .find(|&i| scene.materials[scene.instance_material(i) as usize].is_emissive())
+        .unwrap();
+    let mut dynamic = vec![false; scene.instances.len()];
+    dynamic[light] = true;
+    let mut flat = FlatScene::new(&scene, &dynamic);
+    let mut bvh = Bvh::build(&flat.scene);
+    let (mut g, ids) = pack_flat(&flat, &scene, &bvh);
+    let before = light_records(&g);
+    let moved =
+        Affine3A::from_translation(Vec3::new(0.1, -0.2, 0.05)) * scene.instances[light].transform;
+    scene.instances[light].transform = moved;
+    let separate = flat.instance_of(light).unwrap();
+    flat.scene.instances[separate].transform = moved;
+    bvh.rebuild_top_level(&flat.scene).unwrap();
+    apply_flattening(&mut g, &flat, &scene, &bvh);
+    let reference = GpuScene::new(&scene, &Bvh::build(&scene));
+    assert_ne!(light_records(&g), before);
+    assert_eq!(light_records(&g), light_records(&reference));
+    for l in &g.lights {
+        check_light_triangle(&g, &ids, &scene, l);
+    }
 }

@@ -124,17 +124,17 @@ impl SceneHandles {
     }
 }
 
-/// The specialization constants that compile out what a scene lacks.
-pub fn specialization(features: &SceneFeatures) -> Specialization {
+/// The specialization constants that compile out what a scene lacks: its features, and the
+/// traversal's constants ([`traversal_specialization`]).
+pub fn specialization(gpu: &GpuScene) -> Specialization {
     let used = |name: &str| {
-        features
+        gpu.features
             .specialization_constants()
             .iter()
             .find(|(n, _)| *n == name)
             .is_some_and(|(_, v)| *v)
     };
     [
-        "HAS_SPHERES",
         "HAS_CONDUCTOR",
         "HAS_DIELECTRIC",
         "HAS_DIELECTRIC_ROUGH",
@@ -144,7 +144,16 @@ pub fn specialization(features: &SceneFeatures) -> Specialization {
         "HAS_TEXTURES",
     ]
     .into_iter()
-    .fold(Specialization::new(), |spec, name| {
+    .fold(traversal_specialization(gpu), |spec, name| {
         spec.set(name, used(name))
     })
+}
+
+/// The constants of `shaders/common/traverse.glsl` alone, for passes that only trace (see
+/// [`crate::ray_query`]): `HAS_SPHERES`, and `SINGLE_INSTANCE` when the packing is one triangle
+/// instance ([`GpuScene::single_instance`]; the traversal then skips the top level).
+pub fn traversal_specialization(gpu: &GpuScene) -> Specialization {
+    Specialization::new()
+        .set("HAS_SPHERES", gpu.features.spheres)
+        .set("SINGLE_INSTANCE", gpu.single_instance())
 }

@@ -1,9 +1,13 @@
 // Ray queries over the two-level BVH (TLAS over instances, BLAS over triangles or spheres):
-// stack-based, near child first, with early exit for shadow rays. Requires scene.glsl.
+// stack-based, near child first, with early exit for shadow rays; a single triangle instance is
+// walked without the top level (SINGLE_INSTANCE). Requires scene.glsl.
 #ifndef LUCID_TRAVERSE_GLSL
 #define LUCID_TRAVERSE_GLSL
 
 layout(constant_id = 100) const bool HAS_SPHERES = true;
+// The scene is packed as exactly one triangle instance (GpuScene::single_instance, e.g. a fully
+// flattened static scene): trace_ray walks its BLAS directly, without the top level.
+layout(constant_id = 108) const bool SINGLE_INSTANCE = false;
 
 const uint TLAS_STACK = 24u;
 const uint BLAS_STACK = 40u;
@@ -161,6 +165,13 @@ bool trace_ray(vec3 origin, vec3 dir, float t_max, bool any_hit, out Hit hit) {
     hit.bary = vec2(0.0);
     if (b_scene.p.counts1.z == 0u) {
         return false;
+    }
+    if (SINGLE_INSTANCE) {
+        // The instance keeps its transform: it may be a dynamic one.
+        Instance inst = b_instances.i[0];
+        vec3 o = transform_point(inst.world_to_object, origin);
+        vec3 d = transform_vector(inst.world_to_object, dir);
+        return traverse_blas(0u, inst, o, d, any_hit, hit);
     }
     vec3 inv_dir = safe_inverse(dir);
     uint stack[TLAS_STACK];

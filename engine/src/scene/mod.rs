@@ -25,7 +25,7 @@ pub use camera::{look_rotation, Camera};
 pub use camera_path::{CameraKey, CameraPath, PathInterpolation};
 pub use error::SceneError;
 pub use features::SceneFeatures;
-pub use flatten::FlatScene;
+pub use flatten::{FlatScene, Placement};
 pub use gltf_import::{load_gltf, load_gltf_slice};
 pub use instance::Instance;
 pub use light::{luminance, Environment, PunctualLight, Sun};

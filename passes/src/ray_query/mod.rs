@@ -6,6 +6,7 @@ use crate::scene_buffers::SceneHandles;
 use crate::shaders::ray_query::RAY_QUERY;
 use bytemuck::{Pod, Zeroable};
 use lucid_engine::graph::{Access, BufferHandle, RenderGraph};
+use lucid_engine::shader::Specialization;
 
 /// One query ray (std430 `RayIn`).
 #[repr(C)]
@@ -34,10 +35,12 @@ pub struct QueryHit {
 /// Object id of a sphere in [`QueryHit::object_id`].
 pub const SPHERE_BIT: u32 = 0x8000_0000;
 
-/// Adds a pass answering `count` rays from `rays`; returns the buffer of [`QueryHit`]s.
+/// Adds a pass answering `count` rays from `rays`, specialised with `spec` (see
+/// [`crate::scene_buffers::traversal_specialization`]); returns the buffer of [`QueryHit`]s.
 pub fn add(
     g: &mut RenderGraph,
     scene: &SceneHandles,
+    spec: &Specialization,
     rays: BufferHandle,
     count: u32,
 ) -> BufferHandle {
@@ -50,9 +53,11 @@ pub fn add(
     );
     let hits = p.write(hits, Access::ComputeWrite);
     let scene = *scene;
+    let spec = spec.clone();
     p.execute(move |ctx| {
         let dispatch = ctx
             .compute(&RAY_QUERY)
+            .specialization(&spec)
             .buffer("b_rays", rays)
             .buffer("b_hits", hits)
             .push(&count);

@@ -27,7 +27,7 @@ use crate::{accumulate, bdpt, path_trace, svgf, tonemap};
 use lucid_engine::bvh::Bvh;
 use lucid_engine::capture::ImageData;
 use lucid_engine::graph::{Executor, FrameId, ImageHandle, ReadbackId, RenderGraph};
-use lucid_engine::scene::gpu::{self, fix_instances, pack_flat, GpuCamera, GpuScene};
+use lucid_engine::scene::gpu::{self, apply_flattening, pack_flat, GpuCamera, GpuScene};
 use lucid_engine::scene::{Camera, FlatScene, Material, Scene};
 use lucid_engine::shader::{ShaderLibrary, Specialization};
 use lucid_engine::{Context, EngineError, Result};
@@ -106,7 +106,7 @@ impl Renderer {
         let bvh = Bvh::build(&flat.scene);
         let (gpu, triangle_ids) = pack_flat(&flat, &scene, &bvh);
         let buffers = SceneBuffers::upload(ctx, &gpu, &triangle_ids)?;
-        let spec = specialization(&gpu.features);
+        let spec = specialization(&gpu);
         let library = ShaderLibrary::new(ctx, None)?;
         let camera = scene.camera;
         Ok(Self {
@@ -140,7 +140,7 @@ impl Renderer {
         &self.scene
     }
 
-    /// The specialization constants derived from the scene's features.
+    /// The specialization constants derived from the scene's features and its GPU packing.
     pub fn specialization(&self) -> &Specialization {
         &self.spec
     }
@@ -257,8 +257,7 @@ impl Renderer {
                 self.bvh
                     .rebuild_top_level(&self.flat.scene)
                     .map_err(|e| EngineError::InvalidArgument(e.to_string()))?;
-                self.gpu.update_top_level(&self.flat.scene, &self.bvh);
-                fix_instances(&mut self.gpu, &self.flat, &self.scene);
+                apply_flattening(&mut self.gpu, &self.flat, &self.scene, &self.bvh);
                 self.buffers.update_top_level(&self.ctx, &self.gpu)
             }
             None => {
@@ -282,19 +281,16 @@ impl Renderer {
         let slot = self.scene.materials.get_mut(index).ok_or_else(|| {
             EngineError::InvalidArgument(format!("scene has no material {index}"))
         })?;
-        let emission_changed = slot.is_emissive() != material.is_emissive();
         *slot = material.clone();
         self.accumulated = 0;
         self.scene_changed = true;
-        if emission_changed {
-            // Emitters are never merged: which instances are flattened changes.
-            return self.rebuild_gpu_scene();
-        }
+        // Flattening does not depend on materials (emitters are merged too): the geometry stays,
+        // the re-pack rebuilds the light list from the original scene.
         self.flat.scene.materials[index] = material;
         let (gpu, _) = pack_flat(&self.flat, &self.scene, &self.bvh);
         self.gpu = gpu;
         self.buffers.update_materials(&self.ctx, &self.gpu)?;
-        self.spec = specialization(&self.gpu.features);
+        self.spec = specialization(&self.gpu);
         Ok(())
     }
 
@@ -304,7 +300,7 @@ impl Renderer {
         self.bvh = Bvh::build(&self.flat.scene);
         let (gpu, triangle_ids) = pack_flat(&self.flat, &self.scene, &self.bvh);
         self.buffers = SceneBuffers::upload(&self.ctx, &gpu, &triangle_ids)?;
-        self.spec = specialization(&gpu.features);
+        self.spec = specialization(&gpu);
         self.gpu = gpu;
         Ok(())
     }

@@ -49,7 +49,7 @@ pub struct GpuTriangle {
 ///     vec4 world_to_object[3];
 ///     uint blas_root;          // index of the BLAS root in blas_nodes
 ///     uint material;           // material index; ~0u for the sphere instance
-///     uint kind;               // 0 = triangles, 1 = spheres
+///     uint kind;               // 0 = triangles, 1 = spheres, 2 = flattened static triangles
 ///     uint scene_instance;     // Scene::instances index; ~0u for spheres
 /// };
 /// ```
@@ -65,7 +65,8 @@ pub struct GpuInstance {
     /// Material of every triangle (`u32::MAX` for spheres, which carry
     /// their own).
     pub material: u32,
-    /// 0 = triangle BLAS, 1 = sphere BLAS.
+    /// [`INSTANCE_TRIANGLES`](super::INSTANCE_TRIANGLES), [`INSTANCE_SPHERES`](super::INSTANCE_SPHERES)
+    /// or [`INSTANCE_FLATTENED`](super::INSTANCE_FLATTENED).
     pub kind: u32,
     /// Index into `Scene::instances` (`u32::MAX` for the sphere instance).
     pub scene_instance: u32,

@@ -23,7 +23,7 @@ mod layout;
 mod params;
 
 pub use encode::{decode_normal, encode_normal, encode_uv};
-pub use flat::{fix_instances, pack_flat, INSTANCE_FLATTENED};
+pub use flat::{apply_flattening, pack_flat, INSTANCE_FLATTENED};
 pub use layout::{
     light_kind, material_kind, texture_format, GpuAliasEntry, GpuCamera, GpuEnvironment,
     GpuInstance, GpuLight, GpuMaterial, GpuSceneParams, GpuSphere, GpuSun, GpuTextureRecord,
@@ -37,6 +37,12 @@ use glam::Affine3A;
 
 use super::{LightDistribution, Scene, SceneFeatures};
 use crate::bvh::{Bvh, BvhNode, InstanceSource};
+
+/// `GpuInstance::kind` of a mesh instance.
+pub const INSTANCE_TRIANGLES: u32 = 0;
+
+/// `GpuInstance::kind` of the instance of all spheres.
+pub const INSTANCE_SPHERES: u32 = 1;
 
 /// Everything the GPU passes need, CPU side.
 #[derive(Clone, Debug, Default)]
@@ -76,9 +82,17 @@ pub struct GpuScene {
 impl GpuScene {
     /// Packs a validated scene with its BVH (built from that scene).
     pub fn new(scene: &Scene, bvh: &Bvh) -> Self {
+        let mut out = Self::without_top_level(scene, bvh);
+        out.update_top_level(scene, bvh);
+        out
+    }
+
+    /// Packs what does not depend on instance placement: geometry, bottom levels, materials,
+    /// textures and features. The instances, lights and params are left empty.
+    fn without_top_level(scene: &Scene, bvh: &Bvh) -> Self {
         let geo = geometry::pack(scene, bvh);
         let (texels, textures) = params::textures(scene);
-        let mut out = Self {
+        Self {
             vertices: geo.vertices,
             indices: geo.indices,
             triangles: geo.triangles,
@@ -91,15 +105,27 @@ impl GpuScene {
             blas_roots: geo.blas_roots,
             triangle_base: geo.triangle_base,
             ..Default::default()
-        };
-        out.update_top_level(scene, bvh);
-        out
+        }
     }
 
     /// Re-packs what depends on instance placement (TLAS, instances,
     /// world-space emissive triangles) and the camera, after
     /// [`Bvh::rebuild_top_level`].
     pub fn update_top_level(&mut self, scene: &Scene, bvh: &Bvh) {
+        let gpu_of_instance = self.place_instances(scene, bvh);
+        let inverse_orders =
+            emitter_inverse_orders(scene, bvh, |i| scene.instances[i].mesh as usize);
+        let triangle = |instance: u32, t: u32| {
+            let mesh = scene.instances[instance as usize].mesh as usize;
+            self.triangle_base[mesh] + inverse_orders[mesh][t as usize]
+        };
+        let (lights, table, power) = self.pack_lights(scene, &gpu_of_instance, &triangle);
+        self.set_lights(scene, lights, table, power);
+    }
+
+    /// Packs the TLAS and the instances of `scene` (in TLAS leaf order); returns the GPU instance
+    /// slot of each scene instance.
+    fn place_instances(&mut self, scene: &Scene, bvh: &Bvh) -> Vec<u32> {
         self.tlas_nodes = bvh.tlas.nodes.clone();
         let mut gpu_of_instance = vec![u32::MAX; scene.instances.len()];
         self.instances = bvh
@@ -112,9 +138,9 @@ impl GpuScene {
                 let (material, kind, scene_instance) = match inst.source {
                     InstanceSource::Mesh(i) => {
                         gpu_of_instance[i as usize] = slot as u32;
-                        (scene.instance_material(i as usize), 0, i)
+                        (scene.instance_material(i as usize), INSTANCE_TRIANGLES, i)
                     }
-                    InstanceSource::Spheres => (u32::MAX, 1, u32::MAX),
+                    InstanceSource::Spheres => (u32::MAX, INSTANCE_SPHERES, u32::MAX),
                 };
                 GpuInstance {
                     object_to_world: rows(&inst.object_to_world),
@@ -126,42 +152,44 @@ impl GpuScene {
                 }
             })
             .collect();
+        gpu_of_instance
+    }
+
+    /// The NEE lights of `scene` (whose instances `instance` maps to GPU instance slots and whose
+    /// `(instance, triangle)` pairs `triangle` maps to global GPU triangles), their alias table and
+    /// total power.
+    fn pack_lights(
+        &self,
+        scene: &Scene,
+        instance: &[u32],
+        triangle: &dyn Fn(u32, u32) -> u32,
+    ) -> (Vec<GpuLight>, Vec<GpuAliasEntry>, f32) {
         let mut gpu_of_sphere = vec![u32::MAX; scene.spheres.len()];
         for (slot, s) in self.spheres.iter().enumerate() {
             gpu_of_sphere[s.scene_sphere as usize] = slot as u32;
         }
-        let inverse_orders: Vec<Vec<u32>> = bvh
-            .blases
-            .iter()
-            .take(scene.meshes.len())
-            .enumerate()
-            .map(|(m, b)| {
-                let emissive = scene.instances.iter().enumerate().any(|(i, inst)| {
-                    inst.mesh as usize == m
-                        && scene.materials[scene.instance_material(i) as usize].is_emissive()
-                });
-                let mut inv = vec![0; if emissive { b.order.len() } else { 0 }];
-                if emissive {
-                    for (pos, &t) in b.order.iter().enumerate() {
-                        inv[t as usize] = pos as u32;
-                    }
-                }
-                inv
-            })
-            .collect();
-        let triangle = |mesh: u32, t: u32| {
-            self.triangle_base[mesh as usize] + inverse_orders[mesh as usize][t as usize]
-        };
         let dist = LightDistribution::build(scene);
         let (lights, table) = params::lights(
             scene,
             &dist,
             &params::LightRemap {
-                instance: &gpu_of_instance,
-                triangle: &triangle,
+                instance,
+                triangle,
                 sphere: &gpu_of_sphere,
             },
         );
+        (lights, table, dist.total_power())
+    }
+
+    /// Stores the lights and packs the params (camera, environment and sun of `scene`, counts,
+    /// total light power).
+    fn set_lights(
+        &mut self,
+        scene: &Scene,
+        lights: Vec<GpuLight>,
+        table: Vec<GpuAliasEntry>,
+        total_power: f32,
+    ) {
         self.lights = lights;
         self.light_table = table;
         self.params = GpuSceneParams {
@@ -180,8 +208,15 @@ impl GpuScene {
                 self.tlas_nodes.len() as u32,
                 self.blas_nodes.len() as u32,
             ],
-            light: [dist.total_power(), 0.0, 0.0, 0.0],
+            light: [total_power, 0.0, 0.0, 0.0],
         };
+    }
+
+    /// Whether the packed scene is exactly one triangle instance (no spheres): rays may then skip
+    /// the top level and walk that instance's BLAS directly (the `SINGLE_INSTANCE` specialization
+    /// constant). A fully flattened static scene is one.
+    pub fn single_instance(&self) -> bool {
+        matches!(self.instances.as_slice(), [only] if only.kind != INSTANCE_SPHERES)
     }
 
     /// Bytes of vertices and indices.
@@ -220,6 +255,41 @@ impl GpuScene {
             (self.geometry_bytes() + self.bvh_bytes()) as f64 / tris as f64
         }
     }
+}
+
+/// Per BLAS of `bvh`: the position of each triangle in its leaf order when the BLAS holds an
+/// emitter of `scene` (whose instance `i` lies in BLAS `blas_of(i)`), else empty. Lights use it to
+/// find their GPU triangles.
+fn emitter_inverse_orders(
+    scene: &Scene,
+    bvh: &Bvh,
+    blas_of: impl Fn(usize) -> usize,
+) -> Vec<Vec<u32>> {
+    let mut lit = vec![false; bvh.blases.len()];
+    for i in 0..scene.instances.len() {
+        if scene.materials[scene.instance_material(i) as usize].is_emissive() {
+            lit[blas_of(i)] = true;
+        }
+    }
+    lit.iter()
+        .zip(&bvh.blases)
+        .map(|(&lit, blas)| {
+            if lit {
+                inverse_order(&blas.order)
+            } else {
+                Vec::new()
+            }
+        })
+        .collect()
+}
+
+/// Position of each triangle in a BLAS leaf order (`order` maps position to triangle).
+fn inverse_order(order: &[u32]) -> Vec<u32> {
+    let mut inverse = vec![0; order.len()];
+    for (position, &t) in order.iter().enumerate() {
+        inverse[t as usize] = position as u32;
+    }
+    inverse
 }
 
 /// Rows of the 3x4 matrix of an affine transform.

@@ -67,7 +67,7 @@ pub fn textures(scene: &Scene) -> (Vec<u32>, Vec<GpuTextureRecord>) {
 pub struct LightRemap<'a> {
     /// GPU instance index of each scene instance (`u32::MAX` if culled).
     pub instance: &'a [u32],
-    /// Global GPU triangle index of `(mesh, triangle)`.
+    /// Global GPU triangle index of `(scene instance, triangle of its mesh)`.
     pub triangle: &'a dyn Fn(u32, u32) -> u32,
     /// GPU sphere index of each scene sphere.
     pub sphere: &'a [u32],
@@ -95,7 +95,7 @@ pub fn lights(
                     let area = 0.5 * geometric.length();
                     GpuLight {
                         kind: light_kind::TRIANGLE,
-                        index: (remap.triangle)(inst.mesh, triangle),
+                        index: (remap.triangle)(instance, triangle),
                         instance: remap.instance[instance as usize],
                         pad: 0,
                         p0: a.extend(area).to_array(),
