@@ -6,7 +6,6 @@
 #define LUCID_SCENE_GLSL
 
 struct Vertex { float px, py, pz; uint normal; uint uv; };
-struct Triangle { vec4 p0; vec4 e1; vec4 e2; }; // first vertex, p1 - p0, p2 - p0
 struct BvhNode { float min_x, min_y, min_z; uint left_or_first; float max_x, max_y, max_z; uint count; };
 struct Instance {
     vec4 object_to_world[3];
@@ -67,8 +66,9 @@ layout(set = 0, binding = 10, std430) readonly buffer Textures { TextureRecord r
 layout(set = 0, binding = 11, std430) readonly buffer ScenePayload { SceneParams p; } b_scene;
 // Per triangle of the flattened instance: material, original scene instance.
 layout(set = 0, binding = 13, std430) readonly buffer TriangleIds { uvec2 t[]; } b_triangle_ids;
-// Per triangle (in b_indices order): what ray intersection reads, in one load.
-layout(set = 0, binding = 14, std430) readonly buffer Triangles { Triangle t[]; } b_triangles;
+// Per triangle (in b_indices order), nine floats: first vertex, p1 - p0, p2 - p0 (what ray
+// intersection reads, contiguous).
+layout(set = 0, binding = 14, std430) readonly buffer Triangles { float t[]; } b_triangles;
 
 vec3 vertex_position(uint index) {
     Vertex v = b_vertices.v[index];

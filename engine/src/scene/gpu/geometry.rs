@@ -56,9 +56,9 @@ pub fn pack(scene: &Scene, bvh: &Bvh) -> PackedGeometry {
         out.triangles.extend(blas.order.iter().map(|&t| {
             let [p0, p1, p2] = mesh.triangle(t as usize);
             GpuTriangle {
-                p0: p0.extend(0.0).to_array(),
-                e1: (p1 - p0).extend(0.0).to_array(),
-                e2: (p2 - p0).extend(0.0).to_array(),
+                p0: p0.to_array(),
+                e1: (p1 - p0).to_array(),
+                e2: (p2 - p0).to_array(),
             }
         }));
         push_nodes(&mut out, &blas.nodes, tri_base);

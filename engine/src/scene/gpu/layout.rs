@@ -22,24 +22,18 @@ pub struct GpuVertex {
     pub uv: u32,
 }
 
-/// A triangle as ray intersection reads it, 48 bytes, in BLAS leaf order (one load instead of
-/// indices then vertices).
-/// ```glsl
-/// struct Triangle {
-///     vec4 p0; // first vertex (w unused)
-///     vec4 e1; // p1 - p0
-///     vec4 e2; // p2 - p0
-/// };
-/// ```
+/// A triangle as ray intersection reads it, 36 bytes (nine floats, read as `float t[]` in GLSL:
+/// first vertex, second minus first, third minus first), in BLAS leaf order: contiguous reads
+/// instead of indices then vertices.
 #[repr(C)]
 #[derive(Clone, Copy, Debug, Default, PartialEq, Pod, Zeroable)]
 pub struct GpuTriangle {
-    /// Object-space first vertex (w 0).
-    pub p0: [f32; 4],
-    /// Second vertex minus the first (w 0).
-    pub e1: [f32; 4],
-    /// Third vertex minus the first (w 0).
-    pub e2: [f32; 4],
+    /// Object-space first vertex.
+    pub p0: [f32; 3],
+    /// Second vertex minus the first.
+    pub e1: [f32; 3],
+    /// Third vertex minus the first.
+    pub e2: [f32; 3],
 }
 
 /// An instance, 112 bytes (std430 alignment 16).
