@@ -6,7 +6,13 @@
 #define LUCID_SCENE_GLSL
 
 struct Vertex { float px, py, pz; uint normal; uint uv; };
-struct BvhNode { float min_x, min_y, min_z; uint left_or_first; float max_x, max_y, max_z; uint count; };
+// An interior BVH node: both children's boxes and child words (lucid_engine::scene::gpu::bvh_pack).
+struct BvhNode {
+    vec3 left_min; uint left;
+    vec3 left_max; uint right;
+    vec3 right_min; uint pad0;
+    vec3 right_max; uint pad1;
+};
 struct Instance {
     vec4 object_to_world[3];
     vec4 world_to_object[3];
@@ -32,7 +38,7 @@ struct SceneParams {
     Environment environment;
     Sun sun;
     uvec4 counts0; // triangles, instances, spheres, lights
-    uvec4 counts1; // materials, textures, tlas nodes, blas nodes
+    uvec4 counts1; // materials, textures, tlas root word, blas nodes
     vec4 light;    // total NEE light power
 };
 

@@ -20,14 +20,14 @@ struct Hit {
     vec2 bary;      // barycentrics (v1, v2) for triangles
 };
 
-// Entry distance of the ray into the box, or T_INFINITY when missed or beyond t_max.
-float box_entry(BvhNode node, vec3 origin, vec3 inv_dir, float t_max) {
-    vec3 t0 = (vec3(node.min_x, node.min_y, node.min_z) - origin) * inv_dir;
-    vec3 t1 = (vec3(node.max_x, node.max_y, node.max_z) - origin) * inv_dir;
-    vec3 lo = min(t0, t1);
-    vec3 hi = max(t0, t1);
-    float enter = max(max(lo.x, lo.y), max(lo.z, 0.0));
-    float leave = min(min(hi.x, hi.y), min(hi.z, t_max));
+// Entry distance of the ray into the box [lo, hi], or T_INFINITY when missed or beyond t_max.
+float box_entry(vec3 lo, vec3 hi, vec3 origin, vec3 inv_dir, float t_max) {
+    vec3 t0 = (lo - origin) * inv_dir;
+    vec3 t1 = (hi - origin) * inv_dir;
+    vec3 near = min(t0, t1);
+    vec3 far = max(t0, t1);
+    float enter = max(max(near.x, near.y), max(near.z, 0.0));
+    float leave = min(min(far.x, far.y), min(far.z, t_max));
     return enter <= leave ? enter : T_INFINITY;
 }
 
@@ -85,21 +85,34 @@ float intersect_sphere(uint s, vec3 o, vec3 d, float t_max) {
     return (t > 1e-5 * cr.w / sqrt(a) && t < t_max) ? t : T_INFINITY;
 }
 
-const uint NO_NODE = 0xffffffffu;
+// Child words (lucid_engine::scene::gpu::bvh_pack): an interior node's index, or with BVH_LEAF set
+// a leaf's first primitive (27 bits) and count - 1 (4 bits); BVH_EMPTY is an empty tree's root.
+const uint BVH_LEAF = 0x80000000u;
+const uint BVH_EMPTY = 0xffffffffu;
 
-// Chooses how to go on at an interior node whose children (left, left + 1) are entered at
-// t_left and t_right: returns the nearer child hit (NO_NODE when neither is), and in far_child the
-// other one when both are hit (else NO_NODE).
-uint order_children(uint left, float t_left, float t_right, out uint far_child) {
-    far_child = NO_NODE;
+uint leaf_first(uint word) {
+    return word & 0x07ffffffu;
+}
+
+uint leaf_count(uint word) {
+    return ((word >> 27u) & 15u) + 1u;
+}
+
+// Visits an interior node's children: returns the word of the nearer child the ray enters before
+// t_max (BVH_EMPTY when neither), and in far_child the other one when both are entered (else
+// BVH_EMPTY).
+uint order_children(BvhNode node, vec3 origin, vec3 inv_dir, float t_max, out uint far_child) {
+    float t_left = box_entry(node.left_min, node.left_max, origin, inv_dir, t_max);
+    float t_right = box_entry(node.right_min, node.right_max, origin, inv_dir, t_max);
+    far_child = BVH_EMPTY;
     if (min(t_left, t_right) == T_INFINITY) {
-        return NO_NODE;
+        return BVH_EMPTY;
     }
     bool left_first = t_left <= t_right;
     if (max(t_left, t_right) < T_INFINITY) {
-        far_child = left_first ? left + 1u : left;
+        far_child = left_first ? node.right : node.left;
     }
-    return left_first ? left : left + 1u;
+    return left_first ? node.left : node.right;
 }
 
 // Traverses one instance's BLAS in object space. Updates hit when closer; with any_hit, stops at
@@ -108,13 +121,17 @@ bool traverse_blas(uint inst_index, Instance inst, vec3 o, vec3 d, bool any_hit,
     vec3 inv_dir = safe_inverse(d);
     uint stack[BLAS_STACK];
     uint sp = 0u;
-    uint node_index = inst.blas_root;
+    uint word = inst.blas_root;
     bool found = false;
+    if (word == BVH_EMPTY) {
+        return false;
+    }
     while (true) {
-        BvhNode node = b_blas.n[node_index];
-        if (node.count > 0u) {
-            for (uint k = 0u; k < node.count; ++k) {
-                uint prim = node.left_or_first + k;
+        if ((word & BVH_LEAF) != 0u) {
+            uint first = leaf_first(word);
+            uint count = leaf_count(word);
+            for (uint k = 0u; k < count; ++k) {
+                uint prim = first + k;
                 vec2 bary = vec2(0.0);
                 float t;
                 if (HAS_SPHERES && inst.kind == INSTANCE_SPHERES) {
@@ -133,26 +150,21 @@ bool traverse_blas(uint inst_index, Instance inst, vec3 o, vec3 d, bool any_hit,
                     }
                 }
             }
-        } else if (node.left_or_first != 0u) {
-            uint left = node.left_or_first;
+        } else {
             uint far_child;
-            uint near_child = order_children(
-                left,
-                box_entry(b_blas.n[left], o, inv_dir, hit.t),
-                box_entry(b_blas.n[left + 1u], o, inv_dir, hit.t),
-                far_child);
-            if (near_child != NO_NODE) {
-                if (far_child != NO_NODE && sp < BLAS_STACK) {
+            uint near_child = order_children(b_blas.n[word], o, inv_dir, hit.t, far_child);
+            if (near_child != BVH_EMPTY) {
+                if (far_child != BVH_EMPTY && sp < BLAS_STACK) {
                     stack[sp++] = far_child;
                 }
-                node_index = near_child;
+                word = near_child;
                 continue;
             }
         }
         if (sp == 0u) {
             break;
         }
-        node_index = stack[--sp];
+        word = stack[--sp];
     }
     return found;
 }
@@ -163,7 +175,8 @@ bool trace_ray(vec3 origin, vec3 dir, float t_max, bool any_hit, out Hit hit) {
     hit.instance = 0xffffffffu;
     hit.primitive = 0u;
     hit.bary = vec2(0.0);
-    if (b_scene.p.counts1.z == 0u) {
+    uint word = b_scene.p.counts1.z; // the TLAS root
+    if (word == BVH_EMPTY) {
         return false;
     }
     if (SINGLE_INSTANCE) {
@@ -176,16 +189,13 @@ bool trace_ray(vec3 origin, vec3 dir, float t_max, bool any_hit, out Hit hit) {
     vec3 inv_dir = safe_inverse(dir);
     uint stack[TLAS_STACK];
     uint sp = 0u;
-    uint node_index = 0u;
     bool found = false;
-    if (box_entry(b_tlas.n[0], origin, inv_dir, hit.t) == T_INFINITY) {
-        return false;
-    }
     while (true) {
-        BvhNode node = b_tlas.n[node_index];
-        if (node.count > 0u) {
-            for (uint k = 0u; k < node.count; ++k) {
-                uint inst_index = node.left_or_first + k;
+        if ((word & BVH_LEAF) != 0u) {
+            uint first = leaf_first(word);
+            uint count = leaf_count(word);
+            for (uint k = 0u; k < count; ++k) {
+                uint inst_index = first + k;
                 Instance inst = b_instances.i[inst_index];
                 vec3 o = transform_point(inst.world_to_object, origin);
                 vec3 d = transform_vector(inst.world_to_object, dir);
@@ -196,26 +206,21 @@ bool trace_ray(vec3 origin, vec3 dir, float t_max, bool any_hit, out Hit hit) {
                     }
                 }
             }
-        } else if (node.left_or_first != 0u) {
-            uint left = node.left_or_first;
+        } else {
             uint far_child;
-            uint near_child = order_children(
-                left,
-                box_entry(b_tlas.n[left], origin, inv_dir, hit.t),
-                box_entry(b_tlas.n[left + 1u], origin, inv_dir, hit.t),
-                far_child);
-            if (near_child != NO_NODE) {
-                if (far_child != NO_NODE && sp < TLAS_STACK) {
+            uint near_child = order_children(b_tlas.n[word], origin, inv_dir, hit.t, far_child);
+            if (near_child != BVH_EMPTY) {
+                if (far_child != BVH_EMPTY && sp < TLAS_STACK) {
                     stack[sp++] = far_child;
                 }
-                node_index = near_child;
+                word = near_child;
                 continue;
             }
         }
         if (sp == 0u) {
             break;
         }
-        node_index = stack[--sp];
+        word = stack[--sp];
     }
     return found;
 }

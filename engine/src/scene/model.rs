@@ -194,6 +194,17 @@ impl Scene {
         for t in &self.textures {
             t.validate()?;
         }
+        let limit = crate::scene::gpu::bvh_pack::MAX_PRIMITIVES as usize;
+        let counts = [
+            ("triangles", self.triangle_count()),
+            ("spheres", self.spheres.len()),
+            ("instances", self.instances.len()),
+        ];
+        if let Some((what, n)) = counts.iter().find(|(_, n)| *n >= limit) {
+            return invalid(format!(
+                "{n} {what}: the GPU layout indexes fewer than {limit}"
+            ));
+        }
         let nm = self.materials.len();
         for m in &self.meshes {
             m.validate()?;

@@ -2,9 +2,10 @@
 
 use glam::Vec2;
 
+use super::bvh_pack::{pack_tree, GpuBvhNode};
 use super::encode::{encode_normal, encode_uv};
 use super::layout::{GpuSphere, GpuTriangle, GpuVertex};
-use crate::bvh::{Bvh, BvhNode};
+use crate::bvh::Bvh;
 use crate::scene::Scene;
 
 /// Packed geometry and bottom levels.
@@ -16,9 +17,9 @@ pub struct PackedGeometry {
     pub indices: Vec<u32>,
     /// Every triangle's vertex and edges, in the order of `indices`.
     pub triangles: Vec<GpuTriangle>,
-    /// All BLAS nodes with absolute child and triangle indices.
-    pub blas_nodes: Vec<BvhNode>,
-    /// Root node of each BLAS in `blas_nodes` (same order as `Bvh::blases`).
+    /// All BLAS interior nodes in the GPU layout, with absolute node and triangle indices.
+    pub blas_nodes: Vec<GpuBvhNode>,
+    /// Root child word of each BLAS (same order as `Bvh::blases`; see [`super::bvh_pack`]).
     pub blas_roots: Vec<u32>,
     /// First global triangle of each mesh.
     pub triangle_base: Vec<u32>,
@@ -33,7 +34,7 @@ pub fn pack(scene: &Scene, bvh: &Bvh) -> PackedGeometry {
         vertices: Vec::with_capacity(vertex_total),
         indices: Vec::with_capacity(scene.unique_triangle_count() * 3),
         triangles: Vec::with_capacity(scene.unique_triangle_count()),
-        blas_nodes: Vec::with_capacity(bvh.blases.iter().map(|b| b.nodes.len()).sum()),
+        blas_nodes: Vec::with_capacity(bvh.blases.iter().map(|b| b.nodes.len() / 2).sum()),
         blas_roots: Vec::with_capacity(bvh.blases.len()),
         triangle_base: Vec::with_capacity(scene.meshes.len()),
         spheres: Vec::new(),
@@ -61,7 +62,8 @@ pub fn pack(scene: &Scene, bvh: &Bvh) -> PackedGeometry {
                 e2: (p2 - p0).to_array(),
             }
         }));
-        push_nodes(&mut out, &blas.nodes, tri_base);
+        let root = pack_tree(&blas.nodes, tri_base, &mut out.blas_nodes);
+        out.blas_roots.push(root);
     }
     if let Some(blas) = bvh.blases.get(scene.meshes.len()) {
         out.spheres = blas
@@ -77,23 +79,8 @@ pub fn pack(scene: &Scene, bvh: &Bvh) -> PackedGeometry {
                 }
             })
             .collect();
-        push_nodes(&mut out, &blas.nodes, 0);
+        let root = pack_tree(&blas.nodes, 0, &mut out.blas_nodes);
+        out.blas_roots.push(root);
     }
     out
-}
-
-/// Appends one tree, relocating child links by the node base and leaf
-/// ranges by `prim_base`. An empty tree keeps its `left_or_first == 0`.
-fn push_nodes(out: &mut PackedGeometry, nodes: &[BvhNode], prim_base: u32) {
-    let node_base = out.blas_nodes.len() as u32;
-    out.blas_roots.push(node_base);
-    out.blas_nodes.extend(nodes.iter().map(|&n| {
-        let mut n = n;
-        if n.is_leaf() {
-            n.left_or_first += prim_base;
-        } else if n.left_or_first != 0 {
-            n.left_or_first += node_base;
-        }
-        n
-    }));
 }

@@ -41,7 +41,7 @@ pub struct GpuTriangle {
 /// struct Instance {
 ///     vec4 object_to_world[3]; // rows of a 3x4 affine matrix
 ///     vec4 world_to_object[3];
-///     uint blas_root;          // index of the BLAS root in blas_nodes
+///     uint blas_root;          // child word of the BLAS root (see bvh_pack)
 ///     uint material;           // material index; ~0u for the sphere instance
 ///     uint kind;               // 0 = triangles, 1 = spheres, 2 = flattened static triangles
 ///     uint scene_instance;     // Scene::instances index; ~0u for spheres
@@ -54,7 +54,7 @@ pub struct GpuInstance {
     pub object_to_world: [[f32; 4]; 3],
     /// Rows of the world-to-object 3x4 matrix.
     pub world_to_object: [[f32; 4]; 3],
-    /// Root node of the instance's BLAS in `blas_nodes`.
+    /// Child word of the instance's BLAS root (see [`super::bvh_pack`]).
     pub blas_root: u32,
     /// Material of every triangle (`u32::MAX` for spheres, which carry
     /// their own).
@@ -283,7 +283,7 @@ pub struct GpuSun {
 /// struct SceneParams {
 ///     Camera camera; Environment environment; Sun sun;
 ///     uvec4 counts0;  // triangles, instances, spheres, lights
-///     uvec4 counts1;  // materials, textures, tlas nodes, blas nodes
+///     uvec4 counts1;  // materials, textures, tlas root word, blas nodes
 ///     vec4  light;    // total NEE light power, 0, 0, 0
 /// };
 /// ```
@@ -298,7 +298,8 @@ pub struct GpuSceneParams {
     pub sun: GpuSun,
     /// Triangles, instances, spheres, lights.
     pub counts0: [u32; 4],
-    /// Materials, textures, TLAS nodes, BLAS nodes.
+    /// Materials, textures, the TLAS root's child word (`bvh_pack::EMPTY` without instances),
+    /// BLAS nodes.
     pub counts1: [u32; 4],
     /// Total power of the light table (x). A BSDF-sampled hit on an
     /// emitter has selection probability `power / total`, with power

@@ -6,9 +6,10 @@
 //!   triangle, absolute vertex indices). Each mesh's triangles are stored
 //!   in its BLAS leaf order, so a BLAS leaf `(first, count)` is directly a
 //!   global triangle range.
-//! - `blas_nodes` / `tlas_nodes` ([`BvhNode`], 32 B, see `crate::bvh`):
-//!   all BLASes concatenated with absolute child indices; TLAS leaves index
-//!   `instances`, which are stored in TLAS leaf order.
+//! - `blas_nodes` / `tlas_nodes` ([`GpuBvhNode`], 64 B, see [`bvh_pack`]):
+//!   interior nodes holding both children's boxes and child words; all
+//!   BLASes concatenated with absolute node and triangle indices; TLAS
+//!   leaves index `instances`, which are stored in TLAS leaf order.
 //! - `instances` ([`GpuInstance`]): transforms, BLAS root, material.
 //! - `spheres` ([`GpuSphere`]) in sphere-BLAS leaf order.
 //! - `materials`, `textures` (records into the flat `texels` word buffer).
@@ -16,12 +17,14 @@
 //!   alias table / CDF.
 //! - `params`: camera, environment, sun, counts.
 
+pub mod bvh_pack;
 mod encode;
 mod flat;
 mod geometry;
 mod layout;
 mod params;
 
+pub use bvh_pack::GpuBvhNode;
 pub use encode::{decode_normal, encode_normal, encode_uv};
 pub use flat::{apply_flattening, pack_flat, INSTANCE_FLATTENED};
 pub use layout::{
@@ -36,7 +39,7 @@ use std::mem::size_of;
 use glam::Affine3A;
 
 use super::{LightDistribution, Scene, SceneFeatures};
-use crate::bvh::{Bvh, BvhNode, InstanceSource};
+use crate::bvh::{Bvh, InstanceSource};
 
 /// `GpuInstance::kind` of a mesh instance.
 pub const INSTANCE_TRIANGLES: u32 = 0;
@@ -54,9 +57,11 @@ pub struct GpuScene {
     /// Triangles for ray intersection (first vertex and edges), in the order of `indices`.
     pub triangles: Vec<GpuTriangle>,
     /// All bottom-level nodes.
-    pub blas_nodes: Vec<BvhNode>,
+    pub blas_nodes: Vec<GpuBvhNode>,
     /// Top-level nodes.
-    pub tlas_nodes: Vec<BvhNode>,
+    pub tlas_nodes: Vec<GpuBvhNode>,
+    /// Root child word of the TLAS ([`bvh_pack::EMPTY`] without instances).
+    pub tlas_root: u32,
     /// Instances in TLAS leaf order.
     pub instances: Vec<GpuInstance>,
     /// Analytic spheres.
@@ -75,6 +80,7 @@ pub struct GpuScene {
     pub params: GpuSceneParams,
     /// Features to specialise shaders for.
     pub features: SceneFeatures,
+    /// Root child word of each BLAS.
     blas_roots: Vec<u32>,
     triangle_base: Vec<u32>,
 }
@@ -126,7 +132,8 @@ impl GpuScene {
     /// Packs the TLAS and the instances of `scene` (in TLAS leaf order); returns the GPU instance
     /// slot of each scene instance.
     fn place_instances(&mut self, scene: &Scene, bvh: &Bvh) -> Vec<u32> {
-        self.tlas_nodes = bvh.tlas.nodes.clone();
+        self.tlas_nodes.clear();
+        self.tlas_root = bvh_pack::pack_tree(&bvh.tlas.nodes, 0, &mut self.tlas_nodes);
         let mut gpu_of_instance = vec![u32::MAX; scene.instances.len()];
         self.instances = bvh
             .tlas
@@ -205,7 +212,7 @@ impl GpuScene {
             counts1: [
                 self.materials.len() as u32,
                 self.textures.len() as u32,
-                self.tlas_nodes.len() as u32,
+                self.tlas_root,
                 self.blas_nodes.len() as u32,
             ],
             light: [total_power, 0.0, 0.0, 0.0],
@@ -229,7 +236,7 @@ impl GpuScene {
 
     /// Bytes of both BVH levels and the instances.
     pub fn bvh_bytes(&self) -> usize {
-        (self.blas_nodes.len() + self.tlas_nodes.len()) * size_of::<BvhNode>()
+        (self.blas_nodes.len() + self.tlas_nodes.len()) * size_of::<GpuBvhNode>()
             + self.instances.len() * size_of::<GpuInstance>()
     }
 
