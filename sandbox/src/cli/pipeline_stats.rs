@@ -92,3 +92,65 @@ pub fn print_table(pipelines: Option<&[PipelineStatistics]>, device: &str) {
         eprintln!("  {key:width$}  {values}");
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn statistic(name: &str, value: StatisticValue) -> PipelineStatistic {
+        PipelineStatistic {
+            name: name.into(),
+            description: String::new(),
+            value,
+        }
+    }
+
+    #[test]
+    fn pipelines_sharing_a_name_are_keyed_by_specialization() {
+        let pipelines = [
+            PipelineStatistics {
+                name: "svgf/atrous".into(),
+                specialization: vec![(0, 1)],
+                statistics: vec![statistic("Register Count", StatisticValue::U64(40))],
+            },
+            PipelineStatistics {
+                name: "svgf/atrous".into(),
+                specialization: vec![(0, 2)],
+                statistics: vec![statistic("Register Count", StatisticValue::U64(48))],
+            },
+            PipelineStatistics {
+                name: "tonemap/aces".into(),
+                specialization: vec![],
+                statistics: vec![
+                    statistic("Spilled", StatisticValue::Bool(false)),
+                    statistic("Occupancy", StatisticValue::F64(0.5)),
+                    statistic("Delta", StatisticValue::I64(-3)),
+                ],
+            },
+        ];
+        assert_eq!(
+            to_json(Some(&pipelines)),
+            serde_json::json!({
+                "svgf/atrous [0=1]": { "Register Count": 40 },
+                "svgf/atrous [0=2]": { "Register Count": 48 },
+                "tonemap/aces": { "Spilled": false, "Occupancy": 0.5, "Delta": -3 },
+            })
+        );
+        assert_eq!(to_json(None), serde_json::Value::Null);
+    }
+
+    #[test]
+    fn register_statistics_are_preferred_in_the_table() {
+        let statistics = [
+            statistic("Instruction Count", StatisticValue::U64(900)),
+            statistic("Register Count", StatisticValue::U64(64)),
+        ];
+        let names: Vec<&str> = shown(&statistics).iter().map(|s| s.name.as_str()).collect();
+        assert_eq!(names, ["Register Count"]);
+        let names: Vec<&str> = shown(&statistics[..1])
+            .iter()
+            .map(|s| s.name.as_str())
+            .collect();
+        assert_eq!(names, ["Instruction Count"]);
+    }
+}
