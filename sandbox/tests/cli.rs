@@ -142,3 +142,41 @@ fn bad_arguments_and_files_fail_with_a_clear_message() {
     );
     std::fs::remove_file(&broken).unwrap();
 }
+
+#[test]
+fn bench_reports_pipeline_statistics_or_says_they_are_unavailable() {
+    let json = temp("bench-stats.json");
+    let out = lucid(&[
+        "bench",
+        "--scene",
+        "cornell-box",
+        "--size",
+        "64x64",
+        "--spp",
+        "1",
+        "--frames",
+        "2",
+        "--warmup",
+        "1",
+        "--pipeline-statistics",
+        "--json",
+        json.to_str().unwrap(),
+    ]);
+    let err = stderr(&out);
+    assert!(out.status.success(), "{err}");
+    assert!(!err.contains("VUID"), "validation messages: {err}");
+    let report: serde_json::Value = serde_json::from_slice(&std::fs::read(&json).unwrap()).unwrap();
+    std::fs::remove_file(&json).unwrap();
+    match &report["pipelines"] {
+        serde_json::Value::Null => assert!(err.contains("none captured"), "{err}"),
+        serde_json::Value::Object(pipelines) => {
+            assert!(!pipelines.is_empty(), "{report}");
+            assert!(
+                pipelines.values().all(|s| s.as_object().is_some()),
+                "{report}"
+            );
+            assert!(err.contains("pipeline statistics ("), "{err}");
+        }
+        other => panic!("\"pipelines\" must be null or an object, got {other}"),
+    }
+}

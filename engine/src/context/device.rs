@@ -28,6 +28,10 @@ pub struct DeviceInfo {
     /// Whether shaders may `atomicAdd` 32-bit floats in buffers and images
     /// (`VK_EXT_shader_atomic_float`; light tracing splats with it).
     pub float_atomics: bool,
+    /// Whether compute pipelines capture their executable statistics
+    /// (`VK_KHR_pipeline_executable_properties`; requested with
+    /// [`super::ContextDesc::pipeline_statistics`]).
+    pub pipeline_statistics: bool,
 }
 
 /// The chosen physical device, its queue family and the created logical device.
@@ -119,13 +123,33 @@ fn unusable_reason(
     None
 }
 
+/// Whether `physical` lists `VK_KHR_pipeline_executable_properties` and its `pipelineExecutableInfo`
+/// feature (`extensions` are the device's extension names).
+fn supports_pipeline_statistics(
+    instance: &ash::Instance,
+    physical: vk::PhysicalDevice,
+    extensions: &[String],
+) -> bool {
+    let name = ash::khr::pipeline_executable_properties::NAME.to_bytes();
+    if !extensions.iter().any(|e| e.as_bytes() == name) {
+        return false;
+    }
+    let mut supported = vk::PhysicalDevicePipelineExecutablePropertiesFeaturesKHR::default();
+    let mut query = vk::PhysicalDeviceFeatures2::default().push_next(&mut supported);
+    // SAFETY: physical comes from this instance; the chain points at locals.
+    unsafe { instance.get_physical_device_features2(physical, &mut query) };
+    supported.pipeline_executable_info == vk::TRUE
+}
+
 /// Picks a physical device (`requested` is a name substring) and creates the logical device with one
-/// compute queue. `present` says whether a queue family can present to the window's surface.
+/// compute queue. `present` says whether a queue family can present to the window's surface;
+/// `want_statistics` enables pipeline statistics capture where the device supports it.
 pub(crate) fn create_device(
     instance: &ash::Instance,
     requested: Option<&str>,
     present: &dyn Fn(vk::PhysicalDevice, u32) -> bool,
     need_swapchain: bool,
+    want_statistics: bool,
 ) -> Result<CreatedDevice> {
     // SAFETY: instance is valid.
     let physicals =
@@ -180,7 +204,8 @@ pub(crate) fn create_device(
         .features(base)
         .push_next(&mut f12)
         .push_next(&mut f13);
-    let has_float_atomics_ext = device_extensions(instance, physical)
+    let available_extensions = device_extensions(instance, physical);
+    let has_float_atomics_ext = available_extensions
         .iter()
         .any(|e| e.as_bytes() == ash::ext::shader_atomic_float::NAME.to_bytes());
     let mut supported_atomics = vk::PhysicalDeviceShaderAtomicFloatFeaturesEXT::default();
@@ -200,9 +225,26 @@ pub(crate) fn create_device(
     if float_atomics {
         features = features.push_next(&mut atomics);
     }
+    let pipeline_statistics =
+        want_statistics && supports_pipeline_statistics(instance, physical, &available_extensions);
+    if want_statistics && !pipeline_statistics {
+        tracing::warn!(
+            "pipeline statistics were requested but {} lacks VK_KHR_pipeline_executable_properties \
+             (pipelineExecutableInfo): none are captured",
+            candidates[index].name
+        );
+    }
+    let mut executable_info = vk::PhysicalDevicePipelineExecutablePropertiesFeaturesKHR::default()
+        .pipeline_executable_info(true);
+    if pipeline_statistics {
+        features = features.push_next(&mut executable_info);
+    }
     let mut extensions = vec![ash::khr::push_descriptor::NAME.as_ptr()];
     if float_atomics {
         extensions.push(ash::ext::shader_atomic_float::NAME.as_ptr());
+    }
+    if pipeline_statistics {
+        extensions.push(ash::khr::pipeline_executable_properties::NAME.as_ptr());
     }
     if need_swapchain {
         extensions.push(ash::khr::swapchain::NAME.as_ptr());
@@ -240,6 +282,7 @@ pub(crate) fn create_device(
         shader_float16,
         present: need_swapchain,
         float_atomics,
+        pipeline_statistics,
     };
     tracing::info!(
         "Vulkan device: {} (Vulkan {}.{}.{})",

@@ -51,6 +51,7 @@ pub(crate) struct Shared {
     queue: Mutex<vk::Queue>,
     pub allocator: ManuallyDrop<Mutex<Allocator>>,
     pub push_descriptor: ash::khr::push_descriptor::Device,
+    pub executable_properties: Option<ash::khr::pipeline_executable_properties::Device>,
     debug_utils_instance: Option<ash::ext::debug_utils::Instance>,
     pub debug_utils: Option<ash::ext::debug_utils::Device>,
     messenger: vk::DebugUtilsMessengerEXT,
@@ -132,6 +133,7 @@ impl Context {
             desc.device.as_deref(),
             &present,
             surface != vk::SurfaceKHR::null(),
+            desc.pipeline_statistics,
         ) {
             Ok(dev) => dev,
             Err(e) => {
@@ -198,6 +200,7 @@ impl Context {
             shader_float16: false,
             present: false,
             float_atomics: false,
+            pipeline_statistics: false,
         };
         Self::assemble(
             existing,
@@ -230,6 +233,9 @@ impl Context {
         })
         .map_err(|e| EngineError::InvalidArgument(format!("creating the memory allocator: {e}")))?;
         let push_descriptor = ash::khr::push_descriptor::Device::new(&v.instance, &v.device);
+        let executable_properties = info
+            .pipeline_statistics
+            .then(|| ash::khr::pipeline_executable_properties::Device::new(&v.instance, &v.device));
         let debug_utils = debug_utils_instance
             .as_ref()
             .map(|_| ash::ext::debug_utils::Device::new(&v.instance, &v.device));
@@ -243,6 +249,7 @@ impl Context {
                 queue: Mutex::new(v.queue),
                 allocator: ManuallyDrop::new(Mutex::new(allocator)),
                 push_descriptor,
+                executable_properties,
                 debug_utils_instance,
                 debug_utils,
                 messenger,

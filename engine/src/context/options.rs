@@ -28,6 +28,10 @@ pub struct ContextDesc {
     pub instance_extensions: Vec<CString>,
     /// Frames the CPU may record ahead of the GPU.
     pub frames_in_flight: usize,
+    /// Capture each compute pipeline's executable statistics (registers, instructions, ...) through
+    /// `VK_KHR_pipeline_executable_properties` when the device supports it (the
+    /// `LUCID_PIPELINE_STATISTICS` variable). Unsupported devices log a warning and capture nothing.
+    pub pipeline_statistics: bool,
 }
 
 impl Default for ContextDesc {
@@ -43,16 +47,21 @@ impl Default for ContextDesc {
             device: None,
             instance_extensions: Vec::new(),
             frames_in_flight: 2,
+            pipeline_statistics: false,
         }
     }
 }
 
 impl ContextDesc {
-    /// The default description, adjusted by `LUCID_DEVICE` (device name substring) and
-    /// `LUCID_VALIDATION` (`0`/`off`, `1`/`on`, `sync`).
+    /// The default description, adjusted by `LUCID_DEVICE` (device name substring),
+    /// `LUCID_VALIDATION` (`0`/`off`, `1`/`on`, `sync`) and `LUCID_PIPELINE_STATISTICS`
+    /// (`1`/`on`/`true` captures pipeline statistics).
     pub fn from_env() -> Self {
         let mut desc = Self {
             device: std::env::var("LUCID_DEVICE").ok().filter(|s| !s.is_empty()),
+            pipeline_statistics: std::env::var("LUCID_PIPELINE_STATISTICS").is_ok_and(|value| {
+                matches!(value.to_lowercase().as_str(), "1" | "on" | "true" | "yes")
+            }),
             ..Self::default()
         };
         if let Ok(value) = std::env::var("LUCID_VALIDATION") {

@@ -3,6 +3,7 @@
 
 use super::reflect::{reflect, spirv_words, DescriptorKind, Reflection};
 use super::specialization::{map_entries, Specialization};
+use super::statistics::{self, PipelineStatistic, PipelineStatistics};
 use super::ShaderSource;
 use crate::context::{Context, Shared};
 use crate::error::{EngineError, Result, VkResultExt};
@@ -25,6 +26,9 @@ pub struct ComputePipeline {
     pub reflection: Arc<Reflection>,
     /// The workgroup size after specialization.
     pub workgroup_size: [u32; 3],
+    /// The driver's executable statistics (registers, instructions, ...); empty unless the context
+    /// captures them ([`crate::context::DeviceInfo::pipeline_statistics`]).
+    pub statistics: Vec<PipelineStatistic>,
 }
 
 impl Drop for ComputePipeline {
@@ -166,6 +170,24 @@ impl ShaderLibrary {
         lock(&self.pipelines).len()
     }
 
+    /// The statistics of every pipeline created so far (and not replaced by hot reload), sorted by
+    /// name and specialization. `None` when the context does not capture statistics.
+    pub fn pipeline_statistics(&self) -> Option<Vec<PipelineStatistics>> {
+        if !self.ctx.info().pipeline_statistics {
+            return None;
+        }
+        let mut all: Vec<PipelineStatistics> = lock(&self.pipelines)
+            .iter()
+            .map(|((name, specialization), pipeline)| PipelineStatistics {
+                name: name.clone(),
+                specialization: specialization.clone(),
+                statistics: pipeline.statistics.clone(),
+            })
+            .collect();
+        all.sort_by(|a, b| (&a.name, &a.specialization).cmp(&(&b.name, &b.specialization)));
+        Some(all)
+    }
+
     fn create(
         &self,
         name: &str,
@@ -257,7 +279,14 @@ impl ShaderLibrary {
             .module(module)
             .name(c"main")
             .specialization_info(&spec_info);
+        let statistics_loader = self.ctx.shared.executable_properties.as_ref();
+        let flags = if statistics_loader.is_some() {
+            vk::PipelineCreateFlags::CAPTURE_STATISTICS_KHR
+        } else {
+            vk::PipelineCreateFlags::empty()
+        };
         let info = [vk::ComputePipelineCreateInfo::default()
+            .flags(flags)
             .stage(stage)
             .layout(layout)];
         // SAFETY: all referenced objects are alive.
@@ -274,6 +303,14 @@ impl ShaderLibrary {
             }
         };
         self.ctx.set_name(pipeline, name);
+        let statistics = match statistics_loader.map(|l| statistics::capture(l, pipeline)) {
+            Some(Ok(captured)) => captured,
+            Some(Err(e)) => {
+                tracing::warn!("pipeline statistics of {name}: {e}");
+                Vec::new()
+            }
+            None => Vec::new(),
+        };
         let workgroup_size = Specialization::workgroup_size(&reflection, resolved);
         Ok(ComputePipeline {
             shared: self.ctx.shared.clone(),
@@ -283,6 +320,7 @@ impl ShaderLibrary {
             set_layout,
             reflection,
             workgroup_size,
+            statistics,
         })
     }
 }

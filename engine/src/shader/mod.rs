@@ -7,12 +7,14 @@
 mod library;
 mod reflect;
 mod specialization;
+mod statistics;
 
 pub use library::{ComputePipeline, ShaderLibrary};
 pub use reflect::{
     reflect, spirv_words, BindingInfo, DescriptorKind, Reflection, SpecConstantInfo, SpecType,
 };
 pub use specialization::{SpecValue, Specialization};
+pub use statistics::{PipelineStatistic, PipelineStatistics, StatisticValue};
 
 /// A compiled shader embedded in the binary.
 #[derive(Clone, Copy, Debug)]

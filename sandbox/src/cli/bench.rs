@@ -1,6 +1,7 @@
 //! `lucid bench`: GPU frame times (timestamps per pass), paths/s and rays/s for one scene and
 //! algorithm, printed and written as JSON.
 
+use super::pipeline_stats;
 use super::progress::Progress;
 use super::render_options::RenderOptions;
 use super::scene_source;
@@ -30,6 +31,11 @@ pub struct BenchArgs {
     /// scene; the scene itself stays still, so the image stays comparable.
     #[arg(long)]
     dynamic: bool,
+    /// Capture each compute pipeline's executable statistics (register count, ...) through
+    /// VK_KHR_pipeline_executable_properties: printed to stderr and written as "pipelines" in the
+    /// JSON (null when the device cannot capture them). `LUCID_PIPELINE_STATISTICS=1` does the same.
+    #[arg(long)]
+    pipeline_statistics: bool,
 }
 
 /// Mean, standard deviation, median, minimum and maximum of a sample.
@@ -51,7 +57,10 @@ fn summary(values: &[f64]) -> serde_json::Value {
 /// Runs the benchmark.
 pub fn run(args: &BenchArgs) -> anyhow::Result<()> {
     let scene = scene_source::load(&args.options.scene)?;
-    let ctx = Context::new(&ContextDesc::from_env())?;
+    let mut desc = ContextDesc::from_env();
+    desc.pipeline_statistics |= args.pipeline_statistics;
+    let capture_statistics = desc.pipeline_statistics;
+    let ctx = Context::new(&desc)?;
     if !ctx.info().timestamps {
         anyhow::bail!(
             "{} has no timestamp queries on its compute queue: cannot time passes",
@@ -92,7 +101,11 @@ pub fn run(args: &BenchArgs) -> anyhow::Result<()> {
     let mean_ms = frame_ms.iter().sum::<f64>() / frame_ms.len() as f64;
     let paths = w as f64 * h as f64 * args.options.spp as f64;
     let mean_rays = rays.iter().sum::<f64>() / rays.len() as f64;
-    let report = serde_json::json!({
+    let pipelines = renderer.executor().library().pipeline_statistics();
+    if capture_statistics {
+        pipeline_stats::print_table(pipelines.as_deref(), &ctx.info().name);
+    }
+    let mut report = serde_json::json!({
         "command": std::env::args().collect::<Vec<_>>().join(" "),
         "device": ctx.info().name,
         "scene": renderer.scene().name,
@@ -111,6 +124,9 @@ pub fn run(args: &BenchArgs) -> anyhow::Result<()> {
         "wall_fps": args.frames as f64 / wall_s,
         "non_finite_samples_last_frame": renderer.stats().non_finite_samples,
     });
+    if capture_statistics {
+        report["pipelines"] = pipeline_stats::to_json(pipelines.as_deref());
+    }
     println!("{}", serde_json::to_string_pretty(&report)?);
     if let Some(path) = &args.json {
         std::fs::write(path, serde_json::to_string_pretty(&report)?)

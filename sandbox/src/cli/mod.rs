@@ -3,6 +3,7 @@
 mod bench;
 mod evaluate;
 mod info;
+mod pipeline_stats;
 mod progress;
 mod render;
 mod render_options;
