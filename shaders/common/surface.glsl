@@ -44,12 +44,19 @@ Surface surface_at(Hit hit, vec3 origin, vec3 dir) {
     Vertex v1 = b_vertices.v[i1];
     Vertex v2 = b_vertices.v[i2];
     vec3 b = vec3(1.0 - hit.bary.x - hit.bary.y, hit.bary.x, hit.bary.y);
-    s.p0 = transform_point(inst.object_to_world, vec3(v0.px, v0.py, v0.pz));
-    s.p1 = transform_point(inst.object_to_world, vec3(v1.px, v1.py, v1.pz));
-    s.p2 = transform_point(inst.object_to_world, vec3(v2.px, v2.py, v2.pz));
-    s.p = b.x * s.p0 + b.y * s.p1 + b.z * s.p2;
+    s.p0 = vec3(v0.px, v0.py, v0.pz);
+    s.p1 = vec3(v1.px, v1.py, v1.pz);
+    s.p2 = vec3(v2.px, v2.py, v2.pz);
     vec3 ns = b.x * decode_normal(v0.normal) + b.y * decode_normal(v1.normal) + b.z * decode_normal(v2.normal);
-    s.ns = normalize(transform_normal(inst.world_to_object, ns));
+    bool flattened = inst.kind == INSTANCE_FLATTENED; // already in world space
+    if (!flattened) {
+        s.p0 = transform_point(inst.object_to_world, s.p0);
+        s.p1 = transform_point(inst.object_to_world, s.p1);
+        s.p2 = transform_point(inst.object_to_world, s.p2);
+        ns = transform_normal(inst.world_to_object, ns);
+    }
+    s.p = b.x * s.p0 + b.y * s.p1 + b.z * s.p2;
+    s.ns = normalize(ns);
     s.ng = normalize(cross(s.p1 - s.p0, s.p2 - s.p0));
     if (dot(s.ng, s.ns) < 0.0) {
         s.ng = -s.ng;
@@ -59,7 +66,7 @@ Surface surface_at(Hit hit, vec3 origin, vec3 dir) {
     } else {
         s.uv = vec2(0.0);
     }
-    if (inst.kind == INSTANCE_FLATTENED) {
+    if (flattened) {
         uvec2 ids = b_triangle_ids.t[hit.primitive];
         s.material = ids.x;
         s.object_id = ids.y;

@@ -180,8 +180,11 @@ bool trace_ray(vec3 origin, vec3 dir, float t_max, bool any_hit, out Hit hit) {
         return false;
     }
     if (SINGLE_INSTANCE) {
-        // The instance keeps its transform: it may be a dynamic one.
+        // A flattened instance is in world space; any other keeps its transform (a dynamic one).
         Instance inst = b_instances.i[0];
+        if (inst.kind == INSTANCE_FLATTENED) {
+            return traverse_blas(0u, inst, origin, dir, any_hit, hit);
+        }
         vec3 o = transform_point(inst.world_to_object, origin);
         vec3 d = transform_vector(inst.world_to_object, dir);
         return traverse_blas(0u, inst, o, d, any_hit, hit);
