@@ -1,9 +1,11 @@
 //! The path tracer's frames are a pure function of (scene, camera, settings, frame index, seed):
 //! rendering the same frame again gives the same image bit for bit and the same ray count; another
-//! seed gives another image.
+//! seed gives another image. The images for a denoiser are traced only when one runs, and tracing
+//! them leaves the radiance unchanged.
 
 use lucid_engine::capture::ImageData;
-use lucid_passes::renderer::{Renderer, Settings};
+use lucid_engine::graph::RenderGraph;
+use lucid_passes::renderer::{Algorithm, Denoiser, Renderer, Settings};
 use lucid_tests::render::scene;
 use lucid_tests::{assert_no_validation_messages, context};
 
@@ -54,4 +56,51 @@ fn frames_repeat_bit_for_bit_and_depend_on_the_seed() {
         "another seed changes most pixels ({differing} of {})",
         reference.pixels.len()
     );
+}
+
+/// The second frame's noisy radiance, and whether the frame traced the demodulated image.
+fn radiance(ctx: &lucid_engine::Context, settings: Settings) -> (ImageData, bool) {
+    let mut r =
+        Renderer::new(ctx, scene("cornell-box"), SIZE.0, SIZE.1, settings).expect("renderer");
+    r.render().expect("frame 0");
+    let mut g = RenderGraph::new();
+    let (images, _) = r.add_frame(&mut g);
+    let radiance = g.readback(images.radiance);
+    let executor = r.executor_mut();
+    let frame = executor
+        .execute(g.compile().expect("graph"))
+        .expect("frame 1");
+    let outputs = executor.wait(frame).expect("frame 1");
+    (
+        outputs.image(radiance).expect("radiance"),
+        images.demodulated.is_some(),
+    )
+}
+
+#[test]
+fn denoiser_images_are_traced_only_for_a_denoiser_and_leave_the_radiance_alone() {
+    let ctx = context(false);
+    for algorithm in [Algorithm::PathTracing] {
+        let plain = Settings {
+            algorithm,
+            accumulate: false,
+            ..Settings::default()
+        };
+        let (without, traced_without) = radiance(&ctx, plain);
+        let (with, traced_with) = radiance(
+            &ctx,
+            Settings {
+                denoiser: Denoiser::Svgf,
+                ..plain
+            },
+        );
+        assert!(!traced_without, "{algorithm:?}: traced for no denoiser");
+        assert!(traced_with, "{algorithm:?}: not traced for SVGF");
+        assert_eq!(
+            differing(&without, &with),
+            0,
+            "{algorithm:?}: tracing the denoiser's images changed the radiance"
+        );
+    }
+    assert_no_validation_messages(&ctx);
 }

@@ -1,7 +1,7 @@
 //! What every light-transport pass (path tracing, bidirectional path tracing, ...) produces for a
 //! frame, so that accumulation and the denoisers work with any of them.
 
-use lucid_engine::graph::{Access, BufferHandle, ImageHandle, PassBuilder};
+use lucid_engine::graph::{Access, BufferHandle, Dispatch, ImageHandle, PassBuilder};
 use lucid_engine::memory::ImageDesc;
 
 /// Which pixels replay last frame's paths this frame, as the shaders see it (`ReplayParams` in
@@ -28,60 +28,85 @@ pub struct Replay {
     pub motion: ImageHandle,
 }
 
+/// What a denoiser reads of the light transport besides the radiance: per-pixel averages over the
+/// pixel's samples, all `rgba32f`. Written only when asked for ([`Images::create`]): the shaders'
+/// `SURFACE_OUTPUTS` specialization constant (`shaders/common/transport_outputs.glsl`) drops the
+/// stores, and the registers that carry them through the path, when no denoiser runs.
+#[derive(Clone, Copy, Debug)]
+pub struct SurfaceImages {
+    /// The radiance without the first hit's emission, divided by the first hit's albedo: what the
+    /// denoisers filter.
+    pub demodulated: ImageHandle,
+    /// The first hit's demodulation albedo (white for the sky and dielectrics).
+    pub albedo: ImageHandle,
+    /// The radiance the first hit emits towards the camera.
+    pub emission: ImageHandle,
+}
+
 /// A light-transport pass's images and counters for one frame.
 #[derive(Clone, Copy, Debug)]
 pub struct Outputs {
     /// Noisy radiance (RGB, alpha 1), `rgba32f`.
     pub radiance: ImageHandle,
-    /// The radiance without the first hit's emission, divided by the first hit's albedo, averaged
-    /// over the pixel's samples: what the denoisers filter. `rgba32f`.
-    pub demodulated: ImageHandle,
-    /// The first hit's demodulation albedo averaged over the pixel's samples (white for the sky and
-    /// dielectrics), `rgba32f`.
-    pub albedo: ImageHandle,
-    /// The radiance the first hit emits towards the camera, averaged over the pixel's samples,
-    /// `rgba32f`.
-    pub emission: ImageHandle,
+    /// The denoiser's images, when they were asked for.
+    pub surface: Option<SurfaceImages>,
     /// `[non-finite samples dropped, rays or samples traced, 0, 0]` as u32.
     pub stats: BufferHandle,
 }
 
-/// The per-pixel images of [`Outputs`], created and written by one pass.
+/// The per-pixel images of [`Outputs`], created by one pass and bound to its shader by name
+/// (`u_radiance`, `u_demodulated`, `u_albedo`, `u_emission`).
 #[derive(Clone, Copy, Debug)]
 pub struct Images {
     /// See [`Outputs::radiance`].
     pub radiance: ImageHandle,
-    /// See [`Outputs::demodulated`].
-    pub demodulated: ImageHandle,
-    /// See [`Outputs::albedo`].
-    pub albedo: ImageHandle,
-    /// See [`Outputs::emission`].
-    pub emission: ImageHandle,
+    /// See [`SurfaceImages`]; 1x1 placeholders, never written, when not asked for.
+    pub surface: SurfaceImages,
+    /// Whether `surface` is written: the value of the shader's `SURFACE_OUTPUTS`.
+    pub surface_written: bool,
 }
 
 impl Images {
     /// Creates the images in pass `p`, named `<prefix>.radiance` and so on, and declares them
-    /// written by the pass's compute shader.
-    pub fn create(p: &mut PassBuilder<'_>, prefix: &str, width: u32, height: u32) -> Self {
-        let mut image = |name: &str, desc: ImageDesc| {
-            let handle = p.create_image(&format!("{prefix}.{name}"), desc);
+    /// written by the pass's compute shader; the surface images only at full size when
+    /// `surface` is asked for.
+    pub fn create(
+        p: &mut PassBuilder<'_>,
+        prefix: &str,
+        (width, height): (u32, u32),
+        surface: bool,
+    ) -> Self {
+        let mut image = |name: &str, (w, h): (u32, u32)| {
+            let handle = p.create_image(&format!("{prefix}.{name}"), ImageDesc::rgba32f(w, h));
             p.write(handle, Access::ComputeWrite)
         };
+        let surface_size = if surface { (width, height) } else { (1, 1) };
         Self {
-            radiance: image("radiance", ImageDesc::rgba32f(width, height)),
-            demodulated: image("demodulated", ImageDesc::rgba32f(width, height)),
-            albedo: image("albedo", ImageDesc::rgba32f(width, height)),
-            emission: image("emission", ImageDesc::rgba32f(width, height)),
+            radiance: image("radiance", (width, height)),
+            surface: SurfaceImages {
+                demodulated: image("demodulated", surface_size),
+                albedo: image("albedo", surface_size),
+                emission: image("emission", surface_size),
+            },
+            surface_written: surface,
         }
+    }
+
+    /// Binds the images to a dispatch of the pass's shader by name, with `SURFACE_OUTPUTS`.
+    pub fn bind<'p, 'a>(&self, dispatch: Dispatch<'p, 'a>) -> Dispatch<'p, 'a> {
+        dispatch
+            .specialize("SURFACE_OUTPUTS", self.surface_written)
+            .image("u_radiance", self.radiance)
+            .image("u_demodulated", self.surface.demodulated)
+            .image("u_albedo", self.surface.albedo)
+            .image("u_emission", self.surface.emission)
     }
 
     /// The [`Outputs`] of these images with the pass's counters.
     pub fn with_stats(self, stats: BufferHandle) -> Outputs {
         Outputs {
             radiance: self.radiance,
-            demodulated: self.demodulated,
-            albedo: self.albedo,
-            emission: self.emission,
+            surface: self.surface_written.then_some(self.surface),
             stats,
         }
     }

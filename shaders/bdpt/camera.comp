@@ -17,6 +17,7 @@
 #include "common/camera.glsl"
 #include "common/light_emit.glsl"
 #include "bdpt/bdpt.glsl"
+#include "common/transport_outputs.glsl"
 
 layout(local_size_x = 8, local_size_y = 8) in;
 
@@ -283,7 +284,9 @@ void main() {
     vec3 albedo = albedo_sum / float(spp);
     vec3 emission = emission_sum / float(spp);
     imageStore(u_radiance, pixel, vec4(radiance, 1.0));
-    imageStore(u_demodulated, pixel, vec4(demodulate(radiance, emission, albedo), 1.0));
-    imageStore(u_albedo, pixel, vec4(albedo, 1.0));
-    imageStore(u_emission, pixel, vec4(emission, 1.0));
+    if (SURFACE_OUTPUTS) {
+        imageStore(u_demodulated, pixel, vec4(demodulate(radiance, emission, albedo), 1.0));
+        imageStore(u_albedo, pixel, vec4(albedo, 1.0));
+        imageStore(u_emission, pixel, vec4(emission, 1.0));
+    }
 }

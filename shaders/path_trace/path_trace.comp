@@ -18,6 +18,7 @@
 #include "common/camera.glsl"
 #include "common/path.glsl"
 #include "common/replay.glsl"
+#include "common/transport_outputs.glsl"
 
 layout(local_size_x = 8, local_size_y = 8) in;
 
@@ -84,7 +85,9 @@ void main() {
     }
     float inv_spp = 1.0 / float(spp);
     imageStore(u_radiance, pixel, vec4(sum * inv_spp, 1.0));
-    imageStore(u_demodulated, pixel, vec4(demodulated_sum * inv_spp, 1.0));
-    imageStore(u_albedo, pixel, vec4(albedo_sum * inv_spp, 1.0));
-    imageStore(u_emission, pixel, vec4(emission_sum * inv_spp, 1.0));
+    if (SURFACE_OUTPUTS) {
+        imageStore(u_demodulated, pixel, vec4(demodulated_sum * inv_spp, 1.0));
+        imageStore(u_albedo, pixel, vec4(albedo_sum * inv_spp, 1.0));
+        imageStore(u_emission, pixel, vec4(emission_sum * inv_spp, 1.0));
+    }
 }

@@ -68,6 +68,8 @@ pub struct Frame {
     pub samples_per_pixel: u32,
     /// Longest path in segments (Mitsuba's convention).
     pub max_depth: u32,
+    /// Write the denoiser's images too ([`crate::transport::SurfaceImages`]).
+    pub surface: bool,
 }
 
 /// Adds the light and camera passes, reading the scene and the frame constants; the outputs are
@@ -80,7 +82,7 @@ pub fn add(
     frame: Frame,
     config: &Config,
 ) -> Outputs {
-    let (width, height) = (frame.width, frame.height);
+    let (width, height, surface) = (frame.width, frame.height, frame.surface);
     let params = Params::new(
         config,
         width * height,
@@ -130,7 +132,7 @@ pub fn add(
     let count = p.read(count, Access::ComputeRead);
     let splat = p.read(splat, Access::ComputeRead);
     let stats = p.write(stats, Access::ComputeReadWrite);
-    let images = Images::create(&mut p, "bdpt", width, height);
+    let images = Images::create(&mut p, "bdpt", (width, height), surface);
     let scene = *scene;
     p.execute(move |ctx| {
         let dispatch = ctx
@@ -141,12 +143,10 @@ pub fn add(
             .buffer("b_stats", stats)
             .buffer("b_lvc", cache)
             .buffer("b_lvc_count", count)
-            .buffer("b_splat", splat)
-            .image("u_radiance", images.radiance)
-            .image("u_demodulated", images.demodulated)
-            .image("u_albedo", images.albedo)
-            .image("u_emission", images.emission);
-        scene.bind(dispatch).dispatch_threads([width, height, 1])
+            .buffer("b_splat", splat);
+        scene
+            .bind(images.bind(dispatch))
+            .dispatch_threads([width, height, 1])
     });
     images.with_stats(stats)
 }

@@ -9,7 +9,7 @@ use lucid_engine::graph::{Access, BufferHandle, RenderGraph};
 use lucid_engine::shader::Specialization;
 
 /// Adds the path tracer at `width`×`height`, reading the scene and the frame constants; the pixels
-/// `replay` picks replay last frame's paths.
+/// `replay` picks replay last frame's paths; the denoiser's images are written when `surface`.
 pub fn add(
     g: &mut RenderGraph,
     scene: &SceneHandles,
@@ -17,6 +17,7 @@ pub fn add(
     spec: &Specialization,
     replay: &Replay,
     (width, height): (u32, u32),
+    surface: bool,
 ) -> Outputs {
     let stats = crate::stats::add_counter(g, "path_trace.stats");
     let mut p = g.add_pass("path_trace");
@@ -25,7 +26,7 @@ pub fn add(
     let stats = p.write(stats, Access::ComputeReadWrite);
     let motion = p.read(replay.motion, Access::ComputeRead);
     let replay = replay.params;
-    let images = Images::create(&mut p, "path_trace", width, height);
+    let images = Images::create(&mut p, "path_trace", (width, height), surface);
     let (scene, spec) = (*scene, spec.clone());
     p.execute(move |ctx| {
         let dispatch = ctx
@@ -33,13 +34,11 @@ pub fn add(
             .specialization(&spec)
             .buffer("b_frame", frame)
             .buffer("b_stats", stats)
-            .image("u_radiance", images.radiance)
-            .image("u_demodulated", images.demodulated)
-            .image("u_albedo", images.albedo)
-            .image("u_emission", images.emission)
             .image("u_motion", motion)
             .push(&replay);
-        scene.bind(dispatch).dispatch_threads([width, height, 1])
+        scene
+            .bind(images.bind(dispatch))
+            .dispatch_threads([width, height, 1])
     });
     images.with_stats(stats)
 }

@@ -38,8 +38,8 @@ pub struct FrameImages {
     /// Noisy radiance of this frame.
     pub radiance: ImageHandle,
     /// Radiance without the first hit's emission, divided by its albedo (see
-    /// [`crate::transport::Outputs::demodulated`]).
-    pub demodulated: ImageHandle,
+    /// [`crate::transport::SurfaceImages::demodulated`]); traced only when a denoiser runs.
+    pub demodulated: Option<ImageHandle>,
     /// Accumulated (or this frame's) HDR radiance.
     pub hdr: ImageHandle,
     /// Tone-mapped sRGB RGBA8.
@@ -376,6 +376,8 @@ impl Renderer {
                 spp,
             )),
         };
+        // The denoiser's images are traced only for a denoiser.
+        let surface = svgf_apply.is_some();
         let replay = ReplayParams {
             stratum: match svgf_apply {
                 Some(apply) if self.settings.algorithm.replays_paths() => {
@@ -391,7 +393,7 @@ impl Renderer {
                     params: replay,
                     motion: gbuffer.motion,
                 };
-                path_trace::add(g, &scene, frame, &self.spec, &replay, (w, h))
+                path_trace::add(g, &scene, frame, &self.spec, &replay, (w, h), surface)
             }
             Algorithm::Bidirectional => {
                 let sampling = bdpt::Frame {
@@ -399,6 +401,7 @@ impl Renderer {
                     height: h,
                     samples_per_pixel: spp,
                     max_depth: self.settings.max_depth,
+                    surface,
                 };
                 bdpt::add(
                     g,
@@ -411,11 +414,11 @@ impl Renderer {
             }
         };
         let hdr = accumulate::add(g, traced.radiance, w, h, accumulated);
-        let hdr = match svgf_apply {
-            None => hdr,
-            Some(apply) => {
+        let hdr = match (svgf_apply, traced.surface) {
+            (Some(apply), Some(surface)) => {
                 let inputs = svgf::FrameInputs {
-                    transport: traced,
+                    radiance: traced.radiance,
+                    surface,
                     accumulated: hdr,
                     accumulated_frames: accumulated,
                     replay,
@@ -426,6 +429,7 @@ impl Renderer {
                 };
                 svgf::add(g, &inputs, &svgf_params, apply)
             }
+            _ => hdr,
         };
         let ldr = tonemap::add(g, hdr, w, h, self.settings.display);
         let stats = g.readback(traced.stats);
@@ -441,7 +445,7 @@ impl Renderer {
         (
             FrameImages {
                 radiance: traced.radiance,
-                demodulated: traced.demodulated,
+                demodulated: traced.surface.map(|s| s.demodulated),
                 hdr,
                 ldr,
                 gbuffer,

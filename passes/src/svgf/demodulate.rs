@@ -31,17 +31,11 @@ pub(super) fn accumulate_surface(
     inputs: &FrameInputs,
 ) -> (ImageHandle, ImageHandle) {
     let (w, h, n) = (inputs.width, inputs.height, inputs.accumulated_frames);
-    let albedo = accumulate::add_keyed(
-        g,
-        ALBEDO_ACCUMULATED_KEY,
-        inputs.transport.albedo,
-        (w, h),
-        n,
-    );
+    let albedo = accumulate::add_keyed(g, ALBEDO_ACCUMULATED_KEY, inputs.surface.albedo, (w, h), n);
     let emission = accumulate::add_keyed(
         g,
         EMISSION_ACCUMULATED_KEY,
-        inputs.transport.emission,
+        inputs.surface.emission,
         (w, h),
         n,
     );
@@ -58,9 +52,9 @@ pub(super) fn add(
 ) -> Demodulated {
     if inputs.accumulated_frames == 0 {
         return Demodulated {
-            illumination: inputs.transport.demodulated,
-            albedo: inputs.transport.albedo,
-            emission: inputs.transport.emission,
+            illumination: inputs.surface.demodulated,
+            albedo: inputs.surface.albedo,
+            emission: inputs.surface.emission,
         };
     }
     let (width, height) = (inputs.width, inputs.height);

@@ -11,7 +11,7 @@
 //!    replayed then); where a light or an object changed it measures the share of shading that
 //!    changed. The replay costs no extra paths: the picked pixel's sample is the replayed one.
 //! 2. **Temporal accumulation** (`temporal`): the light-transport pass demodulated each sample by
-//!    its own first hit, `(radiance - emission) / albedo` ([`transport::Outputs`]); reproject the
+//!    its own first hit, `(radiance - emission) / albedo` ([`transport::SurfaceImages`]); reproject the
 //!    history with the motion vectors (bilinear taps validated by depth, normal and object id,
 //!    else a 3x3 search, else a disocclusion), blend this illumination, the first two luminance
 //!    moments and the first hits' albedo and emission with moving averages whose weight the
@@ -66,8 +66,10 @@ struct Histories {
 
 /// What the denoiser reads of a frame.
 pub struct FrameInputs {
-    /// This frame's light transport (the temporal filter's input).
-    pub transport: transport::Outputs,
+    /// This frame's noisy radiance.
+    pub radiance: ImageHandle,
+    /// The light transport's images for denoisers (the temporal filter's input).
+    pub surface: transport::SurfaceImages,
     /// The (accumulated) output the spatial modes filter.
     pub accumulated: ImageHandle,
     /// Frames averaged into `accumulated` before this one (0: it is this frame's radiance).
@@ -148,7 +150,7 @@ pub fn add_temporal(
     let gradient = gradient::add(
         g,
         &gradient::GradientInputs {
-            radiance: inputs.transport.radiance,
+            radiance: inputs.radiance,
             motion: inputs.gbuffer.motion,
             prev_surface: history.surface.prev,
             replay: if continues && inputs.replay.stratum == params.gradient_stratum {
@@ -164,7 +166,7 @@ pub fn add_temporal(
     );
     let integrated = temporal::add(
         g,
-        &inputs.transport,
+        (inputs.radiance, &inputs.surface),
         &inputs.gbuffer,
         gradient,
         (&history, continues),

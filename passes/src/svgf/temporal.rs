@@ -38,7 +38,7 @@ pub(super) struct Integrated {
 /// frame's moments, albedo, emission and surface records.
 pub(super) fn add(
     g: &mut RenderGraph,
-    transport: &transport::Outputs,
+    (radiance, surface): (ImageHandle, &transport::SurfaceImages),
     gbuffer: &GBuffer,
     gradient: ImageHandle,
     (history, continues): (&Histories, bool),
@@ -46,10 +46,10 @@ pub(super) fn add(
     (width, height): (u32, u32),
 ) -> Integrated {
     let mut p = g.add_pass("svgf.temporal");
-    let radiance = p.read(transport.radiance, Access::ComputeRead);
-    let illumination = p.read(transport.demodulated, Access::ComputeRead);
-    let albedo = p.read(transport.albedo, Access::ComputeRead);
-    let emission = p.read(transport.emission, Access::ComputeRead);
+    let radiance = p.read(radiance, Access::ComputeRead);
+    let illumination = p.read(surface.demodulated, Access::ComputeRead);
+    let albedo = p.read(surface.albedo, Access::ComputeRead);
+    let emission = p.read(surface.emission, Access::ComputeRead);
     let depth = p.read(gbuffer.depth, Access::ComputeRead);
     let normal = p.read(gbuffer.normal_roughness, Access::ComputeRead);
     let ids = p.read(gbuffer.ids, Access::ComputeRead);
