@@ -14,7 +14,7 @@ layout(constant_id = 120) const bool MIS_POWER = true;
 
 layout(push_constant) uniform Params {
     uint light_paths;  // light subpaths traced this frame
-    uint capacity;     // light vertices the cache holds
+    uint path_vertices; // cache slots per light subpath (the most vertices one stores)
     uint connections;  // cached light vertices each camera vertex connects to
     uint stride;       // light-pass invocations per dispatch row
     float light_ratio; // light subpaths per camera sample
@@ -34,6 +34,15 @@ struct LightVertex {
     uint uv;         // packHalf2x16
     uint segments;   // segments from the light
 };
+
+// Light-tracing splats are summed in fixed point with 32 fractional bits (64-bit integers need the
+// int64 extensions in the including shader): integer sums do not depend on the order threads add in.
+const float SPLAT_ONE = 4294967296.0;
+
+// A non-negative splat in fixed point (clamped to 1e9 so that sums cannot wrap).
+uint64_t splat_fixed(float x) {
+    return uint64_t(min(x, 1e9) * SPLAT_ONE);
+}
 
 float mis(float x) {
     return MIS_POWER ? x * x : x;

@@ -1,7 +1,8 @@
 #version 460
+#extension GL_EXT_shader_explicit_arithmetic_types_int64 : require
 // BDPT camera pass: `spp` camera subpaths per pixel. At each vertex: emission hit (s = 0), NEE
-// (s = 1) and connections to `connections` light vertices drawn uniformly from the light vertex
-// cache (s > 1), each with its recursive MIS weight (see bdpt.glsl). Paths lit by the sun or the
+// (s = 1) and connections to `connections` light vertices drawn from the light vertex cache (a
+// light subpath uniformly, then one of its vertices uniformly; s > 1), each with its recursive MIS weight (see bdpt.glsl). Paths lit by the sun or the
 // environment are found by this pass alone and weighted between BSDF sampling and NEE as the path
 // tracer does. Adds the light pass's splats and writes radiance, radiance demodulated by the
 // first hit (its emission removed, divided by its albedo) and that hit's albedo and emission.
@@ -27,8 +28,8 @@ layout(set = 0, binding = 23, rgba32f) uniform writeonly image2D u_albedo;
 layout(set = 0, binding = 24, rgba32f) uniform writeonly image2D u_emission;
 layout(set = 0, binding = 18, std430) buffer Stats { uint non_finite; uint samples; uint pad0; uint pad1; } b_stats;
 layout(set = 0, binding = 20, std430) readonly buffer Lvc { LightVertex v[]; } b_lvc;
-layout(set = 0, binding = 21, std430) readonly buffer LvcCount { uint count; uint pad0; uint pad1; uint pad2; } b_lvc_count;
-layout(set = 0, binding = 22, std430) readonly buffer Splat { float v[]; } b_splat;
+layout(set = 0, binding = 21, std430) readonly buffer LvcLengths { uint n[]; } b_lvc_lengths;
+layout(set = 0, binding = 22, std430) readonly buffer Splat { uint64_t v[]; } b_splat;
 
 // A camera subpath vertex: position, normals, frame, BSDF, direction towards the previous vertex
 // (local), throughput and MIS quantities.
@@ -126,22 +127,28 @@ vec3 connect_vertices(CameraVertex c, LightVertex v) {
     return value;
 }
 
-// Connections from camera vertex c (at `segments` from the camera) to cached light vertices drawn
-// uniformly; each of the `connections` draws is weighted cached vertices / (draws * subpaths).
+// Connections from camera vertex c (at `segments` from the camera) to cached light vertices: each
+// of the `connections` draws picks a light subpath uniformly, then one of its n stored vertices
+// uniformly, and is weighted n / draws (its probability is 1 / (subpaths * n), and the cache's
+// connections estimate the sum over all light vertices divided by the subpaths).
 vec3 connect_to_cache(CameraVertex c, uint segments, uint max_depth, inout uint rng) {
-    uint count = min(b_lvc_count.count, pc.capacity);
-    if (count == 0u || pc.connections == 0u) {
+    if (pc.light_paths == 0u || pc.connections == 0u) {
         return vec3(0.0);
     }
     vec3 sum = vec3(0.0);
     for (uint k = 0u; k < pc.connections; ++k) {
-        uint i = min(uint(rng_next(rng) * float(count)), count - 1u);
-        LightVertex v = b_lvc.v[i];
+        uint path = min(uint(rng_next(rng) * float(pc.light_paths)), pc.light_paths - 1u);
+        float u_vertex = rng_next(rng);
+        uint n = b_lvc_lengths.n[path];
+        if (n == 0u) {
+            continue;
+        }
+        LightVertex v = b_lvc.v[path * pc.path_vertices + min(uint(u_vertex * float(n)), n - 1u)];
         if (v.segments + segments + 1u <= max_depth) {
-            sum += connect_vertices(c, v);
+            sum += connect_vertices(c, v) * float(n);
         }
     }
-    return sum * (float(count) / (float(pc.connections) * float(pc.light_paths)));
+    return sum / float(pc.connections);
 }
 
 // The emission hit at s seen along d from prev_p, weighted against NEE and the connections.
@@ -279,7 +286,8 @@ void main() {
         atomicAdd(b_stats.non_finite, dropped);
     }
     uint i = 3u * (uint(pixel.y) * size.x + uint(pixel.x));
-    vec3 splat = vec3(b_splat.v[i], b_splat.v[i + 1u], b_splat.v[i + 2u]) * pc.splat_scale;
+    vec3 splat = vec3(float(b_splat.v[i]), float(b_splat.v[i + 1u]), float(b_splat.v[i + 2u]))
+        * (pc.splat_scale / SPLAT_ONE);
     vec3 radiance = sum / float(spp) + splat;
     vec3 albedo = albedo_sum / float(spp);
     vec3 emission = emission_sum / float(spp);

@@ -25,9 +25,11 @@ pub struct DeviceInfo {
     pub shader_float16: bool,
     /// Whether a present-capable queue is in use (a window was given).
     pub present: bool,
-    /// Whether shaders may `atomicAdd` 32-bit floats in buffers and images
-    /// (`VK_EXT_shader_atomic_float`; light tracing splats with it).
-    pub float_atomics: bool,
+    /// Whether shaders may use 64-bit integers and `atomicAdd` them in
+    /// buffers (`shaderInt64`, `shaderBufferInt64Atomics`): light tracing
+    /// splats in 64-bit fixed point with them, so that its sums do not depend
+    /// on the order threads add in.
+    pub int64_atomics: bool,
     /// Whether compute pipelines capture their executable statistics
     /// (`VK_KHR_pipeline_executable_properties`; requested with
     /// [`super::ContextDesc::pipeline_statistics`]).
@@ -183,11 +185,14 @@ pub(crate) fn create_device(
     unsafe { instance.get_physical_device_features2(physical, &mut supported_base) };
     let base_supported = supported_base.features;
     let shader_float16 = supported12.shader_float16 == vk::TRUE;
+    let int64_atomics = base_supported.shader_int64 == vk::TRUE
+        && supported12.shader_buffer_int64_atomics == vk::TRUE;
 
     let mut f12 = vk::PhysicalDeviceVulkan12Features::default()
         .timeline_semaphore(true)
         .scalar_block_layout(supported12.scalar_block_layout == vk::TRUE)
         .shader_float16(shader_float16)
+        .shader_buffer_int64_atomics(int64_atomics)
         .host_query_reset(supported12.host_query_reset == vk::TRUE);
     let mut f13 = vk::PhysicalDeviceVulkan13Features::default()
         .synchronization2(true)
@@ -205,26 +210,6 @@ pub(crate) fn create_device(
         .push_next(&mut f12)
         .push_next(&mut f13);
     let available_extensions = device_extensions(instance, physical);
-    let has_float_atomics_ext = available_extensions
-        .iter()
-        .any(|e| e.as_bytes() == ash::ext::shader_atomic_float::NAME.to_bytes());
-    let mut supported_atomics = vk::PhysicalDeviceShaderAtomicFloatFeaturesEXT::default();
-    if has_float_atomics_ext {
-        let mut query = vk::PhysicalDeviceFeatures2::default().push_next(&mut supported_atomics);
-        // SAFETY: physical comes from this instance; the chain points at locals.
-        unsafe { instance.get_physical_device_features2(physical, &mut query) };
-    }
-    let float_atomics = has_float_atomics_ext
-        && supported_atomics.shader_buffer_float32_atomic_add == vk::TRUE
-        && supported_atomics.shader_image_float32_atomic_add == vk::TRUE;
-    let mut atomics = vk::PhysicalDeviceShaderAtomicFloatFeaturesEXT::default()
-        .shader_buffer_float32_atomics(float_atomics)
-        .shader_buffer_float32_atomic_add(float_atomics)
-        .shader_image_float32_atomics(float_atomics)
-        .shader_image_float32_atomic_add(float_atomics);
-    if float_atomics {
-        features = features.push_next(&mut atomics);
-    }
     let pipeline_statistics =
         want_statistics && supports_pipeline_statistics(instance, physical, &available_extensions);
     if want_statistics && !pipeline_statistics {
@@ -240,9 +225,6 @@ pub(crate) fn create_device(
         features = features.push_next(&mut executable_info);
     }
     let mut extensions = vec![ash::khr::push_descriptor::NAME.as_ptr()];
-    if float_atomics {
-        extensions.push(ash::ext::shader_atomic_float::NAME.as_ptr());
-    }
     if pipeline_statistics {
         extensions.push(ash::khr::pipeline_executable_properties::NAME.as_ptr());
     }
@@ -281,7 +263,7 @@ pub(crate) fn create_device(
         max_shared_memory: props.limits.max_compute_shared_memory_size,
         shader_float16,
         present: need_swapchain,
-        float_atomics,
+        int64_atomics,
         pipeline_statistics,
     };
     tracing::info!(

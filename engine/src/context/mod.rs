@@ -199,7 +199,7 @@ impl Context {
             max_shared_memory: props.limits.max_compute_shared_memory_size,
             shader_float16: false,
             present: false,
-            float_atomics: false,
+            int64_atomics: false,
             pipeline_statistics: false,
         };
         Self::assemble(

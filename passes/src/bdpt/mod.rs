@@ -1,12 +1,16 @@
 //! Bidirectional path tracing with a light vertex cache (Davidovic et al. 2014, "Progressive Light
 //! Transport Simulation on the GPU"), in two passes:
 //!
-//! - **light** (`shaders/bdpt/light.comp`): light subpaths from emitters picked by power, stored
-//!   vertex by vertex in a light vertex cache and connected to the camera (light tracing), whose
-//!   contributions are splatted with float atomics;
+//! - **light** (`shaders/bdpt/light.comp`): light subpaths from emitters picked by power, each
+//!   stored vertex by vertex in its own slots of a light vertex cache and connected to the camera
+//!   (light tracing), whose contributions are splatted with 64-bit fixed-point atomics;
 //! - **camera** (`shaders/bdpt/camera.comp`): camera subpaths with emission hits, next-event
-//!   estimation and connections to light vertices drawn uniformly from the cache, all combined
-//!   with SmallVCM's recursive MIS weights; adds the splats and writes the frame's radiance.
+//!   estimation and connections to cached light vertices (a light subpath drawn uniformly, then
+//!   one of its vertices), all combined with SmallVCM's recursive MIS weights; adds the splats and
+//!   writes the frame's radiance.
+//!
+//! Neither the cache's layout nor the splat sums depend on thread timing, so a frame repeats bit
+//! for bit, as the path tracer's does.
 //!
 //! The sun and the environment emit no light subpaths: the paths they light are found by the
 //! camera subpaths' BSDF sampling and NEE, weighted between the two as the path tracer does. Light
@@ -17,10 +21,11 @@ mod params;
 pub use params::{Params, LIGHT_VERTEX_BYTES};
 
 use crate::scene_buffers::SceneHandles;
-use crate::shaders::bdpt::{CAMERA, LIGHT, LIGHT_CAS};
+use crate::shaders::bdpt::{CAMERA, LIGHT};
 use crate::transport::{Images, Outputs};
 use lucid_engine::graph::{Access, BufferHandle, RenderGraph};
 use lucid_engine::shader::Specialization;
+use lucid_engine::EngineError;
 
 /// The multiple-importance-sampling heuristic combining the strategies.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
@@ -93,32 +98,36 @@ pub fn add(
         .clone()
         .set("MIS_POWER", config.heuristic == MisHeuristic::Power);
     let stats = crate::stats::add_counter(g, "bdpt.stats");
-    let count = crate::stats::add_counter(g, "bdpt.cache_count");
-    let splat = add_splat_clear(g, u64::from(width * height) * 12);
+    let splat = add_splat_clear(g, u64::from(width * height) * SPLAT_BYTES_PER_PIXEL);
 
     let mut p = g.add_pass("bdpt.light");
     scene.read(&mut p);
     let constants = p.read(frame_constants, Access::ComputeRead);
     let cache = p.create_buffer("bdpt.cache", params.cache_bytes());
     let cache = p.write(cache, Access::ComputeWrite);
-    let count = p.write(count, Access::ComputeReadWrite);
+    let lengths = p.create_buffer("bdpt.cache_lengths", params.lengths_bytes());
+    let lengths = p.write(lengths, Access::ComputeWrite);
     let splat = p.write(splat, Access::ComputeReadWrite);
     let stats = p.write(stats, Access::ComputeReadWrite);
     let (light_scene, light_spec) = (*scene, spec.clone());
     p.execute(move |ctx| {
-        let shader = if ctx.context().info().float_atomics {
-            &LIGHT
-        } else {
-            &LIGHT_CAS
-        };
+        let info = ctx.context().info();
+        if !info.int64_atomics {
+            return Err(EngineError::MissingFeature {
+                device: info.name.clone(),
+                missing: "64-bit integer buffer atomics (shaderInt64, shaderBufferInt64Atomics), \
+                          which bidirectional path tracing splats light paths with"
+                    .into(),
+            });
+        }
         let dispatch = ctx
-            .compute(shader)
+            .compute(&LIGHT)
             .specialization(&light_spec)
             .push(&params)
             .buffer("b_frame", constants)
             .buffer("b_stats", stats)
             .buffer("b_lvc", cache)
-            .buffer("b_lvc_count", count)
+            .buffer("b_lvc_lengths", lengths)
             .buffer("b_splat", splat);
         light_scene
             .bind(dispatch)
@@ -129,7 +138,7 @@ pub fn add(
     scene.read(&mut p);
     let constants = p.read(frame_constants, Access::ComputeRead);
     let cache = p.read(cache, Access::ComputeRead);
-    let count = p.read(count, Access::ComputeRead);
+    let lengths = p.read(lengths, Access::ComputeRead);
     let splat = p.read(splat, Access::ComputeRead);
     let stats = p.write(stats, Access::ComputeReadWrite);
     let images = Images::create(&mut p, "bdpt", (width, height), surface);
@@ -142,7 +151,7 @@ pub fn add(
             .buffer("b_frame", constants)
             .buffer("b_stats", stats)
             .buffer("b_lvc", cache)
-            .buffer("b_lvc_count", count)
+            .buffer("b_lvc_lengths", lengths)
             .buffer("b_splat", splat);
         scene
             .bind(images.bind(dispatch))
@@ -151,7 +160,11 @@ pub fn add(
     images.with_stats(stats)
 }
 
-/// Adds a pass creating the zeroed light-tracing splat buffer (RGB floats per pixel).
+/// Bytes of the light-tracing splats per pixel: RGB in 64-bit fixed point (`splat_fixed` in
+/// `shaders/bdpt/bdpt.glsl`).
+const SPLAT_BYTES_PER_PIXEL: u64 = 3 * 8;
+
+/// Adds a pass creating the zeroed light-tracing splat buffer.
 fn add_splat_clear(g: &mut RenderGraph, bytes: u64) -> BufferHandle {
     let mut p = g.add_pass("bdpt.splat.clear");
     let splat = p.create_buffer("bdpt.splat", bytes);

@@ -10,14 +10,16 @@ pub const LIGHT_VERTEX_BYTES: u64 = 64;
 /// Light-pass invocations per dispatch row (the light pass is one-dimensional).
 pub const STRIDE: u32 = 4096;
 
-/// Mirrors `Params` in `shaders/bdpt/bdpt.glsl` (push constants, 24 bytes).
+/// Mirrors `Params` in `shaders/bdpt/bdpt.glsl` (push constants, 24 bytes). Light subpath `i`
+/// stores its vertices in cache slots `i * path_vertices ..`, and how many it stored at index `i`
+/// of the lengths buffer, so the cache's layout does not depend on thread timing.
 #[repr(C)]
 #[derive(Clone, Copy, Debug, Default, PartialEq, Pod, Zeroable)]
 pub struct Params {
     /// Light subpaths traced this frame.
     pub light_paths: u32,
-    /// Light vertices the cache holds.
-    pub capacity: u32,
+    /// Cache slots per light subpath: the most vertices one stores.
+    pub path_vertices: u32,
     /// Cached light vertices each camera vertex connects to.
     pub connections: u32,
     /// Light-pass invocations per dispatch row.
@@ -48,7 +50,7 @@ impl Params {
         let light_paths = light_paths.min(u64::from(u32::MAX / 2)) as u32;
         Self {
             light_paths,
-            capacity: (u64::from(light_paths) * per_path) as u32,
+            path_vertices: per_path as u32,
             connections: config.connections,
             stride: STRIDE,
             light_ratio: (light_paths as f64 / samples as f64) as f32,
@@ -62,7 +64,13 @@ impl Params {
 
     /// Bytes of the light vertex cache buffer (never empty).
     pub fn cache_bytes(&self) -> u64 {
-        (u64::from(self.capacity) * LIGHT_VERTEX_BYTES).max(LIGHT_VERTEX_BYTES)
+        (u64::from(self.light_paths) * u64::from(self.path_vertices) * LIGHT_VERTEX_BYTES)
+            .max(LIGHT_VERTEX_BYTES)
+    }
+
+    /// Bytes of the buffer of light subpath lengths (never empty).
+    pub fn lengths_bytes(&self) -> u64 {
+        u64::from(self.light_paths).max(1) * 4
     }
 
     /// Light-pass threads to dispatch, as `[x, y, 1]`.
@@ -83,7 +91,9 @@ mod tests {
     fn one_light_path_per_sample_when_it_fits() {
         let p = Params::new(&Config::default(), 64 * 64, 4, 8);
         assert_eq!(p.light_paths, 64 * 64 * 4);
-        assert_eq!(p.capacity, 64 * 64 * 4 * 6);
+        assert_eq!(p.path_vertices, 6);
+        assert_eq!(p.cache_bytes(), 64 * 64 * 4 * 6 * LIGHT_VERTEX_BYTES);
+        assert_eq!(p.lengths_bytes(), 64 * 64 * 4 * 4);
         assert_eq!(p.light_ratio, 1.0);
         assert_eq!(p.splat_scale, 0.25);
         assert_eq!(p.light_threads(), [4096, 4, 1]);
