@@ -69,11 +69,13 @@ fn repeats_bit_for_bit(ctx: &lucid_engine::Context, base: Settings) {
     );
 }
 
-/// The second frame's noisy radiance, and whether the frame traced the demodulated image.
+/// The second frame's noisy radiance, and whether the frame traced the demodulated image (and
+/// the plan kept the G-buffer pass, which only a denoiser needs).
 fn radiance(ctx: &lucid_engine::Context, settings: Settings) -> (ImageData, bool) {
     let mut r =
         Renderer::new(ctx, scene("cornell-box"), SIZE.0, SIZE.1, settings).expect("renderer");
     r.render().expect("frame 0");
+    let gbuffer_kept = r.frame_plan().expect("plan").pass("gbuffer").is_some();
     let mut g = RenderGraph::new();
     let (images, _) = r.add_frame(&mut g);
     let radiance = g.readback(images.radiance);
@@ -82,10 +84,12 @@ fn radiance(ctx: &lucid_engine::Context, settings: Settings) -> (ImageData, bool
         .execute(g.compile().expect("graph"))
         .expect("frame 1");
     let outputs = executor.wait(frame).expect("frame 1");
-    (
-        outputs.image(radiance).expect("radiance"),
-        images.demodulated.is_some(),
-    )
+    let traced = images.demodulated.is_some();
+    assert_eq!(
+        gbuffer_kept, traced,
+        "the G-buffer is culled exactly when no denoiser runs"
+    );
+    (outputs.image(radiance).expect("radiance"), traced)
 }
 
 #[test]

@@ -4,18 +4,20 @@
 
 use crate::scene_buffers::SceneHandles;
 use crate::shaders::path_trace::PATH_TRACE;
-use crate::transport::{Images, Outputs, Replay};
+use crate::transport::{Images, Outputs, Replay, ReplayParams};
 use lucid_engine::graph::{Access, BufferHandle, RenderGraph};
+use lucid_engine::memory::ImageDesc;
 use lucid_engine::shader::Specialization;
 
 /// Adds the path tracer at `width`×`height`, reading the scene and the frame constants; the pixels
-/// `replay` picks replay last frame's paths; the denoiser's images are written when `surface`.
+/// `replay` picks replay last frame's paths (without it the pass does not depend on the G-buffer);
+/// the denoiser's images are written when `surface`.
 pub fn add(
     g: &mut RenderGraph,
     scene: &SceneHandles,
     frame: BufferHandle,
     spec: &Specialization,
-    replay: &Replay,
+    replay: Option<&Replay>,
     (width, height): (u32, u32),
     surface: bool,
 ) -> Outputs {
@@ -24,8 +26,17 @@ pub fn add(
     scene.read(&mut p);
     let frame = p.read(frame, Access::ComputeRead);
     let stats = p.write(stats, Access::ComputeReadWrite);
-    let motion = p.read(replay.motion, Access::ComputeRead);
-    let replay = replay.params;
+    let (motion, replay) = match replay {
+        Some(r) => (p.read(r.motion, Access::ComputeRead), r.params),
+        None => {
+            // Bound, never read: nothing is replayed.
+            let unused = p.create_image("path_trace.no_motion", ImageDesc::rgba16f(1, 1));
+            (
+                p.write(unused, Access::ComputeWrite),
+                ReplayParams::default(),
+            )
+        }
+    };
     let images = Images::create(&mut p, "path_trace", (width, height), surface);
     let (scene, spec) = (*scene, spec.clone());
     p.execute(move |ctx| {

@@ -389,11 +389,20 @@ impl Renderer {
         };
         let traced = match self.settings.algorithm {
             Algorithm::PathTracing => {
-                let replay = Replay {
+                // Replay serves the denoiser; without one the pass needs no G-buffer.
+                let replay = surface.then_some(Replay {
                     params: replay,
                     motion: gbuffer.motion,
-                };
-                path_trace::add(g, &scene, frame, &self.spec, &replay, (w, h), surface)
+                });
+                path_trace::add(
+                    g,
+                    &scene,
+                    frame,
+                    &self.spec,
+                    replay.as_ref(),
+                    (w, h),
+                    surface,
+                )
             }
             Algorithm::Bidirectional => {
                 let sampling = bdpt::Frame {
