@@ -52,9 +52,10 @@ fn repeats_bit_for_bit(ctx: &lucid_engine::Context, base: Settings) {
     let (other_seed, _) = render(ctx, Settings { seed: 7, ..base });
     assert_no_validation_messages(ctx);
 
-    if algorithm == Algorithm::PathTracing {
-        assert!(rays > SIZE.0 * SIZE.1 * 2, "rays are counted ({rays})");
-    }
+    assert!(
+        rays > SIZE.0 * SIZE.1 * 2,
+        "{algorithm:?}: rays are counted ({rays})"
+    );
     assert_eq!(
         differing(&reference, &again),
         0,

@@ -50,7 +50,7 @@ pub struct Outputs {
     pub radiance: ImageHandle,
     /// The denoiser's images, when they were asked for.
     pub surface: Option<SurfaceImages>,
-    /// `[non-finite samples dropped, rays or samples traced, 0, 0]` as u32.
+    /// `[non-finite samples dropped, rays traced, 0, 0]` as u32.
     pub stats: BufferHandle,
 }
 

@@ -5,7 +5,8 @@
 // (Georgiev 2012) restricted to vertex connection: each subpath vertex carries dvcm and dvc, partial
 // sums of pdf ratios, from which every strategy's weight 1 / (1 + w_light + w_camera) follows in
 // O(1). Area conversions use geometric normals; Russian roulette is left out of the pdfs (the
-// weights still sum to one, so the estimate stays unbiased). Requires math.glsl, bsdf.glsl.
+// weights still sum to one, so the estimate stays unbiased). Requires math.glsl, bsdf.glsl,
+// traverse.glsl.
 #ifndef LUCID_BDPT_GLSL
 #define LUCID_BDPT_GLSL
 
@@ -42,6 +43,19 @@ const float SPLAT_ONE = 4294967296.0;
 // A non-negative splat in fixed point (clamped to 1e9 so that sums cannot wrap).
 uint64_t splat_fixed(float x) {
     return uint64_t(min(x, 1e9) * SPLAT_ONE);
+}
+
+// Rays this invocation traced (for rays/s figures), through the two wrappers below.
+uint rays_traced = 0u;
+
+bool counted_closest(vec3 origin, vec3 dir, out Hit hit) {
+    rays_traced += 1u;
+    return trace_closest(origin, dir, T_INFINITY, hit);
+}
+
+bool counted_occluded(vec3 origin, vec3 dir, float t_max) {
+    rays_traced += 1u;
+    return trace_occluded(origin, dir, t_max);
 }
 
 float mis(float x) {

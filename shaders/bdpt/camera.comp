@@ -1,4 +1,6 @@
 #version 460
+#extension GL_KHR_shader_subgroup_arithmetic : require
+#extension GL_KHR_shader_subgroup_basic : require
 #extension GL_EXT_shader_explicit_arithmetic_types_int64 : require
 // BDPT camera pass: `spp` camera subpaths per pixel. At each vertex: emission hit (s = 0), NEE
 // (s = 1) and connections to `connections` light vertices drawn from the light vertex cache (a
@@ -26,7 +28,7 @@ layout(set = 0, binding = 16, rgba32f) uniform writeonly image2D u_radiance;
 layout(set = 0, binding = 17, rgba32f) uniform writeonly image2D u_demodulated;
 layout(set = 0, binding = 23, rgba32f) uniform writeonly image2D u_albedo;
 layout(set = 0, binding = 24, rgba32f) uniform writeonly image2D u_emission;
-layout(set = 0, binding = 18, std430) buffer Stats { uint non_finite; uint samples; uint pad0; uint pad1; } b_stats;
+layout(set = 0, binding = 18, std430) buffer Stats { uint non_finite; uint rays; uint pad0; uint pad1; } b_stats;
 layout(set = 0, binding = 20, std430) readonly buffer Lvc { LightVertex v[]; } b_lvc;
 layout(set = 0, binding = 21, std430) readonly buffer LvcLengths { uint n[]; } b_lvc_lengths;
 layout(set = 0, binding = 22, std430) readonly buffer Splat { uint64_t v[]; } b_splat;
@@ -76,7 +78,7 @@ vec3 connect_to_light(CameraVertex c, inout uint rng) {
     }
     vec3 origin = offset_origin(c.s.p, c.s.ng, ls.wi);
     float t_max = ls.dist >= T_INFINITY ? T_INFINITY : ls.dist * (1.0 - 1e-3);
-    if (w <= 0.0 || trace_occluded(origin, ls.wi, t_max)) {
+    if (w <= 0.0 || counted_occluded(origin, ls.wi, t_max)) {
         return vec3(0.0);
     }
     return f * ls.radiance * (w / ls.pdf);
@@ -121,7 +123,7 @@ vec3 connect_vertices(CameraVertex c, LightVertex v) {
     float w_camera = mis(light_pdf * cos_camera / dist2) * (c.dvcm + c.dvc * mis(camera_rev_pdf));
     // The light side carries the adjoint BSDF's shading-normal correction.
     vec3 value = fc * fl * v.throughput * (cos_light / (cos_light_in * dist2 * (1.0 + w_light + w_camera)));
-    if (max3(value) <= 0.0 || trace_occluded(offset_origin(c.s.p, c.s.ng, dir), dir, dist * (1.0 - 1e-3))) {
+    if (max3(value) <= 0.0 || counted_occluded(offset_origin(c.s.p, c.s.ng, dir), dir, dist * (1.0 - 1e-3))) {
         return vec3(0.0);
     }
     return value;
@@ -183,7 +185,7 @@ vec3 trace_camera(vec3 o, vec3 d, inout uint rng, uint max_depth, uint rr_depth,
     first_emission = vec3(0.0);
     for (uint depth = 0u; depth < max_depth; ++depth) {
         Hit hit;
-        if (!trace_closest(o, d, T_INFINITY, hit)) {
+        if (!counted_closest(o, d, hit)) {
             float w_sun = prev_delta ? 1.0 : mis_pair(prev_pdf, sun_pdf());
             radiance += c.beta * (environment_radiance(d) + sun_radiance(d) * w_sun);
             if (depth == 0u) {
@@ -284,6 +286,10 @@ void main() {
     }
     if (dropped > 0u) {
         atomicAdd(b_stats.non_finite, dropped);
+    }
+    uint rays = subgroupAdd(rays_traced);
+    if (subgroupElect()) {
+        atomicAdd(b_stats.rays, rays);
     }
     uint i = 3u * (uint(pixel.y) * size.x + uint(pixel.x));
     vec3 splat = vec3(float(b_splat.v[i]), float(b_splat.v[i + 1u]), float(b_splat.v[i + 2u]))

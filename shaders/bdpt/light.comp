@@ -1,4 +1,6 @@
 #version 460
+#extension GL_KHR_shader_subgroup_arithmetic : require
+#extension GL_KHR_shader_subgroup_basic : require
 #extension GL_EXT_shader_explicit_arithmetic_types_int64 : require
 #extension GL_EXT_shader_atomic_int64 : require
 // The BDPT light pass: one light subpath per invocation, started on an emitter picked in proportion
@@ -23,7 +25,7 @@
 
 layout(local_size_x = 64) in;
 
-layout(set = 0, binding = 18, std430) buffer Stats { uint non_finite; uint samples; uint pad0; uint pad1; } b_stats;
+layout(set = 0, binding = 18, std430) buffer Stats { uint non_finite; uint rays; uint pad0; uint pad1; } b_stats;
 layout(set = 0, binding = 20, std430) writeonly buffer Lvc { LightVertex v[]; } b_lvc;
 layout(set = 0, binding = 21, std430) writeonly buffer LvcLengths { uint n[]; } b_lvc_lengths;
 layout(set = 0, binding = 22, std430) buffer Splat { uint64_t v[]; } b_splat;
@@ -72,7 +74,7 @@ uint connect_to_camera(Surface s, BsdfParams m, vec3 t, vec3 b, vec3 wl, vec3 be
     if (any(isnan(value)) || any(isinf(value))) {
         return 1u;
     }
-    if (max3(value) <= 0.0 || trace_occluded(offset_origin(s.p, s.ng, dir), dir, dist * (1.0 - 1e-3))) {
+    if (max3(value) <= 0.0 || counted_occluded(offset_origin(s.p, s.ng, dir), dir, dist * (1.0 - 1e-3))) {
         return 0u;
     }
     uvec2 pixel = min(uvec2(film.xy * vec2(size)), size - 1u);
@@ -125,7 +127,7 @@ void main() {
     uint dropped = 0u;
     for (uint segments = 1u; segments < max_depth; ++segments) {
         Hit hit;
-        if (!trace_closest(o, d, T_INFINITY, hit)) {
+        if (!counted_closest(o, d, hit)) {
             break;
         }
         Surface s = surface_at(hit, o, d);
@@ -192,5 +194,9 @@ void main() {
     b_lvc_lengths.n[index] = stored;
     if (dropped > 0u) {
         atomicAdd(b_stats.non_finite, dropped);
+    }
+    uint rays = subgroupAdd(rays_traced);
+    if (subgroupElect()) {
+        atomicAdd(b_stats.rays, rays);
     }
 }
