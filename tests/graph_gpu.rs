@@ -359,3 +359,36 @@ fn synchronization_validation_reports_a_hazard_the_graph_did_not_declare() {
         "synchronization validation must flag the unsynchronised read: {messages:?}"
     );
 }
+
+#[test]
+fn a_cleared_image_reads_back_its_colour_through_a_compute_pass() {
+    let (ctx, mut executor) = executor(true);
+    let (w, h) = (4, 3);
+    let colour = [0.25f32, 0.5, 0.75, 1.0];
+    let mut g = RenderGraph::new();
+    let mut p = g.add_pass("clear");
+    let t = p.create_image("cleared", ImageDesc::rgba32f(w, h));
+    let cleared = p.write(t, Access::TransferWrite);
+    p.execute(move |ctx| ctx.clear_image(cleared, colour));
+    let mut p = g.add_pass("scale");
+    let input = p.read(cleared, Access::ComputeRead);
+    let t = p.create_image("scaled", ImageDesc::rgba32f(w, h));
+    let out = p.write(t, Access::ComputeWrite);
+    p.execute(move |ctx| {
+        ctx.compute(&SCALE)
+            .image("u_in", input)
+            .image("u_out", out)
+            .push(&2.0f32)
+            .dispatch_threads([w, h, 1])
+    });
+    let readback = g.readback(out);
+    let frame = executor.execute(g.compile().unwrap()).unwrap();
+    let got = executor
+        .wait(frame)
+        .unwrap()
+        .image(readback)
+        .unwrap()
+        .pixels;
+    assert_close(&got, &vec![colour.map(|c| 2.0 * c); (w * h) as usize], 0.0);
+    assert_no_validation_messages(&ctx);
+}

@@ -150,7 +150,25 @@ impl<'a> PassContext<'a> {
         Ok(())
     }
 
-    fn require_transfer_write(&self, handle: BufferHandle, what: &str) -> Result<()> {
+    /// Clears an image the pass declared with `Access::TransferWrite` to `color`.
+    pub fn clear_image(&self, handle: ImageHandle, color: [f32; 4]) -> Result<()> {
+        self.require_transfer_write(handle, "clear_image")?;
+        let image = self.image(handle)?;
+        let value = vk::ClearColorValue { float32: color };
+        // SAFETY: cmd is recording; the image is alive for the frame and in transfer-dst layout.
+        unsafe {
+            self.ctx.device().cmd_clear_color_image(
+                self.cmd,
+                image.raw(),
+                vk::ImageLayout::TRANSFER_DST_OPTIMAL,
+                &value,
+                &[crate::memory::color_range()],
+            )
+        };
+        Ok(())
+    }
+
+    fn require_transfer_write<H: Handle>(&self, handle: H, what: &str) -> Result<()> {
         let access = self.declared(handle, what)?;
         if access == Access::TransferWrite {
             Ok(())

@@ -5,7 +5,7 @@
 use crate::scene_buffers::SceneHandles;
 use crate::shaders::path_trace::PATH_TRACE;
 use crate::transport::{Images, Outputs, Replay, ReplayParams};
-use lucid_engine::graph::{Access, BufferHandle, RenderGraph};
+use lucid_engine::graph::{Access, BufferHandle, ImageHandle, RenderGraph};
 use lucid_engine::memory::ImageDesc;
 use lucid_engine::shader::Specialization;
 
@@ -22,21 +22,16 @@ pub fn add(
     surface: bool,
 ) -> Outputs {
     let stats = crate::stats::add_counter(g, "path_trace.stats");
+    let motion = match replay {
+        Some(r) => r.motion,
+        None => add_no_motion(g),
+    };
     let mut p = g.add_pass("path_trace");
     scene.read(&mut p);
     let frame = p.read(frame, Access::ComputeRead);
     let stats = p.write(stats, Access::ComputeReadWrite);
-    let (motion, replay) = match replay {
-        Some(r) => (p.read(r.motion, Access::ComputeRead), r.params),
-        None => {
-            // Bound, never read: nothing is replayed.
-            let unused = p.create_image("path_trace.no_motion", ImageDesc::rgba16f(1, 1));
-            (
-                p.write(unused, Access::ComputeWrite),
-                ReplayParams::default(),
-            )
-        }
-    };
+    let motion = p.read(motion, Access::ComputeRead);
+    let replay = replay.map_or(ReplayParams::default(), |r| r.params);
     let images = Images::create(&mut p, "path_trace", (width, height), surface);
     let (scene, spec) = (*scene, spec.clone());
     p.execute(move |ctx| {
@@ -52,4 +47,14 @@ pub fn add(
             .dispatch_threads([width, height, 1])
     });
     images.with_stats(stats)
+}
+
+/// Adds a pass making the 1x1 zero image bound as the motion vectors when nothing is replayed (the
+/// shader then never reads it), so that the path tracer does not depend on the G-buffer.
+fn add_no_motion(g: &mut RenderGraph) -> ImageHandle {
+    let mut p = g.add_pass("path_trace.no_motion");
+    let image = p.create_image("path_trace.no_motion", ImageDesc::rgba16f(1, 1));
+    let image = p.write(image, Access::TransferWrite);
+    p.execute(move |ctx| ctx.clear_image(image, [0.0; 4]));
+    image
 }
