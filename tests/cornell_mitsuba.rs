@@ -1,11 +1,11 @@
-//! Lucid's path tracer against Mitsuba 3 on Mitsuba's own Cornell box (`cornell-box`): the reference
-//! EXR in `tests/references/` was rendered by `make_cornell_reference.py` (scalar_rgb, box filter,
-//! path integrator, max_depth 8, 256x256). Mean per channel within 1%, and relative MSE no larger
-//! than the noise expected at the sample count.
+//! Lucid's path tracer and bidirectional path tracer against Mitsuba 3 on Mitsuba's own Cornell box
+//! (`cornell-box`): the reference EXR in `tests/references/` was rendered by
+//! `make_cornell_reference.py` (scalar_rgb, box filter, path integrator, max_depth 8, 256x256). Mean
+//! per channel within 1%, and relative MSE no larger than the noise expected at the sample count.
 
 use lucid_engine::capture::{self, ImageData};
 use lucid_engine::metrics;
-use lucid_passes::renderer::Settings;
+use lucid_passes::renderer::{Algorithm, Settings};
 use lucid_tests::render::{render_accumulated, scene};
 use std::path::PathBuf;
 
@@ -21,8 +21,9 @@ fn reference() -> (ImageData, serde_json::Value) {
     (image, meta)
 }
 
-fn render(max_depth: u32, seed: u32, spp: u32, frames: u32) -> ImageData {
+fn render(algorithm: Algorithm, max_depth: u32, seed: u32, (spp, frames): (u32, u32)) -> ImageData {
     let settings = Settings {
+        algorithm,
         samples_per_pixel: spp,
         max_depth,
         seed,
@@ -69,6 +70,15 @@ fn mean_error(image: &ImageData, reference_mean: [f64; 3]) -> [f64; 3] {
 
 #[test]
 fn path_tracing_matches_mitsuba() {
+    matches_mitsuba(Algorithm::PathTracing);
+}
+
+#[test]
+fn bidirectional_path_tracing_matches_mitsuba() {
+    matches_mitsuba(Algorithm::Bidirectional);
+}
+
+fn matches_mitsuba(algorithm: Algorithm) {
     let (reference, meta) = reference();
     assert_eq!((reference.width, reference.height), (256, 256));
     assert_eq!(meta["max_depth"], 8);
@@ -76,23 +86,25 @@ fn path_tracing_matches_mitsuba() {
     let ref_mean = reference.mean_rgb();
 
     // Two independent renders (different seeds) of 32 spp each.
-    let a = render(8, 1, 8, 4);
-    let b = render(8, 2, 8, 4);
+    let a = render(algorithm, 8, 1, (8, 4));
+    let b = render(algorithm, 8, 2, (8, 4));
     let lucid = average(&a, &b);
     let err = mean_error(&lucid, ref_mean);
     for c in 0..3 {
         assert!(
             err[c].abs() < 0.01,
-            "channel {c}: mean differs by {:.3}% ({err:?})",
+            "{algorithm:?}, channel {c}: mean differs by {:.3}% ({err:?})",
             100.0 * err[c]
         );
     }
     let rel_mse = metrics::rel_mse(&lucid, &reference, RELMSE_EPS).unwrap();
     let expected = expected_rel_mse(&a, &b, &reference, ref_var);
-    eprintln!("mean error {err:?}, relMSE {rel_mse:.5}, expected from noise {expected:.5}");
+    eprintln!(
+        "{algorithm:?}: mean error {err:?}, relMSE {rel_mse:.5}, expected from noise {expected:.5}"
+    );
     assert!(
         rel_mse <= 1.2 * expected,
-        "relMSE {rel_mse:.5} exceeds the noise expected at 64 spp ({expected:.5}): a bias, not noise"
+        "{algorithm:?}: relMSE {rel_mse:.5} exceeds the noise expected at 64 spp ({expected:.5}): a bias, not noise"
     );
 }
 
@@ -100,7 +112,7 @@ fn path_tracing_matches_mitsuba() {
 fn the_comparison_detects_a_wrong_path_depth() {
     // Cutting paths at depth 4 removes ~5% of the light: the same criteria must reject it.
     let (reference, _) = reference();
-    let short = render(4, 3, 8, 2);
+    let short = render(Algorithm::PathTracing, 4, 3, (8, 2));
     let err = mean_error(&short, reference.mean_rgb());
     assert!(
         err.iter().any(|e| e.abs() > 0.01),
