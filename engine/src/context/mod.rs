@@ -40,6 +40,9 @@ pub struct ExistingVulkan {
     /// A queue of that family. Lucid locks its own mutex around submissions; the application must not
     /// submit to this queue concurrently with Lucid.
     pub queue: vk::Queue,
+    /// Whether `device` was created with `shaderInt64` and `shaderBufferInt64Atomics` enabled
+    /// (bidirectional path tracing needs them; Lucid cannot query what a device enabled).
+    pub int64_atomics: bool,
 }
 
 pub(crate) struct Shared {
@@ -153,6 +156,7 @@ impl Context {
                 device: dev.device,
                 queue_family: dev.queue_family,
                 queue: dev.queue,
+                int64_atomics: dev.info.int64_atomics,
             },
             dev.info,
             created.debug_utils,
@@ -199,7 +203,7 @@ impl Context {
             max_shared_memory: props.limits.max_compute_shared_memory_size,
             shader_float16: false,
             present: false,
-            int64_atomics: false,
+            int64_atomics: existing.int64_atomics,
             pipeline_statistics: false,
         };
         Self::assemble(
