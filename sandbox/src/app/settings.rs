@@ -40,6 +40,14 @@ impl Algorithm {
             Self::Bidirectional => Self::PathTracing,
         }
     }
+
+    /// The renderer's algorithm.
+    pub fn renderer(self) -> lucid_passes::renderer::Algorithm {
+        match self {
+            Self::PathTracing => lucid_passes::renderer::Algorithm::PathTracing,
+            Self::Bidirectional => lucid_passes::renderer::Algorithm::Bidirectional,
+        }
+    }
 }
 
 /// The denoiser applied to the noisy frame.

@@ -4,7 +4,7 @@
 
 use super::split::SplitRenderer;
 use super::{renderer_ms, side_by_side, FrameRequest, FrameSource, SideStats};
-use crate::settings::{Algorithm, Denoiser, RenderSettings};
+use crate::settings::{Denoiser, RenderSettings};
 use lucid_engine::graph::{Executor, ImageHandle, RenderGraph};
 use lucid_engine::scene::Scene;
 use lucid_engine::Context;
@@ -45,10 +45,7 @@ pub fn new_renderer(ctx: &Context, scene: Scene, extent: [u32; 2]) -> anyhow::Re
 /// The renderer settings the panels describe (display settings are the app's own).
 pub fn renderer_settings(base: &Settings, panel: &RenderSettings) -> Settings {
     Settings {
-        algorithm: match panel.algorithm {
-            Algorithm::PathTracing => renderer::Algorithm::PathTracing,
-            Algorithm::Bidirectional => renderer::Algorithm::Bidirectional,
-        },
+        algorithm: panel.algorithm.renderer(),
         samples_per_pixel: panel.spp.max(1),
         max_depth: panel.max_depth.max(1),
         accumulate: panel.accumulate,

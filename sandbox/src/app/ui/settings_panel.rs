@@ -102,7 +102,7 @@ fn renderer(ui: &mut egui::Ui, r: &mut RenderSettings) {
             }
         });
     if r.denoiser == Denoiser::Svgf {
-        super::svgf_panel::svgf(ui, &mut r.svgf);
+        super::svgf_panel::svgf(ui, &mut r.svgf, r.algorithm.renderer().replays_paths());
     }
     ui.checkbox(&mut r.accumulate, "accumulate");
     egui::ComboBox::from_label("view")

@@ -12,8 +12,9 @@ fn mode_label(mode: SvgfMode) -> &'static str {
     }
 }
 
-/// Edits `params`: the mode (with its sample or time budget) and the filter's parameters.
-pub fn svgf(ui: &mut egui::Ui, params: &mut SvgfParams) {
+/// Edits `params`: the mode (with its sample or time budget) and the filter's parameters;
+/// `gradients_available`: the light transport can replay paths for the temporal gradients.
+pub fn svgf(ui: &mut egui::Ui, params: &mut SvgfParams, gradients_available: bool) {
     egui::CollapsingHeader::new("SVGF")
         .default_open(false)
         .show(ui, |ui| {
@@ -60,6 +61,9 @@ pub fn svgf(ui: &mut egui::Ui, params: &mut SvgfParams) {
             ui.add(egui::Slider::new(&mut params.sigma_n, 1.0..=256.0).text("sigma n"));
             ui.add(egui::Slider::new(&mut params.sigma_l, 0.5..=16.0).text("sigma l"));
             ui.checkbox(&mut params.gradients, "temporal gradients (A-SVGF)");
+            if !gradients_available {
+                ui.label("(this light transport cannot replay paths: history is rejected by geometry only)");
+            }
             ui.checkbox(
                 &mut params.gradients_every_frame,
                 "replay gradient paths in a static scene too",
