@@ -422,7 +422,12 @@ impl Renderer {
                 )
             }
         };
-        let hdr = accumulate::add(g, traced.radiance, w, h, accumulated);
+        // Without accumulation the frame's radiance is its HDR image: no pass copies it.
+        let hdr = if self.settings.accumulate {
+            accumulate::add(g, traced.radiance, w, h, accumulated)
+        } else {
+            traced.radiance
+        };
         let hdr = match (svgf_apply, traced.surface) {
             (Some(apply), Some(surface)) => {
                 let inputs = svgf::FrameInputs {
