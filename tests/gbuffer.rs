@@ -184,6 +184,7 @@ fn debug_views_show_gbuffer_channels() {
             View::Depth => assert!(floor[0] > 0.0 && floor[0] < 1.0, "{floor:?}"),
             View::Motion => assert!((floor[0] - 0.5).abs() < 1e-3, "still camera: {floor:?}"),
             View::Albedo => assert!(floor[0] > 0.5, "white floor: {floor:?}"),
+            View::Gradient => assert_eq!(floor[..3], [0.0; 3], "no temporal SVGF, no rejection"),
             View::Final | View::Noisy => {}
         }
     }

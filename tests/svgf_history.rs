@@ -1,7 +1,7 @@
 //! SVGF's histories: the light transport's replayed paths (A-SVGF's gradient samples) give exactly
 //! what last frame's pixel gave when only the camera moves, so the temporal gradients are exactly
-//! zero then; and a resize or a history reset starts the histories afresh without a stale frame
-//! showing.
+//! zero then, and not when a light goes off; and a resize or a history reset starts the histories
+//! afresh without a stale frame showing.
 
 #[allow(dead_code)]
 #[path = "svgf_common.rs"]
@@ -94,6 +94,66 @@ fn replayed_paths_match_last_frame_exactly_when_only_the_camera_moves() {
     assert!(
         without < 0.1,
         "{without:.3} of the strata matched without replay: the check cannot tell replay from chance"
+    );
+}
+
+/// Renders the next frame; returns SVGF's temporal gradients.
+fn gradients(r: &mut Renderer) -> ImageData {
+    let mut g = RenderGraph::new();
+    let (images, _) = r.add_frame(&mut g);
+    let gradient = g.readback(images.gradient.expect("temporal SVGF has gradients"));
+    let executor = r.executor_mut();
+    let frame = executor
+        .execute(g.compile().expect("graph"))
+        .expect("frame");
+    let outputs = executor.wait(frame).expect("frame");
+    outputs.image(gradient).expect("gradients")
+}
+
+/// Shares of the strata whose gradient (luminance change) is not zero, and whose normaliser is
+/// (nothing was replayed near them).
+fn changed_and_empty(gradient: &ImageData) -> (f64, f64) {
+    let n = gradient.pixels.len() as f64;
+    let changed = gradient.pixels.iter().filter(|p| p[0] != 0.0).count() as f64;
+    let empty = gradient.pixels.iter().filter(|p| p[1] == 0.0).count() as f64;
+    (changed / n, empty / n)
+}
+
+#[test]
+fn gradients_vanish_when_only_the_camera_moves_and_not_when_a_light_goes_off() {
+    let ctx = context(false);
+    let cornell = scene("cornell-box");
+    let path = cornell.camera_path.clone().expect("a default path");
+    let light = cornell
+        .materials
+        .iter()
+        .position(|m| m.name == "light")
+        .expect("the Cornell box has a light material");
+    let mut off = cornell.materials[light].clone();
+    off.emission = glam::Vec3::ZERO;
+    let mut s = settings(Method::Svgf, 8);
+    s.svgf.gradients_every_frame = true;
+    let mut r = renderer(&ctx, cornell, s);
+    r.set_camera(path.sample(0.0));
+    gradients(&mut r);
+    for i in 1..4 {
+        r.set_camera(path.sample(0.1 * i as f32));
+        let (changed, empty) = changed_and_empty(&gradients(&mut r));
+        assert_eq!(
+            changed, 0.0,
+            "frame {i}: a gradient where only the camera moved"
+        );
+        assert!(
+            empty < 0.2,
+            "frame {i}: {empty:.2} of the strata saw no replay"
+        );
+    }
+    r.set_material(light, off).expect("switch the light off");
+    let (changed, _) = changed_and_empty(&gradients(&mut r));
+    assert_no_validation_messages(&ctx);
+    assert!(
+        changed > 0.8,
+        "only {changed:.2} of the strata show the light going off"
     );
 }
 

@@ -22,17 +22,21 @@ pub enum View {
     Depth,
     /// Motion vectors (x red, y green, 0.5 = still).
     Motion,
+    /// The share of SVGF's history its temporal gradients drop (red; black where shading did not
+    /// change, and everywhere without temporal SVGF).
+    Gradient,
 }
 
 impl View {
     /// Every view, for menus.
-    pub const ALL: [View; 6] = [
+    pub const ALL: [View; 7] = [
         View::Final,
         View::Noisy,
         View::Albedo,
         View::Normal,
         View::Depth,
         View::Motion,
+        View::Gradient,
     ];
 
     /// The name in menus.
@@ -44,6 +48,7 @@ impl View {
             View::Normal => "normal",
             View::Depth => "depth",
             View::Motion => "motion",
+            View::Gradient => "history rejection",
         }
     }
 }
@@ -63,6 +68,7 @@ pub fn add(
         View::Normal => (frame.gbuffer.normal_roughness, 1),
         View::Depth => (frame.gbuffer.depth, 2),
         View::Motion => (frame.gbuffer.motion, 3),
+        View::Gradient => (frame.gradient.unwrap_or_else(|| add_zero(g)), 4),
     };
     let mut p = g.add_pass("debug_view");
     let source = p.read(source, Access::ComputeSampled);
@@ -76,4 +82,13 @@ pub fn add(
             .dispatch_threads([width, height, 1])
     });
     out
+}
+
+/// Adds a pass making a 1x1 zero image (what the gradient view shows without temporal SVGF).
+fn add_zero(g: &mut RenderGraph) -> ImageHandle {
+    let mut p = g.add_pass("debug_view.zero");
+    let image = p.create_image("debug_view.zero", ImageDesc::rgba32f(1, 1));
+    let image = p.write(image, Access::TransferWrite);
+    p.execute(move |ctx| ctx.clear_image(image, [0.0; 4]));
+    image
 }

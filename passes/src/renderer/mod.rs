@@ -40,6 +40,8 @@ pub struct FrameImages {
     /// Radiance without the first hit's emission, divided by its albedo (see
     /// [`crate::transport::SurfaceImages::demodulated`]); traced only when a denoiser runs.
     pub demodulated: Option<ImageHandle>,
+    /// SVGF's temporal gradients ([`svgf::Denoised::gradient`]); `None` unless temporal SVGF ran.
+    pub gradient: Option<ImageHandle>,
     /// Accumulated (or this frame's) HDR radiance.
     pub hdr: ImageHandle,
     /// Tone-mapped sRGB RGBA8.
@@ -428,7 +430,7 @@ impl Renderer {
         } else {
             traced.radiance
         };
-        let hdr = match (svgf_apply, traced.surface) {
+        let (hdr, gradient) = match (svgf_apply, traced.surface) {
             (Some(apply), Some(surface)) => {
                 let inputs = svgf::FrameInputs {
                     radiance: traced.radiance,
@@ -441,9 +443,10 @@ impl Renderer {
                     width: w,
                     height: h,
                 };
-                svgf::add(g, &inputs, &svgf_params, apply)
+                let denoised = svgf::add(g, &inputs, &svgf_params, apply);
+                (denoised.image, denoised.gradient)
             }
-            _ => hdr,
+            _ => (hdr, None),
         };
         let ldr = tonemap::add(g, hdr, w, h, self.settings.display);
         let stats = g.readback(traced.stats);
@@ -460,6 +463,7 @@ impl Renderer {
             FrameImages {
                 radiance: traced.radiance,
                 demodulated: traced.surface.map(|s| s.demodulated),
+                gradient,
                 hdr,
                 ldr,
                 gbuffer,

@@ -101,26 +101,42 @@ pub fn replay(params: &SvgfParams, apply: Apply, scene_changed: bool) -> u32 {
     }
 }
 
-/// Adds what `apply` asks for; returns the denoised radiance (`inputs.accumulated` for
-/// [`Apply::Nothing`]). The spatial modes average the first hits' albedo and emission every frame,
-/// filtered or not, so that they match the accumulated radiance once the filter starts.
+/// What the denoiser adds to a frame.
+#[derive(Clone, Copy, Debug)]
+pub struct Denoised {
+    /// The denoised radiance (`inputs.accumulated` when nothing was applied).
+    pub image: ImageHandle,
+    /// The temporal filter's gradients, one texel per stratum of
+    /// [`SvgfParams::gradient_stratum`] pixels, spread over their neighbourhood: x the luminance
+    /// change since last frame, y its normaliser (x / y is the share of history dropped). `None`
+    /// unless the temporal filter ran.
+    pub gradient: Option<ImageHandle>,
+}
+
+/// Adds what `apply` asks for. The spatial modes average the first hits' albedo and emission
+/// every frame, filtered or not, so that they match the accumulated radiance once the filter
+/// starts.
 pub fn add(
     g: &mut RenderGraph,
     inputs: &FrameInputs,
     params: &SvgfParams,
     apply: Apply,
-) -> ImageHandle {
+) -> Denoised {
+    let spatial = |image| Denoised {
+        image,
+        gradient: None,
+    };
     match apply {
         Apply::Temporal { continues } => add_temporal(g, inputs, params, continues),
         Apply::Spatial => {
             let surface = demodulate::accumulate_surface(g, inputs);
-            add_spatial(g, inputs, params, surface)
+            spatial(add_spatial(g, inputs, params, surface))
         }
         Apply::Nothing => {
             if params.mode != SvgfMode::Temporal {
                 demodulate::accumulate_surface(g, inputs);
             }
-            inputs.accumulated
+            spatial(inputs.accumulated)
         }
     }
 }
@@ -132,7 +148,7 @@ pub fn add_temporal(
     inputs: &FrameInputs,
     params: &SvgfParams,
     continues: bool,
-) -> ImageHandle {
+) -> Denoised {
     let params = SvgfParams {
         iterations: params.iterations.max(1),
         gradient_stratum: params.gradient_stratum.max(1),
@@ -173,14 +189,18 @@ pub fn add_temporal(
         &params,
         size,
     );
-    filter::add(
+    let image = filter::add(
         g,
         (&integrated.demodulated, integrated.moments),
         &inputs.gbuffer,
         &params,
         Some(history.color.cur),
         size,
-    )
+    );
+    Denoised {
+        image,
+        gradient: Some(gradient),
+    }
 }
 
 /// Adds the spatial filter alone (variance estimated spatially) on `inputs.accumulated`,
