@@ -3,7 +3,7 @@
 
 use lucid_engine::capture::{rec709_luminance, ImageData};
 use lucid_engine::graph::RenderGraph;
-use lucid_engine::scene::{Camera, Scene};
+use lucid_engine::scene::{Camera, Material, Scene};
 use lucid_engine::Context;
 use lucid_passes::renderer::{Denoiser, Renderer, Settings};
 use lucid_passes::svgf::{SvgfMode, SvgfParams};
@@ -135,4 +135,16 @@ pub fn object_ids(r: &mut Renderer) -> Vec<f32> {
         .image(ids)
         .expect("ids");
     image.pixels.iter().map(|p| p[0]).collect()
+}
+
+/// The Cornell box's light material index and the material with its emission switched off.
+pub fn light_switched_off(cornell: &Scene) -> (usize, Material) {
+    let light = cornell
+        .materials
+        .iter()
+        .position(|m| m.name == "light")
+        .expect("the Cornell box has a light material");
+    let mut off = cornell.materials[light].clone();
+    off.emission = glam::Vec3::ZERO;
+    (light, off)
 }

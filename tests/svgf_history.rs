@@ -7,7 +7,7 @@
 #[path = "svgf_common.rs"]
 mod common;
 
-use common::{frame, mean_luminance, renderer, settings, Method, SIZE};
+use common::{frame, light_switched_off, mean_luminance, renderer, settings, Method, SIZE};
 use lucid_engine::capture::ImageData;
 use lucid_engine::graph::RenderGraph;
 use lucid_passes::renderer::Renderer;
@@ -124,13 +124,7 @@ fn gradients_vanish_when_only_the_camera_moves_and_not_when_a_light_goes_off() {
     let ctx = context(false);
     let cornell = scene("cornell-box");
     let path = cornell.camera_path.clone().expect("a default path");
-    let light = cornell
-        .materials
-        .iter()
-        .position(|m| m.name == "light")
-        .expect("the Cornell box has a light material");
-    let mut off = cornell.materials[light].clone();
-    off.emission = glam::Vec3::ZERO;
+    let (light, off) = light_switched_off(&cornell);
     let mut s = settings(Method::Svgf, 8);
     s.svgf.gradients_every_frame = true;
     let mut r = renderer(&ctx, cornell, s);

@@ -5,8 +5,7 @@
 #[path = "svgf_common.rs"]
 mod common;
 
-use common::{everywhere, frame, mean_luminance, renderer, settings, Method};
-use glam::Vec3;
+use common::{everywhere, frame, light_switched_off, mean_luminance, renderer, settings, Method};
 use lucid_tests::render::scene;
 use lucid_tests::{assert_no_validation_messages, context};
 
@@ -21,13 +20,7 @@ const MAX_REMAINING: f64 = 0.05;
 fn remaining_brightness(method: Method) -> Vec<f64> {
     let ctx = context(false);
     let cornell = scene("cornell-box");
-    let light = cornell
-        .materials
-        .iter()
-        .position(|m| m.name == "light")
-        .expect("the Cornell box has a light material");
-    let mut off = cornell.materials[light].clone();
-    off.emission = Vec3::ZERO;
+    let (light, off) = light_switched_off(&cornell);
     let mut r = renderer(&ctx, cornell, settings(method, 8));
     let all = everywhere();
     let mut before = 0.0;

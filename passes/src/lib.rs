@@ -11,6 +11,7 @@ pub mod frame_constants;
 pub mod gbuffer;
 pub mod hot_reload;
 pub mod path_trace;
+pub mod placeholder;
 pub mod ray_query;
 pub mod renderer;
 pub mod scene_buffers;

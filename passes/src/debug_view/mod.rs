@@ -1,6 +1,7 @@
 //! Debug views: any intermediate image of a frame mapped to displayable linear RGB
 //! (`shaders/debug_view/debug_view.comp`).
 
+use crate::placeholder::add_zero_image;
 use crate::renderer::FrameImages;
 use crate::shaders::debug_view::DEBUG_VIEW;
 use lucid_engine::graph::{Access, ImageHandle, RenderGraph};
@@ -68,7 +69,14 @@ pub fn add(
         View::Normal => (frame.gbuffer.normal_roughness, 1),
         View::Depth => (frame.gbuffer.depth, 2),
         View::Motion => (frame.gbuffer.motion, 3),
-        View::Gradient => (frame.gradient.unwrap_or_else(|| add_zero(g)), 4),
+        View::Gradient => match frame.gradient {
+            Some(gradient) => (gradient, 4),
+            // Without temporal SVGF nothing is rejected: black.
+            None => (
+                add_zero_image(g, "debug_view.no_gradient", ImageDesc::rgba32f(1, 1)),
+                4,
+            ),
+        },
     };
     let mut p = g.add_pass("debug_view");
     let source = p.read(source, Access::ComputeSampled);
@@ -82,13 +90,4 @@ pub fn add(
             .dispatch_threads([width, height, 1])
     });
     out
-}
-
-/// Adds a pass making a 1x1 zero image (what the gradient view shows without temporal SVGF).
-fn add_zero(g: &mut RenderGraph) -> ImageHandle {
-    let mut p = g.add_pass("debug_view.zero");
-    let image = p.create_image("debug_view.zero", ImageDesc::rgba32f(1, 1));
-    let image = p.write(image, Access::TransferWrite);
-    p.execute(move |ctx| ctx.clear_image(image, [0.0; 4]));
-    image
 }

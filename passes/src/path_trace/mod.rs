@@ -2,10 +2,11 @@
 //! N samples per pixel (`shaders/path_trace/path_trace.comp`, `shaders/common/path.glsl`); replays
 //! last frame's paths where asked ([`Replay`]).
 
+use crate::placeholder::add_zero_image;
 use crate::scene_buffers::SceneHandles;
 use crate::shaders::path_trace::PATH_TRACE;
 use crate::transport::{Images, Outputs, Replay, ReplayParams};
-use lucid_engine::graph::{Access, BufferHandle, ImageHandle, RenderGraph};
+use lucid_engine::graph::{Access, BufferHandle, RenderGraph};
 use lucid_engine::memory::ImageDesc;
 use lucid_engine::shader::Specialization;
 
@@ -24,7 +25,8 @@ pub fn add(
     let stats = crate::stats::add_counter(g, "path_trace.stats");
     let motion = match replay {
         Some(r) => r.motion,
-        None => add_no_motion(g),
+        // Bound, never read: nothing is replayed, and the pass does not wait for the G-buffer.
+        None => add_zero_image(g, "path_trace.no_motion", ImageDesc::rgba16f(1, 1)),
     };
     let mut p = g.add_pass("path_trace");
     scene.read(&mut p);
@@ -47,14 +49,4 @@ pub fn add(
             .dispatch_threads([width, height, 1])
     });
     images.with_stats(stats)
-}
-
-/// Adds a pass making the 1x1 zero image bound as the motion vectors when nothing is replayed (the
-/// shader then never reads it), so that the path tracer does not depend on the G-buffer.
-fn add_no_motion(g: &mut RenderGraph) -> ImageHandle {
-    let mut p = g.add_pass("path_trace.no_motion");
-    let image = p.create_image("path_trace.no_motion", ImageDesc::rgba16f(1, 1));
-    let image = p.write(image, Access::TransferWrite);
-    p.execute(move |ctx| ctx.clear_image(image, [0.0; 4]));
-    image
 }
