@@ -81,9 +81,20 @@ fn check_scene(scene: &Scene, dynamic: &[bool], rays_per_scene: usize) -> bool {
         } else {
             1e30
         };
+        // Every eighth ray runs along an axis (infinite reciprocal components in the slab test).
+        let dir = if i % 8 == 7 {
+            let axis = [Vec3::X, Vec3::Y, Vec3::Z][(i / 8) % 3];
+            if (i / 24) % 2 == 0 {
+                axis
+            } else {
+                -axis
+            }
+        } else {
+            rng.direction()
+        };
         rays.push(Ray {
             origin,
-            dir: rng.direction(),
+            dir,
             t_min: 0.0,
             t_max,
         });

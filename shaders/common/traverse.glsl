@@ -21,9 +21,9 @@ struct Hit {
 };
 
 // Entry distance of the ray into the box [lo, hi], or T_INFINITY when missed or beyond t_max.
-float box_entry(vec3 lo, vec3 hi, vec3 origin, vec3 inv_dir, float t_max) {
-    vec3 t0 = (lo - origin) * inv_dir;
-    vec3 t1 = (hi - origin) * inv_dir;
+float box_entry(vec3 lo, vec3 hi, vec3 scaled_origin, vec3 inv_dir, float t_max) {
+    vec3 t0 = fma(lo, inv_dir, -scaled_origin);
+    vec3 t1 = fma(hi, inv_dir, -scaled_origin);
     vec3 near = min(t0, t1);
     vec3 far = max(t0, t1);
     float enter = max(max(near.x, near.y), max(near.z, 0.0));
@@ -101,9 +101,9 @@ uint leaf_count(uint word) {
 // Visits an interior node's children: returns the word of the nearer child the ray enters before
 // t_max (BVH_EMPTY when neither), and in far_child the other one when both are entered (else
 // BVH_EMPTY).
-uint order_children(BvhNode node, vec3 origin, vec3 inv_dir, float t_max, out uint far_child) {
-    float t_left = box_entry(node.left_min, node.left_max, origin, inv_dir, t_max);
-    float t_right = box_entry(node.right_min, node.right_max, origin, inv_dir, t_max);
+uint order_children(BvhNode node, vec3 scaled_origin, vec3 inv_dir, float t_max, out uint far_child) {
+    float t_left = box_entry(node.left_min, node.left_max, scaled_origin, inv_dir, t_max);
+    float t_right = box_entry(node.right_min, node.right_max, scaled_origin, inv_dir, t_max);
     far_child = BVH_EMPTY;
     if (min(t_left, t_right) == T_INFINITY) {
         return BVH_EMPTY;
@@ -119,6 +119,7 @@ uint order_children(BvhNode node, vec3 origin, vec3 inv_dir, float t_max, out ui
 // the first hit and returns true.
 bool traverse_blas(uint inst_index, Instance inst, vec3 o, vec3 d, bool any_hit, inout Hit hit) {
     vec3 inv_dir = safe_inverse(d);
+    vec3 scaled_origin = o * inv_dir;
     uint stack[BLAS_STACK];
     uint sp = 0u;
     uint word = inst.blas_root;
@@ -152,7 +153,7 @@ bool traverse_blas(uint inst_index, Instance inst, vec3 o, vec3 d, bool any_hit,
             }
         } else {
             uint far_child;
-            uint near_child = order_children(b_blas.n[word], o, inv_dir, hit.t, far_child);
+            uint near_child = order_children(b_blas.n[word], scaled_origin, inv_dir, hit.t, far_child);
             if (near_child != BVH_EMPTY) {
                 if (far_child != BVH_EMPTY && sp < BLAS_STACK) {
                     stack[sp++] = far_child;
@@ -190,6 +191,7 @@ bool trace_ray(vec3 origin, vec3 dir, float t_max, bool any_hit, out Hit hit) {
         return traverse_blas(0u, inst, o, d, any_hit, hit);
     }
     vec3 inv_dir = safe_inverse(dir);
+    vec3 scaled_origin = origin * inv_dir;
     uint stack[TLAS_STACK];
     uint sp = 0u;
     bool found = false;
@@ -211,7 +213,7 @@ bool trace_ray(vec3 origin, vec3 dir, float t_max, bool any_hit, out Hit hit) {
             }
         } else {
             uint far_child;
-            uint near_child = order_children(b_tlas.n[word], origin, inv_dir, hit.t, far_child);
+            uint near_child = order_children(b_tlas.n[word], scaled_origin, inv_dir, hit.t, far_child);
             if (near_child != BVH_EMPTY) {
                 if (far_child != BVH_EMPTY && sp < TLAS_STACK) {
                     stack[sp++] = far_child;
