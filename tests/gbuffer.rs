@@ -5,8 +5,8 @@ use glam::{Affine3A, Vec3};
 use lucid_engine::capture::ImageData;
 use lucid_engine::graph::RenderGraph;
 use lucid_passes::renderer::{Renderer, Settings};
-use lucid_tests::render::scene;
-use lucid_tests::{assert_no_validation_messages, context};
+use lucid_tests::render::{frame_images, scene};
+use lucid_tests::{assert_no_validation_messages, context, run};
 
 struct Frame {
     depth: ImageData,
@@ -16,22 +16,15 @@ struct Frame {
 }
 
 fn gbuffer_frame(renderer: &mut Renderer) -> Frame {
-    let mut g = RenderGraph::new();
-    let (images, _) = renderer.add_frame(&mut g);
-    let ids = [
-        g.readback(images.gbuffer.depth),
-        g.readback(images.gbuffer.normal_roughness),
-        g.readback(images.gbuffer.ids),
-        g.readback(images.gbuffer.motion),
-    ];
-    let executor = renderer.executor_mut();
-    let frame = executor.execute(g.compile().unwrap()).unwrap();
-    let out = executor.wait(frame).unwrap();
+    let [depth, normal, ids, motion] = frame_images(renderer, |images| {
+        let gb = &images.gbuffer;
+        [gb.depth, gb.normal_roughness, gb.ids, gb.motion]
+    });
     Frame {
-        depth: out.image(ids[0]).unwrap(),
-        normal: out.image(ids[1]).unwrap(),
-        ids: out.image(ids[2]).unwrap(),
-        motion: out.image(ids[3]).unwrap(),
+        depth,
+        normal,
+        ids,
+        motion,
     }
 }
 
@@ -168,9 +161,7 @@ fn debug_views_show_gbuffer_channels() {
             (v, g.readback(shown))
         })
         .collect();
-    let executor = renderer.executor_mut();
-    let frame = executor.execute(g.compile().unwrap()).unwrap();
-    let out = executor.wait(frame).unwrap();
+    let out = run(renderer.executor_mut(), g);
     for (view, id) in views {
         let image = out.image(id).unwrap();
         assert!(!image.has_non_finite(), "{view:?}");

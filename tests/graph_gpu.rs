@@ -6,7 +6,7 @@ use lucid_engine::memory::ImageDesc;
 use lucid_engine::shader::DescriptorKind;
 use lucid_passes::shaders::test_pattern::{ACCUMULATE, COMBINE, GRADIENT, SCALE};
 use lucid_passes::test_pattern::{self, Params};
-use lucid_tests::{assert_no_validation_messages, executor};
+use lucid_tests::{assert_no_validation_messages, executor, run};
 
 fn assert_close(got: &[[f32; 4]], want: &[[f32; 4]], tolerance: f32) {
     assert_eq!(got.len(), want.len());
@@ -27,13 +27,7 @@ fn run_pattern(executor: &mut Executor, w: u32, h: u32, params: &Params) -> Vec<
     let mut g = RenderGraph::new();
     let out = test_pattern::add(&mut g, w, h, params);
     let readback = g.readback(out.combined);
-    let frame = executor.execute(g.compile().unwrap()).unwrap();
-    executor
-        .wait(frame)
-        .unwrap()
-        .image(readback)
-        .unwrap()
-        .pixels
+    run(executor, g).image(readback).unwrap().pixels
 }
 
 #[test]
@@ -154,8 +148,7 @@ fn accumulate_frame(executor: &mut Executor, w: u32, h: u32) -> f32 {
             .dispatch_threads([w, h, 1])
     });
     let readback = g.readback(cur);
-    let frame = executor.execute(g.compile().unwrap()).unwrap();
-    let image = executor.wait(frame).unwrap().image(readback).unwrap();
+    let image = run(executor, g).image(readback).unwrap();
     let first = image.pixels[0][0];
     assert!(
         image.pixels.iter().all(|p| p[0] == first),
@@ -351,8 +344,7 @@ fn synchronization_validation_reports_a_hazard_the_graph_did_not_declare() {
             .dispatch_threads([8, 8, 1])
     });
     let readback = g.readback(b);
-    let frame = executor.execute(g.compile().unwrap()).unwrap();
-    executor.wait(frame).unwrap().image(readback).unwrap();
+    run(&mut executor, g).image(readback).unwrap();
     let messages = ctx.validation_log().take();
     assert!(
         messages.iter().any(|m| m.id.contains("SYNC-HAZARD-READ")),
@@ -382,13 +374,7 @@ fn a_cleared_image_reads_back_its_colour_through_a_compute_pass() {
             .dispatch_threads([w, h, 1])
     });
     let readback = g.readback(out);
-    let frame = executor.execute(g.compile().unwrap()).unwrap();
-    let got = executor
-        .wait(frame)
-        .unwrap()
-        .image(readback)
-        .unwrap()
-        .pixels;
+    let got = run(&mut executor, g).image(readback).unwrap().pixels;
     assert_close(&got, &vec![colour.map(|c| 2.0 * c); (w * h) as usize], 0.0);
     assert_no_validation_messages(&ctx);
 }

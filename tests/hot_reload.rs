@@ -4,7 +4,7 @@
 use lucid_engine::graph::{Executor, RenderGraph};
 use lucid_passes::hot_reload::{source_shader_dir, Reload, ShaderWatcher};
 use lucid_passes::test_pattern::{self, Params};
-use lucid_tests::{assert_no_validation_messages, executor};
+use lucid_tests::{assert_no_validation_messages, executor, run};
 use std::path::Path;
 
 fn copy_dir(from: &Path, to: &Path) {
@@ -23,13 +23,7 @@ fn red_at(executor: &mut Executor, x: u32) -> f32 {
     let mut g = RenderGraph::new();
     let out = test_pattern::add(&mut g, 16, 4, &Params::default());
     let readback = g.readback(out.pattern);
-    let frame = executor.execute(g.compile().unwrap()).unwrap();
-    executor
-        .wait(frame)
-        .unwrap()
-        .image(readback)
-        .unwrap()
-        .pixels[x as usize][0]
+    run(executor, g).image(readback).unwrap().pixels[x as usize][0]
 }
 
 #[test]

@@ -4,9 +4,8 @@
 //! them leaves the radiance unchanged.
 
 use lucid_engine::capture::ImageData;
-use lucid_engine::graph::RenderGraph;
 use lucid_passes::renderer::{Algorithm, Denoiser, Renderer, Settings};
-use lucid_tests::render::scene;
+use lucid_tests::render::{frame_images, scene};
 use lucid_tests::{assert_no_validation_messages, context};
 
 /// 44x36 leaves partial 8x8 tiles on the right and bottom edges.
@@ -77,20 +76,16 @@ fn radiance(ctx: &lucid_engine::Context, settings: Settings) -> (ImageData, bool
         Renderer::new(ctx, scene("cornell-box"), SIZE.0, SIZE.1, settings).expect("renderer");
     r.render().expect("frame 0");
     let gbuffer_kept = r.frame_plan().expect("plan").pass("gbuffer").is_some();
-    let mut g = RenderGraph::new();
-    let (images, _) = r.add_frame(&mut g);
-    let radiance = g.readback(images.radiance);
-    let executor = r.executor_mut();
-    let frame = executor
-        .execute(g.compile().expect("graph"))
-        .expect("frame 1");
-    let outputs = executor.wait(frame).expect("frame 1");
-    let traced = images.demodulated.is_some();
+    let mut traced = false;
+    let [radiance] = frame_images(&mut r, |images| {
+        traced = images.demodulated.is_some();
+        [images.radiance]
+    });
     assert_eq!(
         gbuffer_kept, traced,
         "the G-buffer is culled exactly when no denoiser runs"
     );
-    (outputs.image(radiance).expect("radiance"), traced)
+    (radiance, traced)
 }
 
 #[test]

@@ -2,11 +2,11 @@
 //! luminance statistics over pixel masks.
 
 use lucid_engine::capture::{rec709_luminance, ImageData};
-use lucid_engine::graph::RenderGraph;
 use lucid_engine::scene::{Camera, Material, Scene};
 use lucid_engine::Context;
 use lucid_passes::renderer::{Denoiser, Renderer, Settings};
 use lucid_passes::svgf::{SvgfMode, SvgfParams};
+use lucid_tests::render::frame_images;
 
 /// Side of the square test images.
 pub const SIZE: u32 = 64;
@@ -122,19 +122,8 @@ pub fn everywhere() -> Vec<bool> {
 
 /// The object id of every pixel of the next frame (the frame is rendered and discarded).
 pub fn object_ids(r: &mut Renderer) -> Vec<f32> {
-    let mut g = RenderGraph::new();
-    let (images, _) = r.add_frame(&mut g);
-    let ids = g.readback(images.gbuffer.ids);
-    let executor = r.executor_mut();
-    let frame = executor
-        .execute(g.compile().expect("graph"))
-        .expect("frame");
-    let image = executor
-        .wait(frame)
-        .expect("frame")
-        .image(ids)
-        .expect("ids");
-    image.pixels.iter().map(|p| p[0]).collect()
+    let [ids] = frame_images(r, |images| [images.gbuffer.ids]);
+    ids.pixels.iter().map(|p| p[0]).collect()
 }
 
 /// The Cornell box's light material index and the material with its emission switched off.

@@ -9,26 +9,14 @@ mod common;
 
 use common::{frame, light_switched_off, mean_luminance, renderer, settings, Method, SIZE};
 use lucid_engine::capture::ImageData;
-use lucid_engine::graph::RenderGraph;
 use lucid_passes::renderer::Renderer;
-use lucid_tests::render::scene;
+use lucid_tests::render::{frame_images, scene};
 use lucid_tests::{assert_no_validation_messages, context};
 
 /// Renders the next frame; returns its noisy radiance and its motion vectors.
 fn radiance_and_motion(r: &mut Renderer) -> (ImageData, ImageData) {
-    let mut g = RenderGraph::new();
-    let (images, _) = r.add_frame(&mut g);
-    let radiance = g.readback(images.radiance);
-    let motion = g.readback(images.gbuffer.motion);
-    let executor = r.executor_mut();
-    let frame = executor
-        .execute(g.compile().expect("graph"))
-        .expect("frame");
-    let outputs = executor.wait(frame).expect("frame");
-    (
-        outputs.image(radiance).expect("radiance"),
-        outputs.image(motion).expect("motion"),
-    )
+    let [radiance, motion] = frame_images(r, |images| [images.radiance, images.gbuffer.motion]);
+    (radiance, motion)
 }
 
 /// Share of the 4x4 strata of frame `cur` holding a pixel whose radiance equals, bit for bit, that
@@ -99,15 +87,10 @@ fn replayed_paths_match_last_frame_exactly_when_only_the_camera_moves() {
 
 /// Renders the next frame; returns SVGF's temporal gradients.
 fn gradients(r: &mut Renderer) -> ImageData {
-    let mut g = RenderGraph::new();
-    let (images, _) = r.add_frame(&mut g);
-    let gradient = g.readback(images.gradient.expect("temporal SVGF has gradients"));
-    let executor = r.executor_mut();
-    let frame = executor
-        .execute(g.compile().expect("graph"))
-        .expect("frame");
-    let outputs = executor.wait(frame).expect("frame");
-    outputs.image(gradient).expect("gradients")
+    let [gradient] = frame_images(r, |images| {
+        [images.gradient.expect("temporal SVGF has gradients")]
+    });
+    gradient
 }
 
 /// Shares of the strata whose gradient (luminance change) is not zero, and whose normaliser is

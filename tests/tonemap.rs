@@ -6,7 +6,7 @@ use lucid_engine::graph::RenderGraph;
 use lucid_passes::renderer::{Renderer, Settings};
 use lucid_passes::tonemap::{self, ChannelOrder};
 use lucid_tests::render::scene;
-use lucid_tests::{assert_no_validation_messages, context};
+use lucid_tests::{assert_no_validation_messages, context, run};
 
 #[test]
 fn gpu_tone_mapping_matches_the_cpu_encoding() {
@@ -23,9 +23,7 @@ fn gpu_tone_mapping_matches_the_cpu_encoding() {
         let rgba = tonemap::add_ordered(&mut g, images.hdr, 32, 32, encoding, ChannelOrder::Rgba);
         let bgra = tonemap::add_ordered(&mut g, images.hdr, 32, 32, encoding, ChannelOrder::Bgra);
         let ids = [g.readback(images.hdr), g.readback(rgba), g.readback(bgra)];
-        let executor = renderer.executor_mut();
-        let frame = executor.execute(g.compile().unwrap()).unwrap();
-        let out = executor.wait(frame).unwrap();
+        let out = run(renderer.executor_mut(), g);
         let hdr = out.image(ids[0]).unwrap();
         let rgba = out.image(ids[1]).unwrap();
         let bgra = out.image(ids[2]).unwrap();

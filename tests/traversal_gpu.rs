@@ -14,7 +14,7 @@ use lucid_engine::scene::{FlatScene, Scene};
 use lucid_engine::shader::ShaderLibrary;
 use lucid_passes::ray_query::{self, QueryHit, QueryRay, SPHERE_BIT};
 use lucid_passes::scene_buffers::{traversal_specialization, SceneBuffers};
-use lucid_tests::{assert_no_validation_messages, context};
+use lucid_tests::{assert_no_validation_messages, context, run};
 use std::sync::Arc;
 
 /// A small deterministic generator (xorshift), so every run checks the same rays.
@@ -127,8 +127,7 @@ fn check_scene(scene: &Scene, dynamic: &[bool], rays_per_scene: usize) -> bool {
         rays.len() as u32,
     );
     let readback = g.readback(hits);
-    let frame = executor.execute(g.compile().unwrap()).unwrap();
-    let outputs = executor.wait(frame).unwrap();
+    let outputs = run(&mut executor, g);
     let gpu_hits: Vec<QueryHit> = bytemuck::pod_collect_to_vec(outputs.bytes(readback).unwrap());
 
     let mut mismatches = Vec::new();

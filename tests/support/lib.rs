@@ -1,6 +1,6 @@
 //! Shared helpers for Lucid's GPU tests: a validated context and checks on validation messages.
 
-use lucid_engine::graph::Executor;
+use lucid_engine::graph::{Executor, FrameOutputs, RenderGraph};
 use lucid_engine::shader::ShaderLibrary;
 use lucid_engine::{Context, ContextDesc, Validation};
 
@@ -26,6 +26,14 @@ pub fn executor(sync: bool) -> (Context, Executor) {
     let library = ShaderLibrary::new(&ctx, None).expect("shader library");
     let executor = Executor::new(&ctx, library).expect("executor");
     (ctx, executor)
+}
+
+/// Compiles `g`, runs it on `executor` and waits for its outputs.
+pub fn run(executor: &mut Executor, g: RenderGraph) -> FrameOutputs {
+    let frame = executor
+        .execute(g.compile().expect("the graph compiles"))
+        .expect("the frame runs");
+    executor.wait(frame).expect("the frame finishes")
 }
 
 /// Panics with every collected validation message, if any.

@@ -1,8 +1,9 @@
 //! Rendering helpers for frame-capture tests.
 
 use lucid_engine::capture::ImageData;
+use lucid_engine::graph::{ImageHandle, RenderGraph};
 use lucid_engine::scene::{builtin, Scene};
-use lucid_passes::renderer::{Renderer, Settings};
+use lucid_passes::renderer::{FrameImages, Renderer, Settings};
 
 /// Builds a built-in scene, panicking with the error if it cannot.
 pub fn scene(name: &str) -> Scene {
@@ -37,4 +38,16 @@ pub fn render_accumulated(
     drop(renderer);
     crate::assert_no_validation_messages(&ctx);
     image
+}
+
+/// Renders the renderer's next frame and reads back the images `pick` chooses of it.
+pub fn frame_images<const N: usize>(
+    renderer: &mut Renderer,
+    pick: impl FnOnce(&FrameImages) -> [ImageHandle; N],
+) -> [ImageData; N] {
+    let mut g = RenderGraph::new();
+    let (images, _) = renderer.add_frame(&mut g);
+    let ids = pick(&images).map(|image| g.readback(image));
+    let outputs = crate::run(renderer.executor_mut(), g);
+    ids.map(|id| outputs.image(id).expect("read-back image"))
 }
