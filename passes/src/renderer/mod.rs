@@ -286,11 +286,11 @@ impl Renderer {
         *slot = material.clone();
         self.accumulated = 0;
         self.scene_changed = true;
-        // Flattening does not depend on materials (emitters are merged too): the geometry stays,
-        // the re-pack rebuilds the light list from the original scene.
+        // Flattening does not depend on materials (emitters are merged too): the geometry stays;
+        // the materials, and the light list built from the original scene, are packed again.
         self.flat.scene.materials[index] = material;
-        let (gpu, _) = pack_flat(&self.flat, &self.scene, &self.bvh);
-        self.gpu = gpu;
+        self.gpu.update_materials(&self.flat.scene);
+        apply_flattening(&mut self.gpu, &self.flat, &self.scene, &self.bvh);
         self.buffers.update_materials(&self.ctx, &self.gpu)?;
         self.spec = specialization(&self.gpu);
         Ok(())

@@ -114,6 +114,13 @@ impl GpuScene {
         }
     }
 
+    /// Re-packs the materials of `scene` (after a material edit); the lights that depend on them
+    /// are re-packed with the top level ([`Self::update_top_level`] or
+    /// [`apply_flattening`]).
+    pub fn update_materials(&mut self, scene: &Scene) {
+        self.materials = params::materials(scene);
+    }
+
     /// Re-packs what depends on instance placement (TLAS, instances,
     /// world-space emissive triangles) and the camera, after
     /// [`Bvh::rebuild_top_level`].
