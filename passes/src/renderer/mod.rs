@@ -21,12 +21,12 @@ pub use settings::{Algorithm, Denoiser, Settings};
 
 use crate::frame_constants::{self, FrameConstants};
 use crate::gbuffer::{self, GBuffer};
-use crate::scene_buffers::{specialization, SceneBuffers};
-use crate::transport::{Replay, ReplayParams};
+use crate::scene_buffers::{specialization, SceneBuffers, SceneHandles};
+use crate::transport::{self, Replay, ReplayParams};
 use crate::{accumulate, bdpt, path_trace, svgf, tonemap};
 use lucid_engine::bvh::Bvh;
 use lucid_engine::capture::ImageData;
-use lucid_engine::graph::{Executor, FrameId, ImageHandle, ReadbackId, RenderGraph};
+use lucid_engine::graph::{BufferHandle, Executor, FrameId, ImageHandle, ReadbackId, RenderGraph};
 use lucid_engine::scene::gpu::{self, apply_flattening, pack_flat, GpuCamera, GpuScene};
 use lucid_engine::scene::{Camera, FlatScene, Material, Scene};
 use lucid_engine::shader::{ShaderLibrary, Specialization};
@@ -389,41 +389,7 @@ impl Renderer {
             },
             prev_stratum: self.prev_replay_stratum,
         };
-        let traced = match self.settings.algorithm {
-            Algorithm::PathTracing => {
-                // Replay serves the denoiser; without one the pass needs no G-buffer.
-                let replay = surface.then_some(Replay {
-                    params: replay,
-                    motion: gbuffer.motion,
-                });
-                path_trace::add(
-                    g,
-                    &scene,
-                    frame,
-                    &self.spec,
-                    replay.as_ref(),
-                    (w, h),
-                    surface,
-                )
-            }
-            Algorithm::Bidirectional => {
-                let sampling = bdpt::Frame {
-                    width: w,
-                    height: h,
-                    samples_per_pixel: spp,
-                    max_depth: self.settings.max_depth,
-                    surface,
-                };
-                bdpt::add(
-                    g,
-                    &scene,
-                    frame,
-                    &self.spec,
-                    sampling,
-                    &bdpt::Config::default(),
-                )
-            }
-        };
+        let traced = self.add_transport(g, &scene, frame, (&gbuffer, replay), surface);
         // Without accumulation the frame's radiance is its HDR image: no pass copies it.
         let hdr = if self.settings.accumulate {
             accumulate::add(g, traced.radiance, w, h, accumulated)
@@ -470,6 +436,54 @@ impl Renderer {
             },
             stats,
         )
+    }
+
+    /// Adds this frame's light transport: path tracing (replaying last frame's paths as `replay`
+    /// asks, for the denoiser) or bidirectional path tracing; the denoiser's images when `surface`.
+    fn add_transport(
+        &self,
+        g: &mut RenderGraph,
+        scene: &SceneHandles,
+        frame: BufferHandle,
+        (gbuffer, replay): (&GBuffer, ReplayParams),
+        surface: bool,
+    ) -> transport::Outputs {
+        let (w, h) = (self.width, self.height);
+        match self.settings.algorithm {
+            Algorithm::PathTracing => {
+                // Replay serves the denoiser; without one the pass needs no G-buffer.
+                let replay = surface.then_some(Replay {
+                    params: replay,
+                    motion: gbuffer.motion,
+                });
+                path_trace::add(
+                    g,
+                    scene,
+                    frame,
+                    &self.spec,
+                    replay.as_ref(),
+                    (w, h),
+                    surface,
+                )
+            }
+            Algorithm::Bidirectional => {
+                let sampling = bdpt::Frame {
+                    width: w,
+                    height: h,
+                    samples_per_pixel: self.settings.samples_per_pixel.max(1),
+                    max_depth: self.settings.max_depth,
+                    surface,
+                };
+                bdpt::add(
+                    g,
+                    scene,
+                    frame,
+                    &self.spec,
+                    sampling,
+                    &bdpt::Config::default(),
+                )
+            }
+        }
     }
 
     /// The compiled plan of the next frame (passes, barriers, lifetimes, aliasing), without rendering
