@@ -10,6 +10,7 @@ pub mod debug_view;
 pub mod frame_constants;
 pub mod gbuffer;
 pub mod hot_reload;
+pub mod neural;
 pub mod path_trace;
 pub mod placeholder;
 pub mod ray_query;

@@ -1,0 +1,213 @@
+//! The learned denoiser's weights: a safetensors file of float32 `<layer>.weight` [out, in, 3, 3]
+//! and `<layer>.bias` [out] tensors for each layer of [`LAYERS`], with `format` metadata
+//! [`FORMAT`] (written by `training/train.py`), packed into the order `shaders/neural/conv.comp`
+//! reads.
+
+use safetensors::tensor::{Dtype, SafeTensors};
+use std::path::Path;
+
+/// The network format this code runs (`FORMAT` in `training/model.py`).
+pub const FORMAT: &str = "lucid-rae-v1";
+
+/// Channels of the network's input features (`FEATURES` in `training/model.py`).
+pub const FEATURES: u32 = 16;
+
+/// One 3x3 convolution of the network.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct Layer {
+    /// The tensor name prefix.
+    pub name: &'static str,
+    /// Channels of the first input.
+    pub in0: u32,
+    /// Channels of the second input, concatenated after the first (a skip connection; 0: none).
+    pub in1: u32,
+    /// Output channels.
+    pub out: u32,
+}
+
+impl Layer {
+    const fn new(name: &'static str, in0: u32, in1: u32, out: u32) -> Self {
+        Self {
+            name,
+            in0,
+            in1,
+            out,
+        }
+    }
+
+    /// Input channels in all.
+    pub fn inputs(&self) -> u32 {
+        self.in0 + self.in1
+    }
+
+    /// Floats this layer takes in the packed buffer (weights, then bias).
+    fn packed_len(&self) -> usize {
+        (9 * self.inputs() * self.out + self.out) as usize
+    }
+}
+
+/// The layers in execution order (`LAYERS` in `training/model.py`).
+pub const LAYERS: [Layer; 7] = [
+    Layer::new("enc0", FEATURES, 0, 32),
+    Layer::new("enc1", 32, 0, 32),
+    Layer::new("enc2", 32, 0, 64),
+    Layer::new("bottleneck", 64, 0, 64),
+    Layer::new("dec1", 64, 32, 32),
+    Layer::new("dec0", 32, 32, 32),
+    Layer::new("out", 32, 0, 4),
+];
+
+/// The weights of the committed network (`passes/src/neural/lucid-rae-v1.safetensors`; see
+/// `training/README.md` for the command and data that produced them).
+pub const BUILTIN: &[u8] = include_bytes!("lucid-rae-v1.safetensors");
+
+/// A weights file that cannot be used, naming the file and, where it applies, the tensor.
+#[derive(Debug, thiserror::Error)]
+pub enum WeightsError {
+    /// The file could not be read.
+    #[error("denoiser weights {file}: {source}")]
+    Read {
+        /// The file.
+        file: String,
+        /// The I/O error.
+        source: std::io::Error,
+    },
+    /// The file is not a safetensors file (truncated, corrupt header, ...).
+    #[error("denoiser weights {file}: not a valid safetensors file: {reason}")]
+    Format {
+        /// The file.
+        file: String,
+        /// What the parser said.
+        reason: String,
+    },
+    /// The file is for another network.
+    #[error("denoiser weights {file}: format {found:?}, expected {FORMAT:?}")]
+    Network {
+        /// The file.
+        file: String,
+        /// The `format` metadata found (empty when absent).
+        found: String,
+    },
+    /// A tensor is missing, of the wrong type or shape, or holds a non-finite value.
+    #[error("denoiser weights {file}: tensor {tensor}: {problem}")]
+    Tensor {
+        /// The file.
+        file: String,
+        /// The tensor.
+        tensor: String,
+        /// What is wrong with it.
+        problem: String,
+    },
+}
+
+/// Weights ready for upload: every layer's weights and bias, packed.
+#[derive(Clone, Debug, PartialEq)]
+pub struct NetworkWeights {
+    packed: Vec<f32>,
+    offsets: [u32; LAYERS.len()],
+}
+
+impl NetworkWeights {
+    /// Loads a weights file.
+    pub fn load(path: &Path) -> Result<Self, WeightsError> {
+        let file = path.display().to_string();
+        let bytes = std::fs::read(path).map_err(|source| WeightsError::Read {
+            file: file.clone(),
+            source,
+        })?;
+        Self::from_bytes(&bytes, &file)
+    }
+
+    /// The committed network's weights.
+    pub fn builtin() -> Self {
+        Self::from_bytes(BUILTIN, "builtin").expect("the committed weights load (tested)")
+    }
+
+    /// Parses the bytes of a weights file; `file` names it in errors.
+    pub fn from_bytes(bytes: &[u8], file: &str) -> Result<Self, WeightsError> {
+        let format_error = |reason: String| WeightsError::Format {
+            file: file.to_owned(),
+            reason,
+        };
+        let (_, metadata) =
+            SafeTensors::read_metadata(bytes).map_err(|e| format_error(e.to_string()))?;
+        let found = metadata
+            .metadata()
+            .as_ref()
+            .and_then(|m| m.get("format").cloned())
+            .unwrap_or_default();
+        if found != FORMAT {
+            return Err(WeightsError::Network {
+                file: file.to_owned(),
+                found,
+            });
+        }
+        let tensors = SafeTensors::deserialize(bytes).map_err(|e| format_error(e.to_string()))?;
+        let mut packed = Vec::with_capacity(LAYERS.iter().map(Layer::packed_len).sum());
+        let mut offsets = [0; LAYERS.len()];
+        for (layer, offset) in LAYERS.iter().zip(&mut offsets) {
+            *offset = (packed.len() / 4) as u32;
+            let (cin, cout) = (layer.inputs() as usize, layer.out as usize);
+            let weight = read_tensor(
+                &tensors,
+                file,
+                &format!("{}.weight", layer.name),
+                &[cout, cin, 3, 3],
+            )?;
+            let bias = read_tensor(&tensors, file, &format!("{}.bias", layer.name), &[cout])?;
+            // conv.comp reads vec4s of four consecutive output channels at (tap * cin + ci) * cout / 4.
+            for tap in 0..9 {
+                for ci in 0..cin {
+                    packed.extend((0..cout).map(|co| weight[(co * cin + ci) * 9 + tap]));
+                }
+            }
+            packed.extend_from_slice(&bias);
+        }
+        Ok(Self { packed, offsets })
+    }
+
+    /// The packed floats (vec4-aligned per layer), as `shaders/neural/conv.comp` reads them.
+    pub fn packed(&self) -> &[f32] {
+        &self.packed
+    }
+
+    /// The first vec4 of layer `index` of [`LAYERS`] in [`NetworkWeights::packed`].
+    pub fn offset(&self, index: usize) -> u32 {
+        self.offsets[index]
+    }
+}
+
+/// The float32 values of tensor `name`, which must have `shape` and be finite.
+fn read_tensor(
+    tensors: &SafeTensors<'_>,
+    file: &str,
+    name: &str,
+    shape: &[usize],
+) -> Result<Vec<f32>, WeightsError> {
+    let problem = |problem: String| WeightsError::Tensor {
+        file: file.to_owned(),
+        tensor: name.to_owned(),
+        problem,
+    };
+    let view = tensors
+        .tensor(name)
+        .map_err(|_| problem("missing".into()))?;
+    if view.dtype() != Dtype::F32 {
+        return Err(problem(format!("type {:?}, expected F32", view.dtype())));
+    }
+    if view.shape() != shape {
+        return Err(problem(format!(
+            "shape {:?}, expected {shape:?}",
+            view.shape()
+        )));
+    }
+    let values: Vec<f32> = view
+        .data()
+        .chunks_exact(4)
+        .map(|b| f32::from_le_bytes([b[0], b[1], b[2], b[3]]))
+        .collect();
+    if let Some(i) = values.iter().position(|v| !v.is_finite()) {
+        return Err(problem(format!("value {i} is {}", values[i])));
+    }
+    Ok(values)
+}

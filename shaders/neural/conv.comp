@@ -1,0 +1,82 @@
+#version 460
+// One 3x3 convolution of the learned denoiser (zero padding, fused bias and ReLU), reading one
+// tensor (optionally at half resolution, upsampled by nearest neighbour) and optionally a second
+// one concatenated after it (the U-Net's skip connection, read in place: no copy). Each
+// invocation computes OUT_PER_THREAD output channels of one pixel; z selects the channel group.
+// Weights: vec4s over four consecutive output channels, at ((tap * CIN + ci) * OUT / 4 + o4),
+// then the bias (passes/src/neural/weights.rs packs them).
+#include "neural/tensor.glsl"
+
+layout(local_size_x = 8, local_size_y = 8) in;
+
+layout(constant_id = 0) const uint IN0_CHANNELS = 16;
+layout(constant_id = 1) const uint IN1_CHANNELS = 0;
+layout(constant_id = 2) const uint OUT_CHANNELS = 16;
+layout(constant_id = 3) const uint OUT_PER_THREAD = 16;
+layout(constant_id = 4) const bool IN0_UPSAMPLED = false;
+layout(constant_id = 5) const bool RELU = true;
+
+const uint OUT4 = OUT_PER_THREAD / 4;
+
+layout(set = 0, binding = 0, std430) readonly buffer In0 { uvec2 v[]; } b_in0;
+layout(set = 0, binding = 1, std430) readonly buffer In1 { uvec2 v[]; } b_in1;
+layout(set = 0, binding = 2, std430) readonly buffer Weights { vec4 v[]; } b_weights;
+layout(set = 0, binding = 3, std430) writeonly buffer Out { uvec2 v[]; } b_out;
+
+layout(push_constant) uniform Params {
+    uint width;          // output (and second input) size
+    uint height;
+    uint in0_width;      // first input size (half the output's when upsampled, rounded up)
+    uint in0_height;
+    uint weight_offset;  // this layer's first vec4 in b_weights
+} params;
+
+void main() {
+    ivec2 pixel = ivec2(gl_GlobalInvocationID.xy);
+    ivec2 size = ivec2(params.width, params.height);
+    if (any(greaterThanEqual(pixel, size))) {
+        return;
+    }
+    const uint cin = IN0_CHANNELS + IN1_CHANNELS;
+    const uint out4_all = OUT_CHANNELS / 4u;
+    uint group = gl_GlobalInvocationID.z * OUT4;
+    vec4 acc[OUT4];
+    uint bias = params.weight_offset + 9u * cin * out4_all + group;
+    for (uint o = 0u; o < OUT4; ++o) {
+        acc[o] = b_weights.v[bias + o];
+    }
+    for (int tap = 0; tap < 9; ++tap) {
+        ivec2 q = pixel + ivec2(tap % 3 - 1, tap / 3 - 1);
+        if (any(lessThan(q, ivec2(0))) || any(greaterThanEqual(q, size))) {
+            continue;
+        }
+        ivec2 q0 = IN0_UPSAMPLED ? min(q >> 1, ivec2(params.in0_width, params.in0_height) - 1) : q;
+        uint w_tap = params.weight_offset + uint(tap) * cin * out4_all + group;
+        uint at0 = tensor_index(q0, params.in0_width, IN0_CHANNELS / 4u, 0u);
+        for (uint c4 = 0u; c4 < IN0_CHANNELS / 4u; ++c4) {
+            vec4 x = unpack_channels(b_in0.v[at0 + c4]);
+            for (uint k = 0u; k < 4u; ++k) {
+                uint w = w_tap + (c4 * 4u + k) * out4_all;
+                for (uint o = 0u; o < OUT4; ++o) {
+                    acc[o] += x[k] * b_weights.v[w + o];
+                }
+            }
+        }
+        if (IN1_CHANNELS > 0u) {
+            uint at1 = tensor_index(q, params.width, IN1_CHANNELS / 4u, 0u);
+            for (uint c4 = 0u; c4 < IN1_CHANNELS / 4u; ++c4) {
+                vec4 x = unpack_channels(b_in1.v[at1 + c4]);
+                for (uint k = 0u; k < 4u; ++k) {
+                    uint w = w_tap + (IN0_CHANNELS + c4 * 4u + k) * out4_all;
+                    for (uint o = 0u; o < OUT4; ++o) {
+                        acc[o] += x[k] * b_weights.v[w + o];
+                    }
+                }
+            }
+        }
+    }
+    uint at = tensor_index(pixel, params.width, out4_all, group);
+    for (uint o = 0u; o < OUT4; ++o) {
+        b_out.v[at + o] = pack_channels(RELU ? max(acc[o], vec4(0.0)) : acc[o]);
+    }
+}

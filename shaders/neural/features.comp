@@ -1,0 +1,91 @@
+#version 460
+// The learned denoiser's 16 input channels (training/model.py, `features`): log radiance, albedo,
+// normal, roughness, log depth, last frame's output reprojected by the motion vectors where the
+// surface is the same (`warp_history`), the reprojection mask and a zero. Also writes this frame's
+// surface (depth, normal) for the next frame's reprojection.
+#include "common/image_coords.glsl"
+#include "neural/record.glsl"
+#include "neural/tensor.glsl"
+
+layout(local_size_x = 8, local_size_y = 8) in;
+
+layout(set = 0, binding = 0, std430) readonly buffer Record { float v[]; } b_record;
+layout(set = 0, binding = 1, rgba16f) uniform readonly image2D u_prev_output;
+layout(set = 0, binding = 2, rgba32f) uniform readonly image2D u_prev_surface;
+layout(set = 0, binding = 3, rgba32f) uniform writeonly image2D u_surface;
+layout(set = 0, binding = 4, std430) writeonly buffer Features { uvec2 v[]; } b_features;
+
+layout(push_constant) uniform Params {
+    uint width;
+    uint height;
+    uint history_valid;  // 0 on the first frame and after a reset: nothing is reprojected
+} params;
+
+const float DEPTH_TOLERANCE = 0.05;
+const float NORMAL_COS = 0.9;
+const float MIN_WEIGHT = 0.01;
+
+uvec2 size() {
+    return uvec2(params.width, params.height);
+}
+
+float channel(uint c, ivec2 pixel) {
+    return b_record.v[record_index(c, pixel, size())];
+}
+
+vec3 channel3(uint c, ivec2 pixel) {
+    return vec3(channel(c, pixel), channel(c + 1u, pixel), channel(c + 2u, pixel));
+}
+
+void main() {
+    ivec2 pixel = ivec2(gl_GlobalInvocationID.xy);
+    if (!pixel_in_bounds(pixel, ivec2(size()))) {
+        return;
+    }
+    vec3 normal = channel3(RECORD_NORMAL, pixel);
+    float depth = channel(RECORD_DEPTH, pixel);
+    vec3 motion = channel3(RECORD_MOTION, pixel);
+    imageStore(u_surface, pixel, vec4(depth, normal));
+
+    vec3 warped = vec3(0.0);
+    float weight_sum = 0.0;
+    if (params.history_valid != 0u) {
+        vec2 prev_pos = vec2(pixel) + motion.xy;
+        vec2 base = floor(prev_pos);
+        vec2 f = prev_pos - base;
+        bool here_sky = depth <= 0.0;
+        for (int i = 0; i < 4; ++i) {
+            ivec2 d = ivec2(i & 1, i >> 1);
+            vec2 q = base + vec2(d);
+            float w = (d.x == 1 ? f.x : 1.0 - f.x) * (d.y == 1 ? f.y : 1.0 - f.y);
+            if (q.x < 0.0 || q.y < 0.0 || q.x >= float(params.width) || q.y >= float(params.height)) {
+                continue;
+            }
+            vec4 s = imageLoad(u_prev_surface, ivec2(q));
+            bool q_sky = s.x <= 0.0;
+            bool same = abs(s.x - motion.z) <= DEPTH_TOLERANCE * motion.z && dot(s.yzw, normal) > NORMAL_COS;
+            bool valid = here_sky ? q_sky : (!q_sky && same);
+            if (valid) {
+                warped += w * imageLoad(u_prev_output, ivec2(q)).rgb;
+                weight_sum += w;
+            }
+        }
+    }
+    float mask = 0.0;
+    if (weight_sum >= MIN_WEIGHT) {
+        warped /= max(weight_sum, 1e-8);
+        mask = 1.0;
+    } else {
+        warped = vec3(0.0);
+    }
+    vec3 demodulated = max(channel3(RECORD_DEMODULATED, pixel), vec3(0.0));
+    vec3 albedo = channel3(RECORD_ALBEDO, pixel);
+    float roughness = channel(RECORD_ROUGHNESS, pixel);
+    vec3 log_radiance = log(vec3(1.0) + demodulated);
+    float log_depth = log(1.0 + max(depth, 0.0));
+    uint at = tensor_index(pixel, params.width, 4u, 0u);
+    b_features.v[at + 0u] = pack_channels(vec4(log_radiance, albedo.r));
+    b_features.v[at + 1u] = pack_channels(vec4(albedo.gb, normal.xy));
+    b_features.v[at + 2u] = pack_channels(vec4(normal.z, roughness, log_depth, warped.r));
+    b_features.v[at + 3u] = pack_channels(vec4(warped.gb, mask, 0.0));
+}

@@ -1,0 +1,51 @@
+"""Reads what `lucid dataset` writes: `index.json` and one safetensors file per camera-path
+sequence, holding `record` [T, RECORD_SIZE, H, W] and `reference` [T, 3, H, W] in float16."""
+
+import json
+from pathlib import Path
+
+import torch
+from safetensors.torch import load_file
+
+from model import RECORD_SIZE
+
+
+def load_split(root, split, device):
+    """The sequences of `split` ("train" or "validation") as a list of dicts with `record`,
+    `reference` (float16 on `device`) and `name`."""
+    root = Path(root)
+    index = json.loads((root / "index.json").read_text())
+    out = []
+    for entry in index["sequences"]:
+        if entry["split"] != split:
+            continue
+        tensors = load_file(str(root / entry["file"]))
+        record, reference = tensors["record"], tensors["reference"]
+        if record.shape[1] != RECORD_SIZE:
+            raise ValueError(f"{entry['file']}: record has {record.shape[1]} channels, expected {RECORD_SIZE}")
+        out.append({"name": entry["file"], "record": record.to(device), "reference": reference.to(device)})
+    if not out:
+        raise ValueError(f"{root}/index.json lists no '{split}' sequences")
+    return out
+
+
+def sample_batch(sequences, batch, frames, crop, generator):
+    """`batch` random windows of `frames` consecutive frames, each a random `crop` x `crop` tile of
+    one sequence, with a random exposure scale (radiance-like channels scaled together). Returns
+    float32 (records [B,T,C,H,W], references [B,T,3,H,W])."""
+    recs, refs = [], []
+    for _ in range(batch):
+        s = sequences[int(torch.randint(len(sequences), (1,), generator=generator))]
+        t_total, _, h, w = s["record"].shape
+        t0 = int(torch.randint(t_total - frames + 1, (1,), generator=generator))
+        y0 = int(torch.randint((h - crop) // 4 + 1, (1,), generator=generator)) * 4
+        x0 = int(torch.randint((w - crop) // 4 + 1, (1,), generator=generator)) * 4
+        rec = s["record"][t0 : t0 + frames, :, y0 : y0 + crop, x0 : x0 + crop].float()
+        ref = s["reference"][t0 : t0 + frames, :, y0 : y0 + crop, x0 : x0 + crop].float()
+        scale = float(torch.exp(torch.empty(1).uniform_(-1.4, 1.4, generator=generator)))
+        rec = rec.clone()
+        rec[:, 0:3] *= scale  # demodulated
+        rec[:, 6:9] *= scale  # emission
+        recs.append(rec)
+        refs.append(ref * scale)
+    return torch.stack(recs), torch.stack(refs)

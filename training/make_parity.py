@@ -1,0 +1,85 @@
+"""Writes the parity fixture `tests/references/neural_parity.safetensors`: two consecutive frames of
+per-pixel records and what `model.py` computes from them with the committed weights (half-precision
+storage emulated), which `tests/neural_parity.rs` checks the Vulkan inference against.
+
+    python3 make_parity.py --weights ../passes/src/neural/lucid-rae-v1.safetensors \
+        [--data DATASET_DIR] --out ../tests/references/neural_parity.safetensors
+
+With `--data`, the frames are a 32x24 crop of the first validation sequence's first two frames;
+without, a synthetic pair (a textured plane seen by a camera that moves by a sub-pixel offset, sky in a corner,
+and an object appearing in the second frame).
+Run it again whenever the weights change.
+"""
+
+import argparse
+import json
+from pathlib import Path
+
+import torch
+from safetensors.torch import load_file, save_file
+
+from model import LAYERS, RECORD_SIZE, RecurrentDenoiser
+
+W, H = 32, 24
+
+
+def synthetic():
+    g = torch.Generator().manual_seed(7)
+    rec = torch.zeros(2, RECORD_SIZE, H, W)
+    ys, xs = torch.meshgrid(torch.arange(H).float(), torch.arange(W).float(), indexing="ij")
+    shift = torch.tensor([0.35, -0.6])
+    for t in range(2):
+        u = xs + t * shift[0]
+        v = ys + t * shift[1]
+        albedo = torch.stack([0.5 + 0.4 * torch.sin(u * 0.7), 0.5 + 0.4 * torch.cos(v * 0.5), 0.6 + 0.0 * u])
+        rec[t, 0:3] = torch.empty(3, H, W).exponential_(1.0, generator=g) * (1.0 + 0.5 * torch.sin(u * 0.2))
+        rec[t, 3:6] = albedo
+        rec[t, 6:9] = torch.where((u > 20) & (v < 6), 4.0, 0.0).expand(3, H, W)
+        n = torch.stack([0.1 * torch.sin(u * 0.3), torch.ones_like(u), 0.1 * torch.cos(v * 0.3)])
+        rec[t, 9:12] = n / n.norm(dim=0, keepdim=True)
+        rec[t, 12] = 0.3 + 0.2 * torch.sin(u * 0.1)
+        depth = 3.0 + 0.05 * v
+        depth[:3, :5] = 0.0  # sky
+        if t == 1:
+            depth[12:20, 8:16] = 1.5  # an object that last frame did not see here: disoccluded
+        rec[t, 13] = depth
+        rec[t, 14] = -shift[0]
+        rec[t, 15] = -shift[1]
+        rec[t, 16] = torch.where(depth > 0, depth + 0.01, 0.0)
+    return rec
+
+
+def from_dataset(root):
+    index = json.loads((Path(root) / "index.json").read_text())
+    entry = next(e for e in index["sequences"] if e["split"] == "validation")
+    rec = load_file(str(Path(root) / entry["file"]))["record"][:2].float()
+    _, _, h, w = rec.shape
+    y0, x0 = (h - H) // 2 // 4 * 4, (w - W) // 2 // 4 * 4
+    return rec[:, :, y0 : y0 + H, x0 : x0 + W].contiguous()
+
+
+def main():
+    ap = argparse.ArgumentParser()
+    ap.add_argument("--weights", required=True)
+    ap.add_argument("--data")
+    ap.add_argument("--out", required=True)
+    args = ap.parse_args()
+    model = RecurrentDenoiser()
+    tensors = load_file(args.weights)
+    with torch.no_grad():
+        for name, _, _ in LAYERS:
+            model.convs[name].weight.copy_(tensors[f"{name}.weight"])
+            model.convs[name].bias.copy_(tensors[f"{name}.bias"])
+        record = from_dataset(args.data) if args.data else synthetic()
+        expected = model(record.unsqueeze(0), fp16_storage=True)[0]
+    source = args.data or "synthetic"
+    save_file(
+        {"record": record.contiguous(), "expected": expected.contiguous()},
+        args.out,
+        metadata={"weights": Path(args.weights).name, "source": source},
+    )
+    print(f"{args.out}: {W}x{H}, 2 frames, from {source}")
+
+
+if __name__ == "__main__":
+    main()

@@ -1,0 +1,196 @@
+"""Lucid's recurrent denoising autoencoder (format `lucid-rae-v1`), the PyTorch twin of the Vulkan
+inference in `passes/src/neural/` and `shaders/neural/`.
+
+Everything the shaders compute is defined here, in the same order and with the same arithmetic:
+the input features (with last frame's output warped by the motion vectors and masked where
+reprojection fails), the U-Net of 3x3 convolutions, and the output (a blend of the network's
+prediction with the warped history, re-modulated by albedo plus emission). With
+`fp16_storage=True` every tensor the shaders store in half precision is rounded to it here too,
+so the parity test can compare tightly.
+
+Per-pixel inputs (the "record", channels first, one frame): see `RECORD_CHANNELS`.
+"""
+
+import torch
+import torch.nn as nn
+import torch.nn.functional as F
+
+FORMAT = "lucid-rae-v1"
+
+# The per-pixel inputs of a frame, in the order the dataset and the parity fixture store them.
+RECORD_CHANNELS = {
+    "demodulated": 3,  # (radiance - first-hit emission) / first-hit albedo, this frame's samples
+    "albedo": 3,  # first-hit demodulation albedo
+    "emission": 3,  # first-hit emission towards the camera
+    "normal": 3,  # G-buffer world normal (facing the camera)
+    "roughness": 1,  # G-buffer GGX alpha (1 for diffuse)
+    "depth": 1,  # G-buffer view depth (0 where the sky is seen)
+    "motion": 3,  # offset to last frame's pixel (xy), last frame's depth of the point (z)
+}
+RECORD_SIZE = sum(RECORD_CHANNELS.values())
+
+FEATURES = 16
+# (name, input channels, output channels): the convolutions, in execution order.
+LAYERS = [
+    ("enc0", FEATURES, 32),
+    ("enc1", 32, 32),
+    ("enc2", 32, 64),
+    ("bottleneck", 64, 64),
+    ("dec1", 64 + 32, 32),
+    ("dec0", 32 + 32, 32),
+    ("out", 32, 4),
+]
+
+# Reprojection validity, as in SVGF's temporal pass (without its depth-slope term).
+DEPTH_TOLERANCE = 0.05
+NORMAL_COS = 0.9
+MIN_WEIGHT = 0.01
+
+
+def split_record(record):
+    """Splits a [..., RECORD_SIZE, H, W] tensor into a dict of named channel groups."""
+    out, c = {}, 0
+    for name, n in RECORD_CHANNELS.items():
+        out[name] = record[..., c : c + n, :, :]
+        c += n
+    return out
+
+
+def half(x, enabled):
+    """Rounds to half precision (what a half-precision store does) when `enabled`."""
+    return x.half().float() if enabled else x
+
+
+def warp_history(history, prev_surface, motion, normal, depth):
+    """Bilinear reprojection of last frame's `history` [B,C,H,W] to this frame's pixels, each of
+    the four taps kept only where last frame saw the same surface (depth within 5% of the depth
+    the motion vectors expect, normals within about 25 degrees; sky only to sky). Returns the
+    warped history and the validity mask [B,1,H,W] (1 where the taps' weights sum to at least
+    0.01)."""
+    b, _, h, w = history.shape
+    ys, xs = torch.meshgrid(
+        torch.arange(h, device=history.device, dtype=torch.float32),
+        torch.arange(w, device=history.device, dtype=torch.float32),
+        indexing="ij",
+    )
+    px = xs + motion[:, 0]
+    py = ys + motion[:, 1]
+    bx = torch.floor(px)
+    by = torch.floor(py)
+    fx = px - bx
+    fy = py - by
+    expected = motion[:, 2]
+    here_sky = depth[:, 0] <= 0.0
+    prev_depth = prev_surface[:, 0:1]
+    prev_normal = prev_surface[:, 1:4]
+    acc = torch.zeros_like(history)
+    wsum = torch.zeros_like(expected)
+    for dx, dy in ((0, 0), (1, 0), (0, 1), (1, 1)):
+        qx = bx + dx
+        qy = by + dy
+        wgt = (fx if dx else 1.0 - fx) * (fy if dy else 1.0 - fy)
+        inside = (qx >= 0) & (qx < w) & (qy >= 0) & (qy < h)
+        ix = qx.clamp(0, w - 1).long()
+        iy = qy.clamp(0, h - 1).long()
+        flat = (iy * w + ix).view(b, 1, -1)
+
+        def gather(t):
+            return torch.gather(t.reshape(b, t.shape[1], -1), 2, flat.expand(-1, t.shape[1], -1)).view(
+                b, t.shape[1], h, w
+            )
+
+        q_depth = gather(prev_depth)[:, 0]
+        q_normal = gather(prev_normal)
+        q_hist = gather(history)
+        q_sky = q_depth <= 0.0
+        same = (torch.abs(q_depth - expected) <= DEPTH_TOLERANCE * expected) & (
+            (q_normal * normal).sum(1) > NORMAL_COS
+        )
+        valid = inside & torch.where(here_sky, q_sky, (~q_sky) & same)
+        wv = torch.where(valid, wgt, torch.zeros_like(wgt))
+        acc = acc + wv.unsqueeze(1) * q_hist
+        wsum = wsum + wv
+    ok = wsum >= MIN_WEIGHT
+    warped = torch.where(ok.unsqueeze(1), acc / wsum.clamp_min(1e-8).unsqueeze(1), torch.zeros_like(acc))
+    return warped, ok.float().unsqueeze(1)
+
+
+def features(rec, warped, mask):
+    """The network's 16 input channels for one frame."""
+    zero = torch.zeros_like(mask)
+    return torch.cat(
+        [
+            torch.log1p(rec["demodulated"].clamp_min(0.0)),
+            rec["albedo"],
+            rec["normal"],
+            rec["roughness"],
+            torch.log1p(rec["depth"].clamp_min(0.0)),
+            warped,
+            mask,
+            zero,
+        ],
+        dim=1,
+    )
+
+
+def pool(x):
+    """2x2 average (sizes divisible by 4 in training; the shader clamps odd edges)."""
+    return F.avg_pool2d(x, 2)
+
+
+def up(x):
+    """Nearest-neighbour 2x upsampling."""
+    return F.interpolate(x, scale_factor=2, mode="nearest")
+
+
+class RecurrentDenoiser(nn.Module):
+    """The U-Net of `LAYERS` and the recurrent output blend."""
+
+    def __init__(self):
+        super().__init__()
+        self.convs = nn.ModuleDict({name: nn.Conv2d(cin, cout, 3, padding=1) for name, cin, cout in LAYERS})
+
+    def step(self, record, state, fp16_storage=False):
+        """One frame. `record` [B,RECORD_SIZE,H,W]; `state` None (no history) or the dict returned
+        by the previous step. Returns (radiance [B,3,H,W], new state)."""
+        rec = split_record(record)
+        if state is None:
+            warped = torch.zeros_like(rec["demodulated"])
+            mask = torch.zeros_like(rec["depth"])
+        else:
+            warped, mask = warp_history(state["output"], state["surface"], rec["motion"], rec["normal"], rec["depth"])
+        x = half(features(rec, warped, mask), fp16_storage)
+        warped, mask = x[:, 11:14], x[:, 14:15]  # as the output pass reads them: stored
+        c = self.convs
+        r = lambda t: half(F.relu(t), fp16_storage)  # noqa: E731
+        e0 = r(c["enc0"](x))
+        e1 = r(c["enc1"](half(pool(e0), fp16_storage)))
+        e2 = r(c["enc2"](half(pool(e1), fp16_storage)))
+        b = r(c["bottleneck"](e2))
+        d1 = r(c["dec1"](torch.cat([up(b), e1], 1)))
+        d0 = r(c["dec0"](torch.cat([up(d1), e0], 1)))
+        o = half(c["out"](d0), fp16_storage)
+        blend = mask * torch.sigmoid(o[:, 3:4])
+        log_out = (o[:, 0:3] * (1.0 - blend) + warped * blend).clamp_min(0.0)
+        log_out = half(log_out, fp16_storage)
+        radiance = torch.expm1(log_out) * rec["albedo"] + rec["emission"]
+        surface = torch.cat([rec["depth"], rec["normal"]], 1)
+        return radiance, {"output": log_out, "surface": surface}
+
+    def forward(self, records, fp16_storage=False):
+        """A sequence [B,T,RECORD_SIZE,H,W] from no history; returns [B,T,3,H,W]."""
+        state, outs = None, []
+        for t in range(records.shape[1]):
+            y, state = self.step(records[:, t], state, fp16_storage)
+            outs.append(y)
+        return torch.stack(outs, 1)
+
+
+def export_tensors(model):
+    """The weights as the Vulkan inference loads them: `<layer>.weight` [out,in,3,3] and
+    `<layer>.bias` [out], float32."""
+    return {
+        f"{name}.{kind}": getattr(model.convs[name], kind).detach().float().cpu().contiguous()
+        for name, _, _ in LAYERS
+        for kind in ("weight", "bias")
+    }
