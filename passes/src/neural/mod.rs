@@ -28,13 +28,50 @@ pub use weights::{Layer, NetworkWeights, WeightsError, BUILTIN, FEATURES, FORMAT
 use crate::gbuffer::GBuffer;
 use crate::shaders::neural::{CONV, FEATURES as FEATURES_SHADER, OUTPUT, POOL, RECORD};
 use crate::transport::SurfaceImages;
+use lucid_engine::capture::ImageData;
 use lucid_engine::graph::{Access, BufferHandle, ImageHandle, RenderGraph};
 use lucid_engine::memory::{Buffer, ImageDesc};
-use lucid_engine::{Context, Result};
+use lucid_engine::{Context, EngineError, Result};
 use std::sync::Arc;
 
 /// Channels of a pixel's record (`RECORD_SIZE` in `shaders/neural/record.glsl`).
 pub const RECORD_CHANNELS: u32 = 17;
+
+/// The first channel of the first hit's albedo in a record (`RECORD_ALBEDO` in the shader).
+pub const RECORD_ALBEDO: u32 = 3;
+/// The first channel of the G-buffer normal in a record (`RECORD_NORMAL` in the shader).
+pub const RECORD_NORMAL: u32 = 9;
+
+/// Three channels of a read-back record from `first` on, as an RGB image (alpha 1): e.g. the
+/// albedo and normal images that image denoisers take besides the radiance.
+pub fn record_image(record: &[u8], (width, height): (u32, u32), first: u32) -> Result<ImageData> {
+    let plane = width as usize * height as usize;
+    if record.len() as u64 != record_bytes(width, height) || first + 3 > RECORD_CHANNELS {
+        return Err(EngineError::InvalidArgument(format!(
+            "a {width}x{height} record has {} bytes and {RECORD_CHANNELS} channels, not {} bytes and channel {first}..{}",
+            record_bytes(width, height),
+            record.len(),
+            first + 3
+        )));
+    }
+    let value = |c: usize, i: usize| {
+        let at = (c * plane + i) * 4;
+        f32::from_le_bytes([record[at], record[at + 1], record[at + 2], record[at + 3]])
+    };
+    let first = first as usize;
+    let pixels = (0..plane)
+        .map(|i| {
+            [
+                value(first, i),
+                value(first + 1, i),
+                value(first + 2, i),
+                1.0,
+            ]
+        })
+        .collect();
+    ImageData::from_pixels(width, height, pixels)
+        .map_err(|e| EngineError::InvalidArgument(e.to_string()))
+}
 
 /// Bytes of the record buffer of a `width` x `height` frame.
 pub fn record_bytes(width: u32, height: u32) -> u64 {

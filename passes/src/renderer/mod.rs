@@ -23,7 +23,7 @@ use crate::frame_constants::{self, FrameConstants};
 use crate::gbuffer::{self, GBuffer};
 use crate::scene_buffers::{specialization, SceneBuffers, SceneHandles};
 use crate::transport::{self, Replay, ReplayParams};
-use crate::{accumulate, bdpt, path_trace, svgf, tonemap};
+use crate::{accumulate, bdpt, neural, path_trace, svgf, tonemap};
 use lucid_engine::bvh::Bvh;
 use lucid_engine::capture::ImageData;
 use lucid_engine::graph::{BufferHandle, Executor, FrameId, ImageHandle, ReadbackId, RenderGraph};
@@ -42,6 +42,8 @@ pub struct FrameImages {
     pub demodulated: Option<ImageHandle>,
     /// SVGF's temporal gradients ([`svgf::Denoised::gradient`]); `None` unless temporal SVGF ran.
     pub gradient: Option<ImageHandle>,
+    /// The learned denoiser's per-pixel inputs ([`neural::add_record`]); `None` unless it ran.
+    pub neural_record: Option<BufferHandle>,
     /// Accumulated (or this frame's) HDR radiance.
     pub hdr: ImageHandle,
     /// Tone-mapped sRGB RGBA8.
@@ -88,7 +90,11 @@ pub struct Renderer {
     pending_stats: Option<(FrameId, ReadbackId)>,
     stats: FrameStats,
     svgf_schedule: svgf::Schedule,
+    network: neural::Network,
 }
+
+/// The history prefix of the renderer's learned denoiser.
+const NEURAL_KEY: &str = "neural";
 
 impl Renderer {
     /// Validates `scene`, builds its BVH, uploads it and prepares rendering at `width`×`height`.
@@ -110,6 +116,7 @@ impl Renderer {
         let buffers = SceneBuffers::upload(ctx, &gpu, &triangle_ids)?;
         let spec = specialization(&gpu);
         let library = ShaderLibrary::new(ctx, None)?;
+        let network = neural::Network::new(ctx, &neural::NetworkWeights::builtin())?;
         let camera = scene.camera;
         Ok(Self {
             ctx: ctx.clone(),
@@ -134,6 +141,7 @@ impl Renderer {
             pending_stats: None,
             stats: FrameStats::default(),
             svgf_schedule: svgf::Schedule::default(),
+            network,
         })
     }
 
@@ -307,6 +315,14 @@ impl Renderer {
         Ok(())
     }
 
+    /// Replaces the learned denoiser's weights (e.g. `NetworkWeights::load` of a file that
+    /// `training/train.py` wrote); its history restarts.
+    pub fn set_neural_weights(&mut self, weights: &neural::NetworkWeights) -> Result<()> {
+        self.network = neural::Network::new(&self.ctx, weights)?;
+        self.scene_changed = true;
+        Ok(())
+    }
+
     /// Frames averaged into the current output.
     pub fn accumulated_frames(&self) -> u32 {
         self.accumulated
@@ -377,9 +393,16 @@ impl Renderer {
                 accumulated,
                 spp,
             )),
+            Denoiser::Neural => None,
         };
+        let neural = self.settings.denoiser == Denoiser::Neural;
+        if neural && scene_changed {
+            // The recurrent state describes the old scene: start afresh.
+            self.executor
+                .reset_history_key(&format!("{NEURAL_KEY}.output"));
+        }
         // The denoiser's images are traced only for a denoiser.
-        let surface = svgf_apply.is_some();
+        let surface = svgf_apply.is_some() || neural;
         let replay = ReplayParams {
             stratum: match svgf_apply {
                 Some(apply) if self.settings.algorithm.replays_paths() => {
@@ -395,6 +418,10 @@ impl Renderer {
             accumulate::add(g, traced.radiance, w, h, accumulated)
         } else {
             traced.radiance
+        };
+        let neural_record = match traced.surface {
+            Some(surface) if neural => Some(neural::add_record(g, &surface, &gbuffer, (w, h))),
+            _ => None,
         };
         let (hdr, gradient) = match (svgf_apply, traced.surface) {
             (Some(apply), Some(surface)) => {
@@ -412,7 +439,13 @@ impl Renderer {
                 let denoised = svgf::add(g, &inputs, &svgf_params, apply);
                 (denoised.image, denoised.gradient)
             }
-            _ => (hdr, None),
+            _ => match neural_record {
+                Some(record) => (
+                    neural::add_neural(g, &self.network, record, (w, h), NEURAL_KEY),
+                    None,
+                ),
+                None => (hdr, None),
+            },
         };
         let ldr = tonemap::add(g, hdr, w, h, self.settings.display);
         let stats = g.readback(traced.stats);
@@ -430,6 +463,7 @@ impl Renderer {
                 radiance: traced.radiance,
                 demodulated: traced.surface.map(|s| s.demodulated),
                 gradient,
+                neural_record,
                 hdr,
                 ldr,
                 gbuffer,

@@ -46,6 +46,8 @@ pub enum Denoiser {
     None,
     /// SVGF, in the mode of [`SvgfParams::mode`].
     Svgf,
+    /// The learned recurrent denoiser ([`crate::neural`]).
+    Neural,
 }
 
 /// Render settings. Changing anything but exposure and tone curve restarts accumulation.

@@ -64,17 +64,20 @@ pub enum Denoiser {
     /// Spatiotemporal variance-guided filtering.
     #[default]
     Svgf,
+    /// The learned recurrent denoiser.
+    Neural,
 }
 
 impl Denoiser {
     /// Every denoiser, in the order the panel lists them.
-    pub const ALL: [Self; 2] = [Self::None, Self::Svgf];
+    pub const ALL: [Self; 3] = [Self::None, Self::Svgf, Self::Neural];
 
     /// The name shown in the panel.
     pub fn label(self) -> &'static str {
         match self {
             Self::None => "none",
             Self::Svgf => "SVGF",
+            Self::Neural => "learned",
         }
     }
 }

@@ -29,6 +29,10 @@ pub fn run(args: &EvaluateArgs) -> anyhow::Result<()> {
     evaluate_folder(&args.dir, &display)
 }
 
+/// Methods whose frames other programs write into a sequence folder, evaluated when present:
+/// `oidn`, Intel Open Image Denoise run per frame (`training/oidn_baseline.py`).
+pub const EXTERNAL_METHODS: [&str; 1] = ["oidn"];
+
 /// Reads one metric from a frame's metrics.
 type Metric = fn(&FrameMetrics) -> f64;
 
@@ -46,7 +50,7 @@ const COLUMNS: [(&str, Metric); 5] = [
 pub fn evaluate_folder(dir: &Path, display: &PngEncoding) -> anyhow::Result<()> {
     let reference = load_frames(&dir.join("reference"))?;
     let mut results = Vec::new();
-    for method in METHODS {
+    for &method in METHODS.iter().chain(&EXTERNAL_METHODS) {
         let folder = dir.join(method);
         if folder.is_dir() {
             let frames = load_frames(&folder)?;

@@ -1,6 +1,7 @@
 //! The `lucid` subcommands.
 
 mod bench;
+mod dataset;
 mod evaluate;
 mod info;
 mod pipeline_stats;
@@ -42,6 +43,8 @@ enum Command {
     Sequence(sequence::SequenceArgs),
     /// Metrics of rendered sequences against their reference, as CSV and an SVG plot.
     Evaluate(evaluate::EvaluateArgs),
+    /// Render the learned denoiser's training data (inputs and references along camera paths).
+    Dataset(dataset::DatasetArgs),
 }
 
 /// Runs the parsed command.
@@ -60,5 +63,6 @@ pub fn run(cli: Cli) -> anyhow::Result<()> {
         Command::Bench(args) => bench::run(&args),
         Command::Sequence(args) => sequence::run(&args),
         Command::Evaluate(args) => evaluate::run(&args),
+        Command::Dataset(args) => dataset::run(&args),
     }
 }

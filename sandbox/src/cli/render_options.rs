@@ -21,6 +21,8 @@ pub enum DenoiseArg {
     None,
     /// SVGF (temporal, with A-SVGF gradients).
     Svgf,
+    /// The learned recurrent denoiser.
+    Neural,
 }
 
 /// The tone curve on the command line.
@@ -82,6 +84,7 @@ impl RenderOptions {
             denoiser: match self.denoise {
                 DenoiseArg::None => Denoiser::None,
                 DenoiseArg::Svgf => Denoiser::Svgf,
+                DenoiseArg::Neural => Denoiser::Neural,
             },
             ..Settings::default()
         }

@@ -8,8 +8,10 @@ use super::scene_source;
 use anyhow::Context as _;
 use clap::Args;
 use lucid_engine::capture::{self, ExrPrecision, ImageData};
+use lucid_engine::graph::RenderGraph;
 use lucid_engine::scene::{Camera, Scene};
 use lucid_engine::{Context, ContextDesc};
+use lucid_passes::neural::{record_image, RECORD_ALBEDO, RECORD_NORMAL};
 use lucid_passes::renderer::{Denoiser, Renderer, Settings};
 use lucid_passes::svgf::{SvgfMode, SvgfParams};
 use std::path::{Path, PathBuf};
@@ -28,14 +30,15 @@ pub struct SequenceArgs {
     /// Samples per pixel of each reference frame.
     #[arg(long, default_value_t = 1024, value_parser = clap::value_parser!(u32).range(1..))]
     reference_spp: u32,
-    /// Output folder: `<method>/NNNN.exr` frames, `metrics.csv` and `metrics.svg`.
+    /// Output folder: `<method>/NNNN.exr` frames, first-hit `albedo/` and `normal/` frames,
+    /// `metrics.csv` and `metrics.svg`.
     #[arg(long, default_value = "sequence")]
     out: PathBuf,
 }
 
 /// The sequences rendered besides the reference: the noisy input and each denoiser, at `--spp`
 /// samples per pixel (1 by default).
-pub const METHODS: [&str; 3] = ["none", "spatial", "svgf"];
+pub const METHODS: [&str; 4] = ["none", "spatial", "svgf", "neural"];
 
 /// Samples per pixel per frame of the reference renders (more are accumulated over frames).
 const REFERENCE_SPP_PER_FRAME: u32 = 16;
@@ -84,6 +87,10 @@ pub fn run(args: &SequenceArgs) -> anyhow::Result<()> {
                 svgf: svgf(SvgfMode::Temporal),
                 ..base
             },
+            "neural" => Settings {
+                denoiser: Denoiser::Neural,
+                ..base
+            },
             _ => Settings {
                 denoiser: Denoiser::None,
                 ..base
@@ -91,6 +98,7 @@ pub fn run(args: &SequenceArgs) -> anyhow::Result<()> {
         };
         render(&ctx, &scene, args, &cameras, method, settings, 1)?;
     }
+    render_aux(&ctx, &scene, args, &cameras, base)?;
     evaluate::evaluate_folder(&args.out, &args.options.display())
 }
 
@@ -121,6 +129,47 @@ fn render(
         progress.inc();
     }
     progress.finish();
+    renderer.finish()?;
+    Ok(())
+}
+
+/// Writes each frame's first-hit albedo and normal (`albedo/NNNN.exr`, `normal/NNNN.exr`), which
+/// image denoisers run per frame take besides the noisy radiance (`training/oidn_baseline.py`).
+fn render_aux(
+    ctx: &Context,
+    scene: &Scene,
+    args: &SequenceArgs,
+    cameras: &[Camera],
+    base: Settings,
+) -> anyhow::Result<()> {
+    let size = (args.options.size.width, args.options.size.height);
+    let settings = Settings {
+        denoiser: Denoiser::Neural,
+        ..base
+    };
+    let mut renderer = Renderer::new(ctx, scene.clone(), size.0, size.1, settings)?;
+    let folders = [("albedo", RECORD_ALBEDO), ("normal", RECORD_NORMAL)];
+    for (name, _) in folders {
+        let folder = args.out.join(name);
+        std::fs::create_dir_all(&folder)
+            .with_context(|| format!("creating {}", folder.display()))?;
+    }
+    for (i, &camera) in cameras.iter().enumerate() {
+        renderer.set_camera(camera);
+        let mut g = RenderGraph::new();
+        let (images, stats) = renderer.add_frame(&mut g);
+        let record = images
+            .neural_record
+            .context("the first-hit record was not traced")?;
+        let readback = g.readback(record);
+        let frame = renderer.executor_mut().execute(g.compile()?)?;
+        let outputs = renderer.executor_mut().wait(frame)?;
+        renderer.collect_stats(&outputs, stats)?;
+        for (name, channel) in folders {
+            let image = record_image(outputs.bytes(readback)?, size, channel)?;
+            save(&frame_path(&args.out.join(name), i), &image)?;
+        }
+    }
     renderer.finish()?;
     Ok(())
 }

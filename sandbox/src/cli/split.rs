@@ -73,6 +73,7 @@ pub fn denoiser(denoise: DenoiseArg) -> Denoiser {
     match denoise {
         DenoiseArg::None => Denoiser::None,
         DenoiseArg::Svgf => Denoiser::Svgf,
+        DenoiseArg::Neural => Denoiser::Neural,
     }
 }
 

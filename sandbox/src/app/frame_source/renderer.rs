@@ -52,6 +52,7 @@ pub fn renderer_settings(base: &Settings, panel: &RenderSettings) -> Settings {
         denoiser: match panel.denoiser {
             Denoiser::None => renderer::Denoiser::None,
             Denoiser::Svgf => renderer::Denoiser::Svgf,
+            Denoiser::Neural => renderer::Denoiser::Neural,
         },
         svgf: panel.svgf,
         ..*base

@@ -1,0 +1,286 @@
+//! `lucid dataset`: renders the learned denoiser's training data: camera-path sequences whose
+//! frames hold the denoiser's 1-sample inputs (the record of `lucid_passes::neural`: demodulated
+//! radiance, albedo, emission, normal, roughness, depth, motion) and a many-sample reference, one
+//! safetensors file per sequence plus `index.json` (read by `training/data.py`).
+//!
+//! Scenes: procedural rooms (`random-room-<seed>`) and the built-in scenes, except `classroom` and
+//! `caustics`, which stay held out for evaluation. Each sequence follows the scene's camera path
+//! from a random start at a random speed, with a random extra turn (slow pans to fast turns); a
+//! new sequence is a camera cut.
+
+use super::progress::Progress;
+use super::size::Size;
+use anyhow::{bail, Context as _};
+use clap::Args;
+use glam::Quat;
+use half::f16;
+use lucid_engine::graph::RenderGraph;
+use lucid_engine::scene::{builtin, Camera, Scene};
+use lucid_engine::{Context, ContextDesc};
+use lucid_passes::neural::RECORD_CHANNELS;
+use lucid_passes::renderer::{Denoiser, Renderer, Settings};
+use safetensors::tensor::{Dtype, TensorView};
+use std::collections::HashMap;
+use std::path::{Path, PathBuf};
+
+/// Built-in scenes that never enter training data (the denoiser is evaluated on them).
+pub const HELD_OUT: [&str; 2] = ["classroom", "caustics"];
+
+/// Built-in scenes that teach nothing a denoiser needs (`furnace`: one sphere in a uniform sky).
+const SKIPPED: [&str; 1] = ["furnace"];
+
+/// Samples per pixel per frame of the reference renders (more are accumulated over frames).
+const REFERENCE_SPP_PER_FRAME: u32 = 16;
+
+/// Options of `lucid dataset`.
+#[derive(Debug, Args)]
+pub struct DatasetArgs {
+    /// Output folder (created): `index.json` and `NNNN.safetensors` per sequence.
+    #[arg(long)]
+    out: PathBuf,
+    /// Frame size `WxH`, each a multiple of 4 (the network's two poolings).
+    #[arg(long, default_value = "256x256")]
+    size: Size,
+    /// Frames per sequence.
+    #[arg(long, default_value_t = 16, value_parser = clap::value_parser!(u32).range(2..=1024))]
+    frames: u32,
+    /// Procedural rooms in the training split.
+    #[arg(long, default_value_t = 24)]
+    rooms: u32,
+    /// Procedural rooms in the validation split (seeds after the training rooms').
+    #[arg(long, default_value_t = 4)]
+    validation_rooms: u32,
+    /// Sequences per scene.
+    #[arg(long, default_value_t = 2, value_parser = clap::value_parser!(u32).range(1..=64))]
+    sequences: u32,
+    /// Samples per pixel of each reference frame.
+    #[arg(long, default_value_t = 256, value_parser = clap::value_parser!(u32).range(1..=65536))]
+    reference_spp: u32,
+    /// Leave out the built-in scenes (procedural rooms only).
+    #[arg(long)]
+    no_builtin: bool,
+    /// Seed of the camera choices and of the room seeds.
+    #[arg(long, default_value_t = 0)]
+    seed: u64,
+}
+
+/// One sequence to render.
+struct Job {
+    scene: String,
+    split: &'static str,
+    start: f32,
+    speed: f32,
+    turn: f32,
+}
+
+/// Renders every sequence and writes the index.
+pub fn run(args: &DatasetArgs) -> anyhow::Result<()> {
+    let (w, h) = (args.size.width, args.size.height);
+    if w % 4 != 0 || h % 4 != 0 {
+        bail!("--size {w}x{h}: width and height must be multiples of 4");
+    }
+    std::fs::create_dir_all(&args.out)
+        .with_context(|| format!("creating {}", args.out.display()))?;
+    let jobs = plan(args);
+    let ctx = Context::new(&ContextDesc::from_env())?;
+    let progress = Progress::new(jobs.len() as u64 * u64::from(args.frames), "frames");
+    let mut index = Vec::new();
+    let mut loaded: Option<(String, Scene)> = None;
+    for (i, job) in jobs.iter().enumerate() {
+        if loaded.as_ref().is_none_or(|(name, _)| name != &job.scene) {
+            let scene =
+                builtin::build(&job.scene).with_context(|| format!("scene {}", job.scene))?;
+            loaded = Some((job.scene.clone(), scene));
+        }
+        let scene = &loaded.as_ref().expect("loaded above").1;
+        let cameras = cameras(scene, job, args.frames)?;
+        let file = format!("{i:04}.safetensors");
+        render_sequence(
+            &ctx,
+            scene,
+            &cameras,
+            args,
+            &args.out.join(&file),
+            &progress,
+        )?;
+        index.push(serde_json::json!({
+            "file": file,
+            "scene": job.scene,
+            "split": job.split,
+            "frames": args.frames,
+            "width": w,
+            "height": h,
+            "start": job.start,
+            "speed": job.speed,
+            "turn": job.turn,
+        }));
+    }
+    progress.finish();
+    let index = serde_json::json!({
+        "format": lucid_passes::neural::FORMAT,
+        "record_channels": RECORD_CHANNELS,
+        "reference_spp": args.reference_spp,
+        "held_out": HELD_OUT,
+        "sequences": index,
+    });
+    let path = args.out.join("index.json");
+    std::fs::write(&path, serde_json::to_string_pretty(&index)?)
+        .with_context(|| format!("writing {}", path.display()))?;
+    eprintln!("{} sequences in {}", jobs.len(), args.out.display());
+    Ok(())
+}
+
+/// A small deterministic generator for the camera choices (splitmix64).
+struct Random(u64);
+
+impl Random {
+    fn next(&mut self) -> f32 {
+        self.0 = self.0.wrapping_add(0x9e37_79b9_7f4a_7c15);
+        let mut z = self.0;
+        z = (z ^ (z >> 30)).wrapping_mul(0xbf58_476d_1ce4_e5b9);
+        z = (z ^ (z >> 27)).wrapping_mul(0x94d0_49bb_1331_11eb);
+        ((z ^ (z >> 31)) >> 40) as f32 / (1u64 << 24) as f32
+    }
+}
+
+/// The sequences: procedural rooms (training, then validation seeds) and the built-in scenes that
+/// are neither held out nor skipped, `--sequences` each, with random camera choices.
+fn plan(args: &DatasetArgs) -> Vec<Job> {
+    let mut random = Random(args.seed);
+    let room_seed = args.seed.wrapping_mul(1000);
+    let mut scenes: Vec<(String, &'static str)> = (0..args.rooms)
+        .map(|i| (format!("random-room-{}", room_seed + u64::from(i)), "train"))
+        .collect();
+    scenes.extend((0..args.validation_rooms).map(|i| {
+        let seed = room_seed + u64::from(args.rooms + i);
+        (format!("random-room-{seed}"), "validation")
+    }));
+    if !args.no_builtin {
+        scenes.extend(
+            builtin::names()
+                .iter()
+                .filter(|n| !HELD_OUT.contains(n) && !SKIPPED.contains(n))
+                .map(|n| (n.to_string(), "train")),
+        );
+    }
+    let mut jobs = Vec::new();
+    for (scene, split) in scenes {
+        for _ in 0..args.sequences {
+            let speed = [0.5, 1.0, 2.0, 4.0][(random.next() * 4.0) as usize % 4];
+            // Most sequences add no turn; some a slow pan, some a fast turn (up to 3 rad/s).
+            let turn = match (random.next() * 3.0) as u32 {
+                0 => 0.0,
+                1 => (random.next() - 0.5) * 0.8,
+                _ => (random.next() - 0.5) * 6.0,
+            };
+            jobs.push(Job {
+                scene: scene.clone(),
+                split,
+                start: random.next(),
+                speed,
+                turn,
+            });
+        }
+    }
+    jobs
+}
+
+/// The cameras of `job`'s frames at 30 frames per second.
+fn cameras(scene: &Scene, job: &Job, frames: u32) -> anyhow::Result<Vec<Camera>> {
+    let path = scene
+        .camera_path
+        .as_ref()
+        .with_context(|| format!("scene {} has no camera path", scene.name))?;
+    let duration = path.duration().max(1e-3);
+    Ok((0..frames)
+        .map(|i| {
+            let seconds = i as f32 / 30.0;
+            let t = (job.start * duration + seconds * job.speed) % duration;
+            let mut camera = path.sample(t);
+            camera.orientation = Quat::from_rotation_y(job.turn * seconds) * camera.orientation;
+            camera
+        })
+        .collect())
+}
+
+/// Renders one sequence: the 1-sample records through the learned denoiser's path and the
+/// references, written as float16 `record` [T, channels, H, W] and `reference` [T, 3, H, W].
+fn render_sequence(
+    ctx: &Context,
+    scene: &Scene,
+    cameras: &[Camera],
+    args: &DatasetArgs,
+    path: &Path,
+    progress: &Progress,
+) -> anyhow::Result<()> {
+    let (w, h) = (args.size.width, args.size.height);
+    let noisy_settings = Settings {
+        denoiser: Denoiser::Neural,
+        accumulate: false,
+        seed: (args.seed as u32) ^ 0x5eed,
+        ..Settings::default()
+    };
+    let reference_settings = Settings {
+        samples_per_pixel: args.reference_spp.min(REFERENCE_SPP_PER_FRAME),
+        accumulate: true,
+        ..Settings::default()
+    };
+    let mut noisy = Renderer::new(ctx, scene.clone(), w, h, noisy_settings)?;
+    let mut reference = Renderer::new(ctx, scene.clone(), w, h, reference_settings)?;
+    let reference_frames = args.reference_spp.div_ceil(REFERENCE_SPP_PER_FRAME);
+    let pixels = (w * h) as usize;
+    let mut records: Vec<u16> =
+        Vec::with_capacity(cameras.len() * pixels * RECORD_CHANNELS as usize);
+    let mut references: Vec<u16> = Vec::with_capacity(cameras.len() * pixels * 3);
+    for &camera in cameras {
+        noisy.set_camera(camera);
+        let mut g = RenderGraph::new();
+        let (images, stats) = noisy.add_frame(&mut g);
+        let record = images
+            .neural_record
+            .context("the learned denoiser's record was not traced")?;
+        let readback = g.readback(record);
+        let frame = noisy.executor_mut().execute(g.compile()?)?;
+        let outputs = noisy.executor_mut().wait(frame)?;
+        noisy.collect_stats(&outputs, stats)?;
+        let floats: &[f32] = bytemuck::try_cast_slice(outputs.bytes(readback)?)
+            .map_err(|e| anyhow::anyhow!("record readback: {e}"))?;
+        records.extend(floats.iter().map(|&v| f16::from_f32(v).to_bits()));
+
+        reference.set_camera(camera);
+        for _ in 1..reference_frames {
+            reference.render()?;
+        }
+        let image = reference.render_and_read()?;
+        for c in 0..3 {
+            references.extend(image.pixels.iter().map(|p| f16::from_f32(p[c]).to_bits()));
+        }
+        progress.inc();
+    }
+    noisy.finish()?;
+    reference.finish()?;
+    let t = cameras.len();
+    let record_bytes: &[u8] = bytemuck::cast_slice(&records);
+    let reference_bytes: &[u8] = bytemuck::cast_slice(&references);
+    let tensors = HashMap::from([
+        (
+            "record".to_string(),
+            TensorView::new(
+                Dtype::F16,
+                vec![t, RECORD_CHANNELS as usize, h as usize, w as usize],
+                record_bytes,
+            )?,
+        ),
+        (
+            "reference".to_string(),
+            TensorView::new(
+                Dtype::F16,
+                vec![t, 3, h as usize, w as usize],
+                reference_bytes,
+            )?,
+        ),
+    ]);
+    let metadata = HashMap::from([("scene".to_string(), scene.name.clone())]);
+    safetensors::serialize_to_file(&tensors, &Some(metadata), path)
+        .with_context(|| format!("writing {}", path.display()))
+}
