@@ -1,4 +1,6 @@
-//! `lucid`: Lucid's command line (headless renders, device info) and, later, the sandbox app.
+//! `lucid`: Lucid's command line: the interactive sandbox (`lucid_sandbox`, without a subcommand
+//! or with `view`), headless renders, benchmarks, sequences and their evaluation, scene and device
+//! listings.
 
 mod cli;
 

@@ -112,6 +112,23 @@ fn assert_clear_failure(args: &[&str], expect: &str) {
     assert!(!err.contains("panicked"), "{args:?} panicked: {err}");
 }
 
+/// `lucid` without a subcommand takes the options of `lucid view`: with no display to open the
+/// window on, it gets as far as saying so.
+#[test]
+fn the_sandbox_takes_its_options_without_a_subcommand() {
+    let shot = temp("shot.png");
+    let out = Command::new(env!("CARGO_BIN_EXE_lucid"))
+        .args(["--screenshot-after", "20", shot.to_str().unwrap()])
+        .env_remove("DISPLAY")
+        .env_remove("WAYLAND_DISPLAY")
+        .output()
+        .expect("run lucid");
+    let err = stderr(&out);
+    assert!(!out.status.success(), "no display: {err}");
+    assert!(err.contains("no display found"), "{err}");
+    assert!(!shot.exists());
+}
+
 #[test]
 fn bad_arguments_and_files_fail_with_a_clear_message() {
     assert_clear_failure(

@@ -1,4 +1,9 @@
 //! Display encoding of linear images: exposure, tone curve, sRGB OETF.
+//!
+//! The owner of the display transform: the curves ([`ToneCurve`]), the encoding ([`PngEncoding`])
+//! and their CPU implementation, the reference for PNG export and metrics. The GPU pass
+//! (`lucid_passes::tonemap`, used by headless renders and by the window through `lucid_present`)
+//! implements the same transform and is tested against this one.
 
 use super::{srgb_encode, ImageData};
 

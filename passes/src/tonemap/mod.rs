@@ -1,5 +1,9 @@
 //! Tone mapping: exposure, a filmic curve (ACES fit or AgX) and sRGB, into an 8-bit image
 //! (`shaders/tonemap/tonemap.comp`, identical to `lucid_engine::capture::PngEncoding`).
+//!
+//! The GPU side of the display transform, whose curves and CPU reference are owned by
+//! `lucid_engine::capture` ([`PngEncoding`]). Headless renders use it in RGBA order; the window
+//! (`lucid_present::PresentTarget`) uses it in the swapchain image's channel order.
 
 use crate::shaders::tonemap::TONEMAP;
 use lucid_engine::capture::{PngEncoding, ToneCurve};

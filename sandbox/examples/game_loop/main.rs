@@ -7,7 +7,7 @@
 //! cargo run --release -p lucid-sandbox --example game_loop -- --headless --frames 120 --out frames/
 //! ```
 //!
-//! In a window (presented through `lucid_sandbox::Presenter`), the simulation advances in fixed
+//! In a window (presented through `lucid_present::Presenter`), the simulation advances in fixed
 //! 1/60 s steps however fast frames render, and the title shows the frame rate; `--frames N` exits
 //! after N presented frames. `--headless` renders one frame per tick without a window and writes
 //! every `--every`-th frame as a PNG, printing the GPU time of each pass of the last frame.

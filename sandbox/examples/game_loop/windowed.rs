@@ -1,13 +1,14 @@
 //! The game in a window: winit's event loop, the simulation in fixed steps, one rendered frame per
-//! redraw, presented through `lucid_sandbox::Presenter`, and the frame rate in the title.
+//! redraw, presented through `lucid_present::Presenter`, and the frame rate in the title.
 
 use crate::game::{FixedStep, Game, TICKS_PER_SECOND};
 use crate::Options;
 use anyhow::Context as _;
+use lucid_engine::capture::{PngEncoding, ToneCurve};
 use lucid_engine::graph::RenderGraph;
 use lucid_engine::scene::builtin;
 use lucid_passes::renderer::Renderer;
-use lucid_sandbox::{DisplaySettings, Presenter};
+use lucid_present::Presenter;
 use std::sync::Arc;
 use std::time::{Duration, Instant};
 use winit::application::ApplicationHandler;
@@ -16,6 +17,11 @@ use winit::event::WindowEvent;
 use winit::event_loop::{ActiveEventLoop, ControlFlow, EventLoop};
 use winit::window::{Window, WindowId};
 
+/// The display transform: exposure unchanged, the ACES filmic curve.
+const DISPLAY: PngEncoding = PngEncoding {
+    exposure: 0.0,
+    tone: ToneCurve::Aces,
+};
 /// How often the title's frame rate is updated.
 const TITLE_INTERVAL: Duration = Duration::from_millis(500);
 /// How often a minimized window checks whether it has a size again.
@@ -29,7 +35,7 @@ pub fn run(options: &Options) -> anyhow::Result<String> {
 
 /// [`run`]; `any_thread` lets the event loop run off the main thread (the tests do).
 pub fn run_with(options: &Options, any_thread: bool) -> anyhow::Result<String> {
-    if !lucid_sandbox::display_available() {
+    if !lucid_present::display_available() {
         anyhow::bail!(
             "no display to open a window on; run with --headless (e.g. --headless --frames 60)"
         );
@@ -153,7 +159,7 @@ impl Running {
         self.renderer.resize(width, height)?;
         let mut graph = RenderGraph::new();
         let (images, _) = self.renderer.add_frame(&mut graph);
-        target.add_display(&mut graph, images.hdr, &DisplaySettings::default())?;
+        target.add_display(&mut graph, images.hdr, DISPLAY);
         let compiled = graph.compile()?;
         self.presenter
             .submit(self.renderer.executor_mut(), target, compiled, ())?;

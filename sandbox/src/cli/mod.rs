@@ -19,12 +19,15 @@ use clap::{Parser, Subcommand};
 
 /// Lucid: real-time physically based light transport with a temporal denoiser.
 ///
-/// Without a subcommand it opens the sandbox window on the default scene.
+/// Without a subcommand it opens the sandbox window, taking the options of `lucid view`.
 #[derive(Debug, Parser)]
-#[command(name = "lucid", version, about)]
+#[command(name = "lucid", version, about, args_conflicts_with_subcommands = true)]
 pub struct Cli {
     #[command(subcommand)]
     command: Option<Command>,
+    /// The sandbox's options when there is no subcommand.
+    #[command(flatten)]
+    view: view::ViewArgs,
 }
 
 #[derive(Debug, Subcommand)]
@@ -49,11 +52,8 @@ enum Command {
 
 /// Runs the parsed command.
 pub fn run(cli: Cli) -> anyhow::Result<()> {
-    let command = match cli.command {
-        Some(command) => command,
-        None => Cli::parse_from(["lucid", "view"])
-            .command
-            .expect("`lucid view` parses to a command"),
+    let Some(command) = cli.command else {
+        return view::run(&cli.view);
     };
     match command {
         Command::View(args) => view::run(&args),
@@ -64,5 +64,37 @@ pub fn run(cli: Cli) -> anyhow::Result<()> {
         Command::Sequence(args) => sequence::run(&args),
         Command::Evaluate(args) => evaluate::run(&args),
         Command::Dataset(args) => dataset::run(&args),
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use clap::CommandFactory;
+
+    #[test]
+    fn the_command_line_is_consistent() {
+        Cli::command().debug_assert();
+    }
+
+    #[test]
+    fn without_a_subcommand_the_sandbox_takes_the_options_of_view() {
+        let bare = Cli::try_parse_from(["lucid", "--screenshot-after", "20", "shot.png"]).unwrap();
+        assert!(bare.command.is_none());
+        let view =
+            Cli::try_parse_from(["lucid", "view", "--screenshot-after", "20", "shot.png"]).unwrap();
+        let Some(Command::View(view)) = view.command else {
+            panic!("`lucid view` parses to the view command");
+        };
+        assert_eq!(format!("{:?}", bare.view), format!("{view:?}"));
+    }
+
+    #[test]
+    fn a_first_word_that_names_no_subcommand_is_the_sandbox_scene() {
+        let scene = Cli::try_parse_from(["lucid", "classroom", "--spp", "4"]).unwrap();
+        assert!(scene.command.is_none());
+        assert!(format!("{:?}", scene.view).contains("\"classroom\""));
+        let render = Cli::try_parse_from(["lucid", "render", "--scene", "classroom"]).unwrap();
+        assert!(matches!(render.command, Some(Command::Render(_))));
     }
 }

@@ -1,4 +1,4 @@
-//! `lucid view` (and `lucid` without arguments): the interactive sandbox window.
+//! `lucid view` (and `lucid` without a subcommand): the interactive sandbox window.
 
 use super::render_options::{AlgoArg, DenoiseArg};
 use super::size::Size;
@@ -8,7 +8,7 @@ use clap::Args;
 use lucid_sandbox::{AppOptions, RenderSettings, Screenshot, Startup, DEFAULT_SCENE};
 use std::path::PathBuf;
 
-/// Options of `lucid view`.
+/// Options of `lucid view` (and of `lucid` without a subcommand).
 #[derive(Debug, Args)]
 pub struct ViewArgs {
     /// A built-in scene name (see `lucid render --help`) or a `.gltf` / `.glb` file.

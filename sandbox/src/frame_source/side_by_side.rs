@@ -1,10 +1,10 @@
 //! The split view's picture: columns of one HDR image beside columns of another, copied into a new
 //! image.
 
-use crate::gpu::image_copy;
 use ash::vk;
 use lucid_engine::graph::{Access, ImageHandle, PassContext, RenderGraph};
 use lucid_engine::memory::ImageDesc;
+use lucid_present::image_copy;
 use std::ops::Range;
 
 /// The format of the composed image and of its inputs (that of the renderer's outputs).

@@ -3,7 +3,7 @@
 //! size again; resizes and out-of-date or suboptimal reports recreate the swapchain; a lost surface
 //! is made anew, and one lost again and again is an error.
 
-use super::vk_error;
+use crate::vk_error;
 use ash::vk;
 
 /// Surface losses in a row (with no frame presented in between) before the app gives up.

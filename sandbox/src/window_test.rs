@@ -127,7 +127,7 @@ impl Session {
                 );
             }
             Step::LoseSurface => {
-                self.presenter.surface_lost()?;
+                self.presenter.report_surface_lost()?;
                 eprintln!("window test: frame {presented}: surface lost");
             }
         }

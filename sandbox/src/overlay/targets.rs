@@ -1,9 +1,9 @@
 //! The UI render pass and one framebuffer per swapchain image, remade with the swapchain.
 
 use super::render_pass;
-use crate::gpu::vk_error;
 use anyhow::Context as _;
 use ash::vk;
+use lucid_engine::error::VkResultExt as _;
 use lucid_engine::Context;
 
 /// Where one frame's UI is drawn (plain handles, so a graph pass can own it).
@@ -85,7 +85,7 @@ impl Targets {
                 .layers(1);
             // SAFETY: the view is a live swapchain image view of `format`.
             let framebuffer = unsafe { self.ctx.device().create_framebuffer(&info, None) }
-                .map_err(vk_error("vkCreateFramebuffer"))?;
+                .vk("vkCreateFramebuffer")?;
             self.framebuffers.push(framebuffer);
         }
         self.extent = extent;

@@ -27,7 +27,8 @@ fn frame(
         split: Some(right),
     };
     let hdr = source.render(&mut graph, &request).unwrap();
-    let ldr = crate::tonemap::add(&mut graph, hdr, SIZE, &DisplaySettings::default(), false);
+    let encoding = DisplaySettings::default().png_encoding();
+    let ldr = lucid_passes::tonemap::add(&mut graph, hdr, SIZE[0], SIZE[1], encoding);
     let readback = graph.readback(ldr);
     let executor = source.executor();
     let id = executor.execute(graph.compile().unwrap()).unwrap();

@@ -1,7 +1,7 @@
 //! The context with presentation support and the window's surface, which can be made anew when
 //! the window system reports it lost.
 
-use super::vk_error;
+use crate::vk_error;
 use anyhow::Context as _;
 use ash::vk;
 use lucid_engine::{Context, ContextDesc};

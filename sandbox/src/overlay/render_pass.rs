@@ -1,8 +1,8 @@
 //! The render pass the UI draws in: one colour attachment that keeps its contents (the tone-mapped
 //! frame) and stays in `COLOR_ATTACHMENT_OPTIMAL`, so the render graph's tracked layout holds.
 
-use crate::gpu::vk_error;
 use ash::vk;
+use lucid_engine::error::VkResultExt as _;
 use lucid_engine::Context;
 
 /// Creates the UI render pass for attachments of `format`.
@@ -27,8 +27,8 @@ pub fn create(ctx: &Context, format: vk::Format) -> anyhow::Result<vk::RenderPas
         .attachments(&attachments)
         .subpasses(&subpasses);
     // SAFETY: device valid; info references locals that outlive the call.
-    let render_pass = unsafe { ctx.device().create_render_pass(&info, None) }
-        .map_err(vk_error("vkCreateRenderPass"))?;
+    let render_pass =
+        unsafe { ctx.device().create_render_pass(&info, None) }.vk("vkCreateRenderPass")?;
     ctx.set_name(render_pass, "sandbox ui");
     Ok(render_pass)
 }

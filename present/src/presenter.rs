@@ -2,67 +2,19 @@
 //! Lucid: the context with a surface, the swapchain, the frames in flight, and what
 //! [`SurfaceState`] decides on resizes, minimization, out-of-date swapchains and lost surfaces.
 
-use super::surface_state::{Prepare, SurfaceState};
-use super::{create_context, FrameRing, Swapchain};
-use crate::compose::{self, Extras};
-use crate::settings::DisplaySettings;
+use crate::surface_state::{Prepare, SurfaceState};
+use crate::target::{acquire_wait_stage, PresentTarget};
+use crate::{create_context, FrameRing, Swapchain};
 use anyhow::Context as _;
-use lucid_engine::graph::SubmitOptions;
-use lucid_engine::graph::{CompiledGraph, Executor, FrameOutputs, ImageHandle, RenderGraph};
-use lucid_engine::memory::Image;
+use lucid_engine::graph::{CompiledGraph, Executor, FrameOutputs, SubmitOptions};
 use lucid_engine::Context;
 use std::sync::Arc;
 use winit::window::Window;
 
-/// The swapchain image a frame draws on, from [`Presenter::begin`].
-///
-/// ```no_run
-/// # fn draw(target: lucid_sandbox::PresentTarget, presenter: &mut lucid_sandbox::Presenter, executor: &mut lucid_engine::graph::Executor, hdr_pass: impl FnOnce(&mut lucid_engine::graph::RenderGraph, [u32; 2]) -> lucid_engine::graph::ImageHandle) -> anyhow::Result<()> {
-/// let mut graph = lucid_engine::graph::RenderGraph::new();
-/// let hdr = hdr_pass(&mut graph, target.extent()); // any float image of the target's size
-/// target.add_display(&mut graph, hdr, &lucid_sandbox::DisplaySettings::default())?;
-/// presenter.submit(executor, target, graph.compile()?, ())?;
-/// # Ok(()) }
-/// ```
-pub struct PresentTarget {
-    index: u32,
-    image: Arc<Image>,
-}
-
-impl PresentTarget {
-    /// The image's size in pixels (the size to render at).
-    pub fn extent(&self) -> [u32; 2] {
-        let desc = self.image.desc();
-        [desc.width, desc.height]
-    }
-
-    /// Adds the passes that tone-map `hdr` (a float image of [`Self::extent`], read as
-    /// `Access::ComputeSampled`) into the image with `display` and leave it ready to present.
-    pub fn add_display(
-        &self,
-        graph: &mut RenderGraph,
-        hdr: ImageHandle,
-        display: &DisplaySettings,
-    ) -> anyhow::Result<()> {
-        compose::add(graph, Some(hdr), self, None, display, Extras::default())?;
-        Ok(())
-    }
-
-    /// The image.
-    pub(crate) fn image(&self) -> &Arc<Image> {
-        &self.image
-    }
-
-    /// Its index in the swapchain.
-    pub(crate) fn index(&self) -> u32 {
-        self.index
-    }
-}
-
 /// What [`Presenter::begin`] found.
 ///
 /// ```no_run
-/// # fn frame(presenter: &mut lucid_sandbox::Presenter<Option<lucid_engine::graph::ReadbackId>>, executor: &mut lucid_engine::graph::Executor) -> anyhow::Result<()> {
+/// # fn frame(presenter: &mut lucid_present::Presenter<Option<lucid_engine::graph::ReadbackId>>, executor: &mut lucid_engine::graph::Executor) -> anyhow::Result<()> {
 /// let began = presenter.begin(executor)?;
 /// for (outputs, readback) in began.finished {
 ///     if let Some(id) = readback {
@@ -88,7 +40,7 @@ pub struct Began<T> {
 /// its readbacks).
 ///
 /// ```no_run
-/// # fn frame(presenter: &mut lucid_sandbox::Presenter, renderer: &mut lucid_passes::renderer::Renderer) -> anyhow::Result<()> {
+/// # fn frame(presenter: &mut lucid_present::Presenter, renderer: &mut lucid_passes::renderer::Renderer) -> anyhow::Result<()> {
 /// // Each redraw: take an image, render at its size, draw on it, present.
 /// let began = presenter.begin(renderer.executor_mut())?;
 /// if let Some(target) = began.target {
@@ -96,7 +48,11 @@ pub struct Began<T> {
 ///     renderer.resize(width, height)?;
 ///     let mut graph = lucid_engine::graph::RenderGraph::new();
 ///     let (images, _) = renderer.add_frame(&mut graph);
-///     target.add_display(&mut graph, images.hdr, &lucid_sandbox::DisplaySettings::default())?;
+///     let encoding = lucid_engine::capture::PngEncoding {
+///         exposure: 0.0,
+///         tone: lucid_engine::capture::ToneCurve::Aces,
+///     };
+///     target.add_display(&mut graph, images.hdr, encoding);
 ///     presenter.submit(renderer.executor_mut(), target, graph.compile()?, ())?;
 /// }
 /// # Ok(()) }
@@ -117,7 +73,7 @@ impl<T> Presenter<T> {
     /// # fn open(event_loop: &winit::event_loop::ActiveEventLoop) -> anyhow::Result<()> {
     /// use std::sync::Arc;
     /// let window = Arc::new(event_loop.create_window(Default::default())?);
-    /// let presenter: lucid_sandbox::Presenter = lucid_sandbox::Presenter::new(window)?;
+    /// let presenter: lucid_present::Presenter = lucid_present::Presenter::new(window)?;
     /// let ctx = presenter.context(); // create the renderer on it
     /// # Ok(()) }
     /// ```
@@ -149,7 +105,7 @@ impl<T> Presenter<T> {
     /// minimized) or after `WindowEvent::ScaleFactorChanged`.
     ///
     /// ```no_run
-    /// # fn on_event(presenter: &mut lucid_sandbox::Presenter, event: winit::event::WindowEvent) {
+    /// # fn on_event(presenter: &mut lucid_present::Presenter, event: winit::event::WindowEvent) {
     /// use winit::event::WindowEvent;
     /// match event {
     ///     WindowEvent::Resized(size) => presenter.resized([size.width, size.height]),
@@ -175,7 +131,7 @@ impl<T> Presenter<T> {
     /// event loop can poll slowly meanwhile.
     ///
     /// ```no_run
-    /// # fn about_to_wait(presenter: &lucid_sandbox::Presenter, event_loop: &winit::event_loop::ActiveEventLoop) {
+    /// # fn about_to_wait(presenter: &lucid_present::Presenter, event_loop: &winit::event_loop::ActiveEventLoop) {
     /// use std::time::{Duration, Instant};
     /// use winit::event_loop::ControlFlow;
     /// event_loop.set_control_flow(if presenter.is_minimized() {
@@ -219,9 +175,8 @@ impl<T> Presenter<T> {
         }
         began.finished.extend(self.ring.wait_next(executor)?);
         let acquired = self.swapchain.acquire(self.ring.acquire_semaphore());
-        began.target = self.state.acquired(acquired)?.map(|index| PresentTarget {
-            index,
-            image: self.swapchain.images()[index as usize].clone(),
+        began.target = self.state.acquired(acquired)?.map(|index| {
+            PresentTarget::new(index, self.swapchain.images()[index as usize].clone())
         });
         Ok(began)
     }
@@ -237,8 +192,8 @@ impl<T> Presenter<T> {
         payload: T,
     ) -> anyhow::Result<()> {
         let submit = SubmitOptions {
-            wait: vec![(self.ring.acquire_semaphore(), compose::acquire_wait_stage())],
-            signal: vec![self.swapchain.render_finished(target.index)],
+            wait: vec![(self.ring.acquire_semaphore(), acquire_wait_stage())],
+            signal: vec![self.swapchain.render_finished(target.index())],
         };
         let frame = match executor.execute_with(graph, &submit) {
             Ok(frame) => frame,
@@ -248,7 +203,7 @@ impl<T> Presenter<T> {
             }
         };
         self.ring.submitted(frame, payload);
-        let presented = self.swapchain.present(target.index);
+        let presented = self.swapchain.present(target.index());
         self.state.presented(presented)
     }
 
@@ -256,7 +211,7 @@ impl<T> Presenter<T> {
     /// used up); the swapchain is recreated before the next frame.
     ///
     /// ```no_run
-    /// # fn frame(presenter: &mut lucid_sandbox::Presenter, target: lucid_sandbox::PresentTarget, build: impl FnOnce() -> anyhow::Result<lucid_engine::graph::RenderGraph>, executor: &mut lucid_engine::graph::Executor) -> anyhow::Result<()> {
+    /// # fn frame(presenter: &mut lucid_present::Presenter, target: lucid_present::PresentTarget, build: impl FnOnce() -> anyhow::Result<lucid_engine::graph::RenderGraph>, executor: &mut lucid_engine::graph::Executor) -> anyhow::Result<()> {
     /// match build().and_then(|graph| Ok(graph.compile()?)) {
     ///     Ok(compiled) => presenter.submit(executor, target, compiled, ())?,
     ///     Err(e) => {
@@ -276,7 +231,7 @@ impl<T> Presenter<T> {
     /// Waits for every frame in flight; returns their outputs and payloads, oldest first.
     ///
     /// ```no_run
-    /// # fn shut_down(mut presenter: lucid_sandbox::Presenter, mut renderer: lucid_passes::renderer::Renderer) -> anyhow::Result<()> {
+    /// # fn shut_down(mut presenter: lucid_present::Presenter, mut renderer: lucid_passes::renderer::Renderer) -> anyhow::Result<()> {
     /// presenter.finish(renderer.executor_mut())?; // before the renderer goes
     /// drop(renderer);
     /// # Ok(()) }
@@ -285,13 +240,15 @@ impl<T> Presenter<T> {
         self.ring.drain(executor)
     }
 
-    /// The swapchain (for the UI's framebuffers).
-    pub(crate) fn swapchain(&self) -> &Swapchain {
+    /// The swapchain (e.g. to make a framebuffer per image for a UI drawn over the frame; remake
+    /// them when [`Began::recreated`] says so).
+    pub fn swapchain(&self) -> &Swapchain {
         &self.swapchain
     }
 
-    /// Reports the surface lost, as the window system would (the window self-test).
-    pub(crate) fn surface_lost(&mut self) -> anyhow::Result<()> {
+    /// Reports the surface lost, as the window system would (for self-tests of the recovery: the
+    /// next [`Self::begin`] makes a new surface and swapchain); fails after too many in a row.
+    pub fn report_surface_lost(&mut self) -> anyhow::Result<()> {
         self.state.lost()
     }
 }

@@ -4,11 +4,11 @@
 mod render_pass;
 mod targets;
 
-use crate::gpu::vk_error;
 use anyhow::Context as _;
 use ash::vk;
 use egui::epaint::ClippedPrimitive;
 use egui_ash_renderer::{Options, Renderer, RendererError};
+use lucid_engine::error::VkResultExt as _;
 use lucid_engine::graph::{Access, ImageHandle, RenderGraph};
 use lucid_engine::{Context, EngineError};
 use std::cell::RefCell;
@@ -67,7 +67,7 @@ impl Overlay {
             );
         // SAFETY: device valid.
         let upload_pool = unsafe { ctx.device().create_command_pool(&pool_info, None) }
-            .map_err(vk_error("vkCreateCommandPool"))?;
+            .vk("vkCreateCommandPool")?;
         Ok(Self {
             egui,
             input,

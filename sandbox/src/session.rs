@@ -2,7 +2,6 @@
 //! and how window events change them.
 
 use super::frame_source::{FrameSource, RendererSource, TestPatternSource};
-use super::gpu::Presenter;
 use super::input::{Action, Input};
 use super::options::{AppOptions, Startup};
 use super::overlay::Overlay;
@@ -14,6 +13,7 @@ use super::{scene, ui};
 use anyhow::Context as _;
 use glam::Vec2;
 use lucid_engine::Context;
+use lucid_present::Presenter;
 use std::sync::Arc;
 use std::time::Instant;
 use winit::dpi::PhysicalSize;

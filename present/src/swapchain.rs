@@ -2,7 +2,7 @@
 //! resizes, out-of-date or suboptimal reports and lost surfaces, and absent while the surface has
 //! zero size. Its images are wrapped as engine images so that a render graph can import them.
 
-use super::{vk_error, WindowSurface};
+use crate::{vk_error, WindowSurface};
 use anyhow::{bail, Context as _};
 use ash::vk;
 use lucid_engine::graph::ResourceState;
@@ -36,7 +36,11 @@ pub struct Swapchain {
 
 impl Swapchain {
     /// A swapchain for `surface`, sized to `size` when the surface leaves the size to us.
-    pub fn new(ctx: &Context, surface: WindowSurface, size: [u32; 2]) -> anyhow::Result<Self> {
+    pub(crate) fn new(
+        ctx: &Context,
+        surface: WindowSurface,
+        size: [u32; 2],
+    ) -> anyhow::Result<Self> {
         let mut swapchain = Self {
             loader: ash::khr::swapchain::Device::new(ctx.instance(), ctx.device()),
             raw: vk::SwapchainKHR::null(),
@@ -68,7 +72,7 @@ impl Swapchain {
     }
 
     /// The images, as engine images for graph imports.
-    pub fn images(&self) -> &[Arc<Image>] {
+    pub(crate) fn images(&self) -> &[Arc<Image>] {
         &self.images
     }
 
@@ -78,13 +82,13 @@ impl Swapchain {
     }
 
     /// The semaphore the frame drawing image `index` signals.
-    pub fn render_finished(&self, index: u32) -> vk::Semaphore {
+    pub(crate) fn render_finished(&self, index: u32) -> vk::Semaphore {
         self.render_finished[index as usize]
     }
 
     /// Recreates the swapchain for the window's `size`; the GPU must be idle. Leaves it unusable
     /// (no images) when the surface or the window has zero size.
-    pub fn recreate(&mut self, size: [u32; 2]) -> anyhow::Result<()> {
+    pub(crate) fn recreate(&mut self, size: [u32; 2]) -> anyhow::Result<()> {
         let (physical, surface) = (self.ctx.physical_device(), self.surface.raw());
         let loader = self.surface.loader();
         // SAFETY: physical device and surface belong to the context's instance.
@@ -227,7 +231,7 @@ impl Swapchain {
 
     /// Acquires the next image, signalling `semaphore` when it is ready: its index and whether the
     /// swapchain is suboptimal, or Vulkan's error (which `SurfaceState::acquired` interprets).
-    pub fn acquire(&self, semaphore: vk::Semaphore) -> Result<(u32, bool), vk::Result> {
+    pub(crate) fn acquire(&self, semaphore: vk::Semaphore) -> Result<(u32, bool), vk::Result> {
         // SAFETY: the swapchain is valid and the semaphore unsignalled with no pending operation.
         unsafe {
             self.loader
@@ -237,7 +241,7 @@ impl Swapchain {
 
     /// Presents image `index` after its frame signalled [`Self::render_finished`]: whether the
     /// swapchain is suboptimal, or Vulkan's error (which `SurfaceState::presented` interprets).
-    pub fn present(&self, index: u32) -> Result<bool, vk::Result> {
+    pub(crate) fn present(&self, index: u32) -> Result<bool, vk::Result> {
         let waits = [self.render_finished(index)];
         let swapchains = [self.raw];
         let indices = [index];
@@ -252,7 +256,7 @@ impl Swapchain {
 
     /// Replaces a lost surface with a new one for `window`, destroying the swapchain (recreate it
     /// next); waits for the GPU first.
-    pub fn replace_surface(&mut self, window: &Window) -> anyhow::Result<()> {
+    pub(crate) fn replace_surface(&mut self, window: &Window) -> anyhow::Result<()> {
         tracing::warn!("the window surface was lost; creating a new one");
         self.ctx.wait_idle()?;
         self.destroy();

@@ -4,11 +4,11 @@
 
 use super::compose::{self, Extras};
 use super::frame_source::FrameRequest;
-use super::gpu::PresentTarget;
 use super::pending::{CaptureJob, Pending};
 use super::session::{Flow, Session};
 use super::{capture, ui};
 use lucid_engine::graph::{CompiledGraph, RenderGraph};
+use lucid_present::PresentTarget;
 use std::time::{SystemTime, UNIX_EPOCH};
 
 /// Frames that may fail in a row before the app gives up.

@@ -1,10 +1,11 @@
-//! Recording an image-to-image copy inside a render-graph pass.
+//! Recording an image-to-image copy inside a render-graph pass (the copy into the window image;
+//! public for applications composing images in their own passes, e.g. the sandbox's split view).
 
 use ash::vk;
 use lucid_engine::graph::PassContext;
 use lucid_engine::memory::Image;
 
-/// The colour aspect of mip 0, layer 0: what the sandbox's copies move.
+/// The colour aspect of mip 0, layer 0: what these copies move.
 pub const COLOR_LAYER: vk::ImageSubresourceLayers = vk::ImageSubresourceLayers {
     aspect_mask: vk::ImageAspectFlags::COLOR,
     mip_level: 0,

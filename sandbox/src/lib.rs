@@ -1,7 +1,8 @@
 //! `lucid_sandbox`: the interactive sandbox behind `lucid` and `lucid view`: a window showing the
 //! frame source's output through a fly camera, with egui panels for the scene, renderer and display
-//! settings and live statistics, and a split view comparing two configurations. Its [`Presenter`]
-//! shows an embedding application's own frames in a window (see the `game_loop` example).
+//! settings and live statistics, and a split view comparing two configurations. The window's
+//! swapchain and display passes are `lucid_present`'s, which applications embedding Lucid use
+//! without the app (see the `game_loop` example).
 //!
 //! ```no_run
 //! use lucid_sandbox::{AppOptions, RenderSettings, Startup};
@@ -28,10 +29,8 @@
 mod camera;
 mod capture;
 mod compose;
-mod display;
 mod frame;
 mod frame_source;
-mod gpu;
 mod handler;
 mod input;
 mod options;
@@ -42,12 +41,9 @@ mod session;
 mod settings;
 mod state;
 mod stats;
-mod tonemap;
 mod ui;
 mod window_test;
 
-pub use display::available as display_available;
-pub use gpu::{Began, PresentTarget, Presenter};
 pub use options::{AppOptions, Screenshot, Startup};
 pub use scene::DEFAULT_SCENE;
 pub use settings::{Algorithm, Denoiser, DisplaySettings, RenderSettings, ToneMapper};
@@ -55,6 +51,10 @@ pub use settings::{Algorithm, Denoiser, DisplaySettings, RenderSettings, ToneMap
 use anyhow::Context as _;
 use lucid_engine::Validation;
 use winit::event_loop::EventLoop;
+
+/// The one-line explanation when there is no display to open the window on.
+const NO_DISPLAY: &str =
+    "no display found (DISPLAY/WAYLAND_DISPLAY unset): use `lucid render` for headless output";
 
 /// Opens the sandbox window with the default renderer settings and runs until it is closed (or the
 /// screenshot is taken). Fails when there is no display, on errors the app cannot show, and when
@@ -80,7 +80,7 @@ pub fn run(options: AppOptions) -> anyhow::Result<()> {
 /// Like [`run`], starting with the renderer configurations of `startup` (e.g. in the split view;
 /// see the crate's example).
 pub fn run_with(options: AppOptions, startup: Startup) -> anyhow::Result<()> {
-    display::check()?;
+    anyhow::ensure!(lucid_present::display_available(), NO_DISPLAY);
     let event_loop = EventLoop::new().map_err(|e| {
         anyhow::anyhow!("cannot open the display ({e}): use `lucid render` for headless output")
     })?;

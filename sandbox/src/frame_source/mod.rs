@@ -66,12 +66,16 @@ pub trait FrameSource {
     }
 }
 
-/// GPU milliseconds of a renderer's passes among `timings`: the app's own passes (`sandbox.*` and
-/// the display's tone mapping) do not count.
+/// GPU milliseconds of a renderer's passes among `timings`: the app's own passes (`sandbox.*`, the
+/// window's `present.*` and the display's tone mapping) do not count.
 pub fn renderer_ms(timings: &[PassTiming]) -> f64 {
     timings
         .iter()
-        .filter(|t| !t.name.starts_with("sandbox.") && t.name != "tonemap")
+        .filter(|t| {
+            !t.name.starts_with("sandbox.")
+                && !t.name.starts_with("present.")
+                && t.name != "tonemap"
+        })
         .map(|t| t.ms)
         .sum()
 }
@@ -95,6 +99,7 @@ mod timing_tests {
             timing("sandbox.side_by_side", 0.25),
             timing("tonemap", 0.5),
             timing("sandbox.ui", 0.125),
+            timing("present.copy_to_window", 0.0625),
         ];
         assert_eq!(renderer_ms(&timings), 3.5);
         assert_eq!(renderer_ms(&[]), 0.0);

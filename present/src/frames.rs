@@ -1,7 +1,7 @@
 //! The app's frames in flight: one acquire semaphore per frame, and what each submitted frame
 //! still owes the app (its outputs, and the payload saying what to do with them).
 
-use super::vk_error;
+use crate::vk_error;
 use ash::vk;
 use lucid_engine::graph::{Executor, FrameId, FrameOutputs};
 use lucid_engine::Context;
