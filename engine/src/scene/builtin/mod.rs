@@ -1,5 +1,9 @@
 //! Built-in procedural scenes, built deterministically (no downloads, no
 //! randomness), each with a default camera and camera path.
+//!
+//! Besides the named scenes of [`names`], [`build`] and [`build_with`]
+//! accept `random-room-<seed>` (see [`random_room()`]): a seeded
+//! procedural room, deterministic for its seed, not listed in [`names`].
 
 mod blinds_room;
 mod caustics;
@@ -10,10 +14,12 @@ mod covered_light;
 mod displaced_sphere;
 mod furnace;
 mod paths;
+mod random_room;
 pub mod shapes;
 mod teapot;
 mod teapot_data;
 
+pub use random_room::{random_room, NAME_PREFIX as RANDOM_ROOM_PREFIX};
 pub use teapot::teapot;
 
 use super::{Scene, SceneError};
@@ -55,6 +61,11 @@ pub fn build(name: &str) -> Result<Scene, SceneError> {
 
 /// Builds a built-in scene with options; an unknown name is an error that
 /// lists the valid names.
+///
+/// Names of the form `random-room-<seed>` (`<seed>` a decimal `u64`, e.g.
+/// `random-room-17`) build [`random_room()`] of that seed, although
+/// [`names`] does not list them; `options` do not apply to them, and a
+/// seed that does not parse is a [`SceneError::Invalid`].
 pub fn build_with(name: &str, options: &BuildOptions) -> Result<Scene, SceneError> {
     match name {
         "cornell-box" => cornell_box::build(),
@@ -64,9 +75,11 @@ pub fn build_with(name: &str, options: &BuildOptions) -> Result<Scene, SceneErro
         "classroom" => classroom::build(options),
         "furnace" => furnace::build(),
         "caustics" => caustics::build(),
-        _ => Err(SceneError::UnknownScene {
-            name: name.to_owned(),
-            available: NAMES.join(", "),
+        _ => random_room::from_name(name).unwrap_or_else(|| {
+            Err(SceneError::UnknownScene {
+                name: name.to_owned(),
+                available: format!("{}, {RANDOM_ROOM_PREFIX}<seed>", NAMES.join(", ")),
+            })
         }),
     }
 }

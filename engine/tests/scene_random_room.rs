@@ -1,0 +1,125 @@
+//! Procedural rooms (`random-room-<seed>`): determinism, variety,
+//! validity, lighting, camera paths and the mix of materials.
+
+use std::collections::HashSet;
+
+use lucid_engine::scene::builtin::{self, random_room};
+use lucid_engine::scene::{MaterialKind, Scene, SceneError};
+
+const SEEDS: std::ops::Range<u64> = 0..200;
+
+fn rooms(seeds: std::ops::Range<u64>) -> Vec<Scene> {
+    seeds.map(|s| random_room(s).unwrap()).collect()
+}
+
+#[test]
+fn same_seed_same_scene_and_reachable_by_name() {
+    for seed in [0, 17, u64::MAX] {
+        let a = random_room(seed).unwrap();
+        let b = builtin::build(&format!("random-room-{seed}")).unwrap();
+        assert_eq!(a.name, format!("random-room-{seed}"));
+        assert_eq!(a.content_hash(), b.content_hash(), "{seed}");
+        assert_eq!(a, b, "{seed}");
+    }
+    assert!(!builtin::names()
+        .iter()
+        .any(|n| n.starts_with("random-room")));
+}
+
+#[test]
+fn bad_seeds_are_clear_errors() {
+    for name in [
+        "random-room-",
+        "random-room-x",
+        "random-room--1",
+        "random-room-+1",
+        "random-room-1.5",
+        "random-room-18446744073709551616",
+    ] {
+        match builtin::build(name) {
+            Err(SceneError::Invalid(message)) => {
+                assert!(
+                    message.contains(name) && message.contains("seed"),
+                    "{message}"
+                )
+            }
+            other => panic!("{name}: {other:?}"),
+        }
+    }
+    let unknown = builtin::build("no-such-scene").unwrap_err().to_string();
+    assert!(unknown.contains("random-room-<seed>"), "{unknown}");
+}
+
+#[test]
+fn seeds_differ() {
+    let scenes = rooms(0..50);
+    let hashes: HashSet<u64> = scenes.iter().map(Scene::content_hash).collect();
+    assert_eq!(hashes.len(), scenes.len());
+    let object_counts: HashSet<usize> = scenes
+        .iter()
+        .map(|s| s.instances.len() + s.spheres.len())
+        .collect();
+    assert!(object_counts.len() > 5, "{object_counts:?}");
+    let windows = scenes.iter().filter(|s| s.sun.is_some()).count();
+    assert!(windows > 5 && windows < 45, "{windows} of 50 have windows");
+}
+
+#[test]
+fn every_seed_is_valid_lit_and_small() {
+    for mut scene in rooms(SEEDS) {
+        let name = scene.name.clone();
+        scene.validate().unwrap();
+        assert!(scene.warnings.is_empty(), "{name}: {:?}", scene.warnings);
+        assert!(scene.has_light(), "{name}");
+        assert!(scene.triangle_count() < 200_000, "{name}");
+    }
+}
+
+#[test]
+fn camera_paths_stay_inside_the_room() {
+    for scene in rooms(SEEDS) {
+        let name = &scene.name;
+        let room = scene.bounds();
+        let path = scene.camera_path.as_ref().unwrap();
+        assert!((4.0..=6.0).contains(&path.duration()), "{name}");
+        assert!((path.sample(0.0).position - scene.camera.position).length() < 1e-4);
+        for k in path.keys() {
+            assert!(
+                k.position.cmpgt(room.min + 0.3).all() && k.position.cmplt(room.max - 0.3).all(),
+                "{name}: key {k:?} outside {room:?}"
+            );
+        }
+        for i in 0..=100 {
+            let p = path.sample(i as f32 * path.duration() / 100.0).position;
+            assert!(
+                p.cmpgt(room.min).all() && p.cmplt(room.max).all(),
+                "{name}: {p} outside {room:?}"
+            );
+        }
+    }
+}
+
+#[test]
+fn every_material_kind_appears() {
+    let scenes = rooms(0..50);
+    let materials = || scenes.iter().flat_map(|s| &s.materials);
+    for kind in [
+        MaterialKind::Diffuse,
+        MaterialKind::Conductor,
+        MaterialKind::Dielectric,
+    ] {
+        assert!(materials().any(|m| m.kind == kind), "{kind:?}");
+    }
+    assert!(materials().any(|m| m.kind == MaterialKind::Dielectric && m.alpha > 0.0));
+    assert!(materials().any(|m| m.name.ends_with("emissive") && m.is_emissive()));
+    let teapots = scenes
+        .iter()
+        .filter(|s| s.meshes.iter().any(|m| m.name == "teapot"))
+        .count();
+    assert!(teapots > 0);
+    let sun_only = scenes
+        .iter()
+        .filter(|s| !s.materials.iter().any(|m| m.name.starts_with("light-")))
+        .count();
+    assert!(sun_only > 0, "no room is lit only through its windows");
+}
