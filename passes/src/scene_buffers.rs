@@ -2,7 +2,7 @@
 //! frame's graph and bound by the names the shaders declare in `shaders/common/scene.glsl`.
 
 use bytemuck::Pod;
-use lucid_engine::graph::{Access, BufferHandle, Dispatch, PassBuilder, RenderGraph};
+use lucid_engine::graph::{BufferHandle, ComputePass, RenderGraph};
 use lucid_engine::memory::Buffer;
 use lucid_engine::scene::gpu::GpuScene;
 use lucid_engine::scene::SceneFeatures;
@@ -108,19 +108,11 @@ pub struct SceneHandles {
 }
 
 impl SceneHandles {
-    /// Declares that the pass reads every scene buffer.
-    pub fn read(&self, pass: &mut PassBuilder<'_>) {
-        for h in self.handles {
-            pass.read(h, Access::ComputeRead);
-        }
-    }
-
-    /// Binds every scene buffer by its shader name.
-    pub fn bind<'p, 'a>(&self, mut dispatch: Dispatch<'p, 'a>) -> Dispatch<'p, 'a> {
+    /// Reads every scene buffer in `pass`, bound by its shader name.
+    pub fn read(&self, pass: &mut ComputePass<'_>) {
         for (name, h) in NAMES.iter().zip(self.handles) {
-            dispatch = dispatch.buffer(name, h);
+            pass.read(name, h);
         }
-        dispatch
     }
 }
 

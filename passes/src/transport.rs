@@ -1,7 +1,7 @@
 //! What every light-transport pass (path tracing, bidirectional path tracing, ...) produces for a
 //! frame, so that accumulation and the denoisers work with any of them.
 
-use lucid_engine::graph::{Access, BufferHandle, Dispatch, ImageHandle, PassBuilder};
+use lucid_engine::graph::{BufferHandle, ComputePass, ImageHandle};
 use lucid_engine::memory::ImageDesc;
 
 /// Which pixels replay last frame's paths this frame, as the shaders see it (`ReplayParams` in
@@ -55,7 +55,7 @@ pub struct Outputs {
 }
 
 /// The per-pixel images of [`Outputs`], created by one pass and bound to its shader by name
-/// (`u_radiance`, `u_demodulated`, `u_albedo`, `u_emission`).
+/// (`u_radiance`, `u_demodulated`, `u_albedo`, `u_emission`), with `SURFACE_OUTPUTS`.
 #[derive(Clone, Copy, Debug)]
 pub struct Images {
     /// See [`Outputs::radiance`].
@@ -67,18 +67,22 @@ pub struct Images {
 }
 
 impl Images {
-    /// Creates the images in pass `p`, named `<prefix>.radiance` and so on, and declares them
-    /// written by the pass's compute shader; the surface images only at full size when
-    /// `surface` is asked for.
+    /// Creates the images, named `<prefix>.radiance` and so on, written by `pass` through their
+    /// bindings, and sets `SURFACE_OUTPUTS`; the surface images only at full size when `surface`
+    /// is asked for.
     pub fn create(
-        p: &mut PassBuilder<'_>,
+        pass: &mut ComputePass<'_>,
         prefix: &str,
         (width, height): (u32, u32),
         surface: bool,
     ) -> Self {
+        pass.specialize("SURFACE_OUTPUTS", surface);
         let mut image = |name: &str, (w, h): (u32, u32)| {
-            let handle = p.create_image(&format!("{prefix}.{name}"), ImageDesc::rgba32f(w, h));
-            p.write(handle, Access::ComputeWrite)
+            pass.create_image(
+                &format!("u_{name}"),
+                &format!("{prefix}.{name}"),
+                ImageDesc::rgba32f(w, h),
+            )
         };
         let surface_size = if surface { (width, height) } else { (1, 1) };
         Self {
@@ -90,16 +94,6 @@ impl Images {
             },
             surface_written: surface,
         }
-    }
-
-    /// Binds the images to a dispatch of the pass's shader by name, with `SURFACE_OUTPUTS`.
-    pub fn bind<'p, 'a>(&self, dispatch: Dispatch<'p, 'a>) -> Dispatch<'p, 'a> {
-        dispatch
-            .specialize("SURFACE_OUTPUTS", self.surface_written)
-            .image("u_radiance", self.radiance)
-            .image("u_demodulated", self.surface.demodulated)
-            .image("u_albedo", self.surface.albedo)
-            .image("u_emission", self.surface.emission)
     }
 
     /// The [`Outputs`] of these images with the pass's counters.

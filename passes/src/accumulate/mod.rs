@@ -2,7 +2,7 @@
 //! (`shaders/accumulate/accumulate.comp`), over a keyed history image.
 
 use crate::shaders::accumulate::ACCUMULATE;
-use lucid_engine::graph::{Access, ImageHandle, RenderGraph};
+use lucid_engine::graph::{ImageHandle, RenderGraph};
 use lucid_engine::memory::ImageDesc;
 
 /// The history key of the accumulated image.
@@ -30,22 +30,16 @@ pub fn add_keyed(
     accumulated: u32,
 ) -> ImageHandle {
     let history = g.temporal_image(key, ImageDesc::rgba32f(width, height));
-    let mut p = g.add_pass(key);
-    let input = p.read(input, Access::ComputeRead);
-    let prev = p.read(history.prev, Access::ComputeRead);
-    let cur = p.write(history.cur, Access::ComputeWrite);
-    p.execute(move |ctx| {
-        let accumulated = if ctx.history_valid(prev) {
+    let mut pass = g.compute_pass(key, &ACCUMULATE);
+    pass.read("u_new", input);
+    let cur = pass.history("u_prev", "u_cur", history);
+    pass.push_with(move |ctx| {
+        if ctx.history_valid(history.prev) {
             accumulated
         } else {
             0
-        };
-        ctx.compute(&ACCUMULATE)
-            .image("u_new", input)
-            .image("u_prev", prev)
-            .image("u_cur", cur)
-            .push(&accumulated)
-            .dispatch_threads([width, height, 1])
+        }
     });
+    pass.dispatch([width, height, 1]);
     cur
 }

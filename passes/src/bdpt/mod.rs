@@ -23,7 +23,7 @@ pub use params::{Params, LIGHT_VERTEX_BYTES};
 use crate::scene_buffers::SceneHandles;
 use crate::shaders::bdpt::{CAMERA, LIGHT};
 use crate::transport::{Images, Outputs};
-use lucid_engine::graph::{Access, BufferHandle, RenderGraph};
+use lucid_engine::graph::{Access, BufferHandle, PassContext, RenderGraph};
 use lucid_engine::shader::Specialization;
 use lucid_engine::EngineError;
 
@@ -100,64 +100,47 @@ pub fn add(
     let stats = crate::stats::add_counter(g, "bdpt.stats");
     let splat = add_splat_clear(g, u64::from(width * height) * SPLAT_BYTES_PER_PIXEL);
 
-    let mut p = g.add_pass("bdpt.light");
-    scene.read(&mut p);
-    let constants = p.read(frame_constants, Access::ComputeRead);
-    let cache = p.create_buffer("bdpt.cache", params.cache_bytes());
-    let cache = p.write(cache, Access::ComputeWrite);
-    let lengths = p.create_buffer("bdpt.cache_lengths", params.lengths_bytes());
-    let lengths = p.write(lengths, Access::ComputeWrite);
-    let splat = p.write(splat, Access::ComputeReadWrite);
-    let stats = p.write(stats, Access::ComputeReadWrite);
-    let (light_scene, light_spec) = (*scene, spec.clone());
-    p.execute(move |ctx| {
-        let info = ctx.context().info();
-        if !info.int64_atomics {
-            return Err(EngineError::MissingFeature {
-                device: info.name.clone(),
-                missing: "64-bit integer buffer atomics (shaderInt64, shaderBufferInt64Atomics), \
-                          which bidirectional path tracing splats light paths with"
-                    .into(),
-            });
-        }
-        let dispatch = ctx
-            .compute(&LIGHT)
-            .specialization(&light_spec)
-            .push(&params)
-            .buffer("b_frame", constants)
-            .buffer("b_stats", stats)
-            .buffer("b_lvc", cache)
-            .buffer("b_lvc_lengths", lengths)
-            .buffer("b_splat", splat);
-        light_scene
-            .bind(dispatch)
-            .dispatch_threads(params.light_threads())
-    });
+    let mut pass = g.compute_pass("bdpt.light", &LIGHT);
+    scene.read(&mut pass);
+    pass.read("b_frame", frame_constants);
+    let cache = pass.create_buffer("b_lvc", "bdpt.cache", params.cache_bytes());
+    let lengths = pass.create_buffer(
+        "b_lvc_lengths",
+        "bdpt.cache_lengths",
+        params.lengths_bytes(),
+    );
+    let splat = pass.read_write("b_splat", splat);
+    let stats = pass.read_write("b_stats", stats);
+    pass.specialization(&spec)
+        .push(&params)
+        .require(require_int64_atomics);
+    pass.dispatch(params.light_threads());
 
-    let mut p = g.add_pass("bdpt.camera");
-    scene.read(&mut p);
-    let constants = p.read(frame_constants, Access::ComputeRead);
-    let cache = p.read(cache, Access::ComputeRead);
-    let lengths = p.read(lengths, Access::ComputeRead);
-    let splat = p.read(splat, Access::ComputeRead);
-    let stats = p.write(stats, Access::ComputeReadWrite);
-    let images = Images::create(&mut p, "bdpt", (width, height), surface);
-    let scene = *scene;
-    p.execute(move |ctx| {
-        let dispatch = ctx
-            .compute(&CAMERA)
-            .specialization(&spec)
-            .push(&params)
-            .buffer("b_frame", constants)
-            .buffer("b_stats", stats)
-            .buffer("b_lvc", cache)
-            .buffer("b_lvc_lengths", lengths)
-            .buffer("b_splat", splat);
-        scene
-            .bind(images.bind(dispatch))
-            .dispatch_threads([width, height, 1])
-    });
+    let mut pass = g.compute_pass("bdpt.camera", &CAMERA);
+    scene.read(&mut pass);
+    pass.read("b_frame", frame_constants)
+        .read("b_lvc", cache)
+        .read("b_lvc_lengths", lengths)
+        .read("b_splat", splat);
+    let stats = pass.read_write("b_stats", stats);
+    let images = Images::create(&mut pass, "bdpt", (width, height), surface);
+    pass.specialization(&spec).push(&params);
+    pass.dispatch([width, height, 1]);
     images.with_stats(stats)
+}
+
+/// Fails on a device without the 64-bit buffer atomics the light pass splats with.
+fn require_int64_atomics(ctx: &PassContext<'_>) -> lucid_engine::Result<()> {
+    let info = ctx.context().info();
+    if info.int64_atomics {
+        return Ok(());
+    }
+    Err(EngineError::MissingFeature {
+        device: info.name.clone(),
+        missing: "64-bit integer buffer atomics (shaderInt64, shaderBufferInt64Atomics), \
+                  which bidirectional path tracing splats light paths with"
+            .into(),
+    })
 }
 
 /// Bytes of the light-tracing splats per pixel: RGB in 64-bit fixed point (`splat_fixed` in

@@ -4,7 +4,7 @@
 use crate::placeholder::add_zero_image;
 use crate::renderer::FrameImages;
 use crate::shaders::debug_view::DEBUG_VIEW;
-use lucid_engine::graph::{Access, ImageHandle, RenderGraph};
+use lucid_engine::graph::{ImageHandle, RenderGraph};
 use lucid_engine::memory::ImageDesc;
 
 /// What to show instead of the final image.
@@ -78,16 +78,10 @@ pub fn add(
             ),
         },
     };
-    let mut p = g.add_pass("debug_view");
-    let source = p.read(source, Access::ComputeSampled);
-    let out = p.create_image("debug_view.out", ImageDesc::rgba32f(width, height));
-    let out = p.write(out, Access::ComputeWrite);
-    p.execute(move |ctx| {
-        ctx.compute(&DEBUG_VIEW)
-            .image("u_source", source)
-            .image("u_out", out)
-            .push(&[mode, 10.0f32.to_bits()])
-            .dispatch_threads([width, height, 1])
-    });
+    let mut pass = g.compute_pass("debug_view", &DEBUG_VIEW);
+    pass.sample("u_source", source);
+    let out = pass.create_image("u_out", "debug_view.out", ImageDesc::rgba32f(width, height));
+    pass.push(&[mode, 10.0f32.to_bits()]);
+    pass.dispatch([width, height, 1]);
     out
 }

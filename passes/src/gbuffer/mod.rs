@@ -4,7 +4,7 @@
 use crate::scene_buffers::SceneHandles;
 use crate::shaders::gbuffer::GBUFFER;
 use ash::vk;
-use lucid_engine::graph::{Access, BufferHandle, ImageHandle, RenderGraph};
+use lucid_engine::graph::{BufferHandle, ImageHandle, RenderGraph};
 use lucid_engine::memory::ImageDesc;
 use lucid_engine::shader::Specialization;
 
@@ -36,36 +36,24 @@ pub fn add(
     width: u32,
     height: u32,
 ) -> GBuffer {
-    let mut p = g.add_pass("gbuffer");
-    scene.read(&mut p);
-    let frame = p.read(frame, Access::ComputeRead);
-    let prev_transforms = p.read(prev_transforms, Access::ComputeRead);
+    let mut pass = g.compute_pass("gbuffer", &GBUFFER);
+    scene.read(&mut pass);
+    pass.specialization(spec)
+        .read("b_frame", frame)
+        .read("b_prev_transforms", prev_transforms);
+    // The image `gbuffer.<name>`, bound as `u_<name>`.
     let mut image = |name: &str, format: vk::Format| {
-        let h = p.create_image(name, ImageDesc::new(width, height, format));
-        p.write(h, Access::ComputeWrite)
+        let desc = ImageDesc::new(width, height, format);
+        pass.create_image(&format!("u_{name}"), &format!("gbuffer.{name}"), desc)
     };
     let out = GBuffer {
-        depth: image("gbuffer.depth", vk::Format::R32_SFLOAT),
-        normal_roughness: image("gbuffer.normal_roughness", vk::Format::R16G16B16A16_SFLOAT),
-        albedo: image("gbuffer.albedo", vk::Format::R16G16B16A16_SFLOAT),
-        emission: image("gbuffer.emission", vk::Format::R16G16B16A16_SFLOAT),
-        ids: image("gbuffer.ids", vk::Format::R32G32B32A32_UINT),
-        motion: image("gbuffer.motion", vk::Format::R16G16B16A16_SFLOAT),
+        depth: image("depth", vk::Format::R32_SFLOAT),
+        normal_roughness: image("normal_roughness", vk::Format::R16G16B16A16_SFLOAT),
+        albedo: image("albedo", vk::Format::R16G16B16A16_SFLOAT),
+        emission: image("emission", vk::Format::R16G16B16A16_SFLOAT),
+        ids: image("ids", vk::Format::R32G32B32A32_UINT),
+        motion: image("motion", vk::Format::R16G16B16A16_SFLOAT),
     };
-    let (scene, spec) = (*scene, spec.clone());
-    p.execute(move |ctx| {
-        let dispatch = ctx
-            .compute(&GBUFFER)
-            .specialization(&spec)
-            .buffer("b_frame", frame)
-            .buffer("b_prev_transforms", prev_transforms)
-            .image("u_depth", out.depth)
-            .image("u_normal_roughness", out.normal_roughness)
-            .image("u_albedo", out.albedo)
-            .image("u_emission", out.emission)
-            .image("u_ids", out.ids)
-            .image("u_motion", out.motion);
-        scene.bind(dispatch).dispatch_threads([width, height, 1])
-    });
+    pass.dispatch([width, height, 1]);
     out
 }

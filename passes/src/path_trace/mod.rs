@@ -6,7 +6,7 @@ use crate::placeholder::add_zero_image;
 use crate::scene_buffers::SceneHandles;
 use crate::shaders::path_trace::PATH_TRACE;
 use crate::transport::{Images, Outputs, Replay, ReplayParams};
-use lucid_engine::graph::{Access, BufferHandle, RenderGraph};
+use lucid_engine::graph::{BufferHandle, RenderGraph};
 use lucid_engine::memory::ImageDesc;
 use lucid_engine::shader::Specialization;
 
@@ -28,25 +28,14 @@ pub fn add(
         // Bound, never read: nothing is replayed, and the pass does not wait for the G-buffer.
         None => add_zero_image(g, "path_trace.no_motion", ImageDesc::rgba16f(1, 1)),
     };
-    let mut p = g.add_pass("path_trace");
-    scene.read(&mut p);
-    let frame = p.read(frame, Access::ComputeRead);
-    let stats = p.write(stats, Access::ComputeReadWrite);
-    let motion = p.read(motion, Access::ComputeRead);
+    let mut pass = g.compute_pass("path_trace", &PATH_TRACE);
+    scene.read(&mut pass);
+    pass.specialization(spec).read("b_frame", frame);
+    let stats = pass.read_write("b_stats", stats);
+    pass.read("u_motion", motion);
     let replay = replay.map_or(ReplayParams::default(), |r| r.params);
-    let images = Images::create(&mut p, "path_trace", (width, height), surface);
-    let (scene, spec) = (*scene, spec.clone());
-    p.execute(move |ctx| {
-        let dispatch = ctx
-            .compute(&PATH_TRACE)
-            .specialization(&spec)
-            .buffer("b_frame", frame)
-            .buffer("b_stats", stats)
-            .image("u_motion", motion)
-            .push(&replay);
-        scene
-            .bind(images.bind(dispatch))
-            .dispatch_threads([width, height, 1])
-    });
+    let images = Images::create(&mut pass, "path_trace", (width, height), surface);
+    pass.push(&replay);
+    pass.dispatch([width, height, 1]);
     images.with_stats(stats)
 }

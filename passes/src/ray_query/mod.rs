@@ -5,7 +5,7 @@
 use crate::scene_buffers::SceneHandles;
 use crate::shaders::ray_query::RAY_QUERY;
 use bytemuck::{Pod, Zeroable};
-use lucid_engine::graph::{Access, BufferHandle, RenderGraph};
+use lucid_engine::graph::{BufferHandle, RenderGraph};
 use lucid_engine::shader::Specialization;
 
 /// One query ray (std430 `RayIn`).
@@ -44,24 +44,15 @@ pub fn add(
     rays: BufferHandle,
     count: u32,
 ) -> BufferHandle {
-    let mut p = g.add_pass("ray_query");
-    scene.read(&mut p);
-    let rays = p.read(rays, Access::ComputeRead);
-    let hits = p.create_buffer(
+    let mut pass = g.compute_pass("ray_query", &RAY_QUERY);
+    scene.read(&mut pass);
+    pass.read("b_rays", rays);
+    let hits = pass.create_buffer(
+        "b_hits",
         "ray_query.hits",
         (count.max(1) as u64) * std::mem::size_of::<QueryHit>() as u64,
     );
-    let hits = p.write(hits, Access::ComputeWrite);
-    let scene = *scene;
-    let spec = spec.clone();
-    p.execute(move |ctx| {
-        let dispatch = ctx
-            .compute(&RAY_QUERY)
-            .specialization(&spec)
-            .buffer("b_rays", rays)
-            .buffer("b_hits", hits)
-            .push(&count);
-        scene.bind(dispatch).dispatch_threads([count, 1, 1])
-    });
+    pass.specialization(spec).push(&count);
+    pass.dispatch([count, 1, 1]);
     hits
 }

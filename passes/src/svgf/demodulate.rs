@@ -4,7 +4,7 @@
 use super::FrameInputs;
 use crate::accumulate;
 use crate::shaders::svgf::DEMODULATE;
-use lucid_engine::graph::{Access, ImageHandle, RenderGraph};
+use lucid_engine::graph::{ImageHandle, RenderGraph};
 use lucid_engine::memory::ImageDesc;
 
 /// History key of the accumulated first-hit albedo (spatial modes).
@@ -58,20 +58,16 @@ pub(super) fn add(
         };
     }
     let (width, height) = (inputs.width, inputs.height);
-    let mut p = g.add_pass("svgf.demodulate");
-    let radiance = p.read(inputs.accumulated, Access::ComputeRead);
-    let albedo = p.read(albedo, Access::ComputeRead);
-    let emission = p.read(emission, Access::ComputeRead);
-    let illumination = p.create_image("svgf.illumination", ImageDesc::rgba32f(width, height));
-    let illumination = p.write(illumination, Access::ComputeWrite);
-    p.execute(move |ctx| {
-        ctx.compute(&DEMODULATE)
-            .image("u_radiance", radiance)
-            .image("u_albedo", albedo)
-            .image("u_emission", emission)
-            .image("u_illumination", illumination)
-            .dispatch_threads([width, height, 1])
-    });
+    let mut pass = g.compute_pass("svgf.demodulate", &DEMODULATE);
+    pass.read("u_radiance", inputs.accumulated)
+        .read("u_albedo", albedo)
+        .read("u_emission", emission);
+    let illumination = pass.create_image(
+        "u_illumination",
+        "svgf.illumination",
+        ImageDesc::rgba32f(width, height),
+    );
+    pass.dispatch([width, height, 1]);
     Demodulated {
         illumination,
         albedo,

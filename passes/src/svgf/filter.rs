@@ -5,7 +5,7 @@ use super::demodulate::Demodulated;
 use super::SvgfParams;
 use crate::gbuffer::GBuffer;
 use crate::shaders::svgf::{ATROUS, ATROUS_FEEDBACK, MODULATE, MOMENTS, VARIANCE};
-use lucid_engine::graph::{Access, ImageHandle, RenderGraph};
+use lucid_engine::graph::{ImageHandle, RenderGraph};
 use lucid_engine::memory::ImageDesc;
 
 /// Push constants of the a-trous shaders.
@@ -24,16 +24,14 @@ pub(super) fn moments(
     illumination: ImageHandle,
     (width, height): (u32, u32),
 ) -> ImageHandle {
-    let mut p = g.add_pass("svgf.moments");
-    let illumination = p.read(illumination, Access::ComputeRead);
-    let moments = p.create_image("svgf.moments", ImageDesc::rgba32f(width, height));
-    let moments = p.write(moments, Access::ComputeWrite);
-    p.execute(move |ctx| {
-        ctx.compute(&MOMENTS)
-            .image("u_illumination", illumination)
-            .image("u_moments", moments)
-            .dispatch_threads([width, height, 1])
-    });
+    let mut pass = g.compute_pass("svgf.moments", &MOMENTS);
+    pass.read("u_illumination", illumination);
+    let moments = pass.create_image(
+        "u_moments",
+        "svgf.moments",
+        ImageDesc::rgba32f(width, height),
+    );
+    pass.dispatch([width, height, 1]);
     moments
 }
 
@@ -51,60 +49,37 @@ pub(super) fn add(
 ) -> ImageHandle {
     // Half precision for the filter chain (svgf_pack_filtered): the iterations are memory-bound.
     let desc = ImageDesc::rgba16f(width, height);
-    let mut p = g.add_pass("svgf.variance");
-    let color = p.read(demodulated.illumination, Access::ComputeRead);
-    let moments = p.read(moments, Access::ComputeRead);
-    let depth = p.read(gbuffer.depth, Access::ComputeRead);
-    let normal = p.read(gbuffer.normal_roughness, Access::ComputeRead);
-    let out = p.create_image("svgf.variance", desc);
-    let out = p.write(out, Access::ComputeWrite);
-    let sigmas = [params.sigma_z, params.sigma_n];
-    p.execute(move |ctx| {
-        ctx.compute(&VARIANCE)
-            .image("u_color", color)
-            .image("u_moments", moments)
-            .image("u_depth", depth)
-            .image("u_normal_roughness", normal)
-            .image("u_out", out)
-            .push(&sigmas)
-            .dispatch_threads([width, height, 1])
-    });
+    let mut pass = g.compute_pass("svgf.variance", &VARIANCE);
+    pass.read("u_color", demodulated.illumination)
+        .read("u_moments", moments)
+        .read("u_depth", gbuffer.depth)
+        .read("u_normal_roughness", gbuffer.normal_roughness);
+    let out = pass.create_image("u_out", "svgf.variance", desc);
+    pass.push(&[params.sigma_z, params.sigma_n]);
+    pass.dispatch([width, height, 1]);
     let mut filtered = out;
     for i in 0..params.iterations {
-        let mut p = g.add_pass("svgf.atrous");
-        let input = p.read(filtered, Access::ComputeRead);
-        let depth = p.read(gbuffer.depth, Access::ComputeRead);
-        let normal = p.read(gbuffer.normal_roughness, Access::ComputeRead);
-        let out = p.create_image("svgf.atrous", desc);
-        let out = p.write(out, Access::ComputeWrite);
-        let history = feedback
-            .filter(|_| i == 0)
-            .map(|h| p.write(h, Access::ComputeWrite));
-        let push = AtrousParams {
+        let history = feedback.filter(|_| i == 0);
+        let shader = if history.is_some() {
+            &ATROUS_FEEDBACK
+        } else {
+            &ATROUS
+        };
+        let mut pass = g.compute_pass("svgf.atrous", shader);
+        pass.read("u_in", filtered)
+            .read("u_depth", gbuffer.depth)
+            .read("u_normal_roughness", gbuffer.normal_roughness);
+        let out = pass.create_image("u_out", "svgf.atrous", desc);
+        if let Some(history) = history {
+            pass.write("u_history", history);
+        }
+        pass.push(&AtrousParams {
             step: 1 << i,
             sigma_z: params.sigma_z,
             sigma_n: params.sigma_n,
             sigma_l: params.sigma_l,
-        };
-        p.execute(move |ctx| {
-            let shader = if history.is_some() {
-                &ATROUS_FEEDBACK
-            } else {
-                &ATROUS
-            };
-            let dispatch = ctx
-                .compute(shader)
-                .image("u_in", input)
-                .image("u_depth", depth)
-                .image("u_normal_roughness", normal)
-                .image("u_out", out);
-            match history {
-                Some(h) => dispatch.image("u_history", h),
-                None => dispatch,
-            }
-            .push(&push)
-            .dispatch_threads([width, height, 1])
         });
+        pass.dispatch([width, height, 1]);
         filtered = out;
     }
     modulate(g, filtered, demodulated, (width, height))
@@ -117,19 +92,11 @@ fn modulate(
     demodulated: &Demodulated,
     (width, height): (u32, u32),
 ) -> ImageHandle {
-    let mut p = g.add_pass("svgf.modulate");
-    let illumination = p.read(illumination, Access::ComputeRead);
-    let albedo = p.read(demodulated.albedo, Access::ComputeRead);
-    let emission = p.read(demodulated.emission, Access::ComputeRead);
-    let out = p.create_image("svgf.output", ImageDesc::rgba32f(width, height));
-    let out = p.write(out, Access::ComputeWrite);
-    p.execute(move |ctx| {
-        ctx.compute(&MODULATE)
-            .image("u_illumination", illumination)
-            .image("u_albedo", albedo)
-            .image("u_emission", emission)
-            .image("u_out", out)
-            .dispatch_threads([width, height, 1])
-    });
+    let mut pass = g.compute_pass("svgf.modulate", &MODULATE);
+    pass.read("u_illumination", illumination)
+        .read("u_albedo", demodulated.albedo)
+        .read("u_emission", demodulated.emission);
+    let out = pass.create_image("u_out", "svgf.output", ImageDesc::rgba32f(width, height));
+    pass.dispatch([width, height, 1]);
     out
 }

@@ -4,7 +4,7 @@
 
 use crate::shaders::svgf::{GRADIENT, GRADIENT_FILTER};
 use crate::transport::ReplayParams;
-use lucid_engine::graph::{Access, ImageHandle, RenderGraph};
+use lucid_engine::graph::{ImageHandle, RenderGraph};
 use lucid_engine::memory::ImageDesc;
 
 /// A-trous iterations over the stratum gradients (3x3 boxes 1 and 2 strata apart: a 7x7-stratum
@@ -42,46 +42,37 @@ pub(super) fn add(g: &mut RenderGraph, inputs: &GradientInputs) -> ImageHandle {
         inputs.width.div_ceil(stratum),
         inputs.height.div_ceil(stratum),
     );
-    let mut p = g.add_pass("svgf.gradient");
-    let radiance = p.read(inputs.radiance, Access::ComputeRead);
-    let motion = p.read(inputs.motion, Access::ComputeRead);
-    let prev_surface = p.read(inputs.prev_surface, Access::ComputeRead);
-    let out = p.create_image("svgf.gradient", ImageDesc::rgba32f(gw, gh));
-    let out = p.write(out, Access::ComputeWrite);
+    let mut pass = g.compute_pass("svgf.gradient", &GRADIENT);
+    let prev_surface = inputs.prev_surface;
+    pass.read("u_radiance", inputs.radiance)
+        .read("u_motion", inputs.motion)
+        .read("u_prev_surface", prev_surface);
+    let out = pass.create_image("u_gradient", "svgf.gradient", ImageDesc::rgba32f(gw, gh));
     let push = Push {
         replay: inputs.replay,
         frame: inputs.frame_index,
     };
-    p.execute(move |ctx| {
-        let push = if ctx.history_valid(prev_surface) {
+    pass.push_with(move |ctx| {
+        if ctx.history_valid(prev_surface) {
             push
         } else {
             Push {
                 replay: ReplayParams::default(),
                 ..push
             }
-        };
-        ctx.compute(&GRADIENT)
-            .image("u_motion", motion)
-            .image("u_radiance", radiance)
-            .image("u_prev_surface", prev_surface)
-            .image("u_gradient", out)
-            .push(&push)
-            .dispatch_threads([gw, gh, 1])
+        }
     });
+    pass.dispatch([gw, gh, 1]);
     (0..FILTER_ITERATIONS).fold(out, |input, i| {
-        let mut p = g.add_pass("svgf.gradient_filter");
-        let input = p.read(input, Access::ComputeRead);
-        let out = p.create_image("svgf.gradient_filtered", ImageDesc::rgba32f(gw, gh));
-        let out = p.write(out, Access::ComputeWrite);
-        let step = 1i32 << i;
-        p.execute(move |ctx| {
-            ctx.compute(&GRADIENT_FILTER)
-                .image("u_in", input)
-                .image("u_out", out)
-                .push(&step)
-                .dispatch_threads([gw, gh, 1])
-        });
+        let mut pass = g.compute_pass("svgf.gradient_filter", &GRADIENT_FILTER);
+        pass.read("u_in", input);
+        let out = pass.create_image(
+            "u_out",
+            "svgf.gradient_filtered",
+            ImageDesc::rgba32f(gw, gh),
+        );
+        pass.push(&(1i32 << i));
+        pass.dispatch([gw, gh, 1]);
         out
     })
 }

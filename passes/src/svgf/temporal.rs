@@ -5,7 +5,7 @@ use super::{Histories, SvgfParams};
 use crate::gbuffer::GBuffer;
 use crate::shaders::svgf::TEMPORAL;
 use crate::transport;
-use lucid_engine::graph::{Access, ImageHandle, RenderGraph};
+use lucid_engine::graph::{ImageHandle, RenderGraph};
 use lucid_engine::memory::ImageDesc;
 
 /// Push constants of `temporal.comp`.
@@ -45,61 +45,41 @@ pub(super) fn add(
     params: &SvgfParams,
     (width, height): (u32, u32),
 ) -> Integrated {
-    let mut p = g.add_pass("svgf.temporal");
-    let radiance = p.read(radiance, Access::ComputeRead);
-    let illumination = p.read(surface.demodulated, Access::ComputeRead);
-    let albedo = p.read(surface.albedo, Access::ComputeRead);
-    let emission = p.read(surface.emission, Access::ComputeRead);
-    let depth = p.read(gbuffer.depth, Access::ComputeRead);
-    let normal = p.read(gbuffer.normal_roughness, Access::ComputeRead);
-    let ids = p.read(gbuffer.ids, Access::ComputeRead);
-    let motion = p.read(gbuffer.motion, Access::ComputeRead);
-    let gradient = p.read(gradient, Access::ComputeRead);
-    let prev_color = p.read(history.color.prev, Access::ComputeRead);
-    let prev_moments = p.read(history.moments.prev, Access::ComputeRead);
-    let prev_surface = p.read(history.surface.prev, Access::ComputeRead);
-    let prev_albedo = p.read(history.albedo.prev, Access::ComputeRead);
-    let prev_emission = p.read(history.emission.prev, Access::ComputeRead);
-    let color = p.create_image("svgf.integrated", ImageDesc::rgba32f(width, height));
-    let color = p.write(color, Access::ComputeWrite);
-    let moments = p.write(history.moments.cur, Access::ComputeWrite);
-    let surface = p.write(history.surface.cur, Access::ComputeWrite);
-    let albedo_out = p.write(history.albedo.cur, Access::ComputeWrite);
-    let emission_out = p.write(history.emission.cur, Access::ComputeWrite);
-    let params = *params;
-    p.execute(move |ctx| {
-        let push = Params {
-            alpha: params.alpha,
-            moments_alpha: params.moments_alpha,
-            history_valid: u32::from(continues && ctx.history_valid(prev_color)),
-            stratum: params.gradient_stratum,
-            max_history: MAX_HISTORY,
-            surface_alpha: params.surface_alpha,
-            pad: [0.0; 2],
-        };
-        ctx.compute(&TEMPORAL)
-            .image("u_radiance", radiance)
-            .image("u_illumination", illumination)
-            .image("u_depth", depth)
-            .image("u_normal_roughness", normal)
-            .image("u_ids", ids)
-            .image("u_motion", motion)
-            .image("u_gradient", gradient)
-            .image("u_prev_color", prev_color)
-            .image("u_prev_moments", prev_moments)
-            .image("u_prev_surface", prev_surface)
-            .image("u_color", color)
-            .image("u_moments", moments)
-            .image("u_surface", surface)
-            .image("u_albedo", albedo)
-            .image("u_emission", emission)
-            .image("u_prev_albedo", prev_albedo)
-            .image("u_prev_emission", prev_emission)
-            .image("u_albedo_out", albedo_out)
-            .image("u_emission_out", emission_out)
-            .push(&push)
-            .dispatch_threads([width, height, 1])
+    let mut pass = g.compute_pass("svgf.temporal", &TEMPORAL);
+    pass.read("u_radiance", radiance)
+        .read("u_illumination", surface.demodulated)
+        .read("u_albedo", surface.albedo)
+        .read("u_emission", surface.emission)
+        .read("u_depth", gbuffer.depth)
+        .read("u_normal_roughness", gbuffer.normal_roughness)
+        .read("u_ids", gbuffer.ids)
+        .read("u_motion", gbuffer.motion)
+        .read("u_gradient", gradient)
+        .read("u_prev_color", history.color.prev)
+        .read("u_prev_moments", history.moments.prev)
+        .read("u_prev_surface", history.surface.prev)
+        .read("u_prev_albedo", history.albedo.prev)
+        .read("u_prev_emission", history.emission.prev);
+    let color = pass.create_image(
+        "u_color",
+        "svgf.integrated",
+        ImageDesc::rgba32f(width, height),
+    );
+    let moments = pass.write("u_moments", history.moments.cur);
+    pass.write("u_surface", history.surface.cur);
+    let albedo_out = pass.write("u_albedo_out", history.albedo.cur);
+    let emission_out = pass.write("u_emission_out", history.emission.cur);
+    let (params, prev_color) = (*params, history.color.prev);
+    pass.push_with(move |ctx| Params {
+        alpha: params.alpha,
+        moments_alpha: params.moments_alpha,
+        history_valid: u32::from(continues && ctx.history_valid(prev_color)),
+        stratum: params.gradient_stratum,
+        max_history: MAX_HISTORY,
+        surface_alpha: params.surface_alpha,
+        pad: [0.0; 2],
     });
+    pass.dispatch([width, height, 1]);
     Integrated {
         demodulated: Demodulated {
             illumination: color,

@@ -4,7 +4,7 @@
 
 use crate::shaders::test_pattern::{COMBINE, GRADIENT, ROW_SUM};
 use bytemuck::{Pod, Zeroable};
-use lucid_engine::graph::{Access, BufferHandle, ImageHandle, RenderGraph};
+use lucid_engine::graph::{BufferHandle, ImageHandle, RenderGraph};
 use lucid_engine::memory::ImageDesc;
 
 /// Parameters of the pattern.
@@ -64,46 +64,33 @@ pub fn add(g: &mut RenderGraph, width: u32, height: u32, params: &Params) -> Out
         gain: params.gain,
         checker: params.checker.max(1),
     };
-    let mut p = g.add_pass("test_pattern.gradient");
-    let pattern = p.create_image("test_pattern.pattern", ImageDesc::rgba32f(width, height));
-    let pattern = p.write(pattern, Access::ComputeWrite);
-    p.execute(move |ctx| {
-        ctx.compute(&GRADIENT)
-            .image("u_out", pattern)
-            .push(&gradient_push)
-            .dispatch_threads([width, height, 1])
-    });
+    let mut pass = g.compute_pass("test_pattern.gradient", &GRADIENT);
+    let pattern = pass.create_image(
+        "u_out",
+        "test_pattern.pattern",
+        ImageDesc::rgba32f(width, height),
+    );
+    pass.push(&gradient_push);
+    pass.dispatch([width, height, 1]);
 
-    let mut p = g.add_pass("test_pattern.row_sum");
-    let input = p.read(pattern, Access::ComputeRead);
-    let sums = p.create_buffer("test_pattern.row_sums", 4 * height as u64);
-    let sums = p.write(sums, Access::ComputeWrite);
-    p.execute(move |ctx| {
-        ctx.compute(&ROW_SUM)
-            .image("u_in", input)
-            .buffer("b_sums", sums)
-            .dispatch_threads([height, 1, 1])
-    });
+    let mut pass = g.compute_pass("test_pattern.row_sum", &ROW_SUM);
+    pass.read("u_in", pattern);
+    let sums = pass.create_buffer("b_sums", "test_pattern.row_sums", 4 * height as u64);
+    pass.dispatch([height, 1, 1]);
 
-    let combine_push = CombinePush {
-        offset: params.offset,
-    };
-    let (add_offset, group_width) = (params.add_offset, params.combine_group_width.max(1));
-    let mut p = g.add_pass("test_pattern.combine");
-    let input = p.read(pattern, Access::ComputeRead);
-    let sums_in = p.read(sums, Access::ComputeRead);
-    let combined = p.create_image("test_pattern.combined", ImageDesc::rgba32f(width, height));
-    let combined = p.write(combined, Access::ComputeWrite);
-    p.execute(move |ctx| {
-        ctx.compute(&COMBINE)
-            .specialize("ADD_OFFSET", add_offset)
-            .specialize("local_size_x", group_width)
-            .image("u_in", input)
-            .buffer("RowSums", sums_in)
-            .image("u_out", combined)
-            .push(&combine_push)
-            .dispatch_threads([width, height, 1])
-    });
+    let mut pass = g.compute_pass("test_pattern.combine", &COMBINE);
+    pass.read("u_in", pattern).read("RowSums", sums);
+    let combined = pass.create_image(
+        "u_out",
+        "test_pattern.combined",
+        ImageDesc::rgba32f(width, height),
+    );
+    pass.specialize("ADD_OFFSET", params.add_offset)
+        .specialize("local_size_x", params.combine_group_width.max(1))
+        .push(&CombinePush {
+            offset: params.offset,
+        });
+    pass.dispatch([width, height, 1]);
     Outputs {
         pattern,
         row_sums: sums,

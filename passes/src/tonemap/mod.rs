@@ -3,7 +3,7 @@
 
 use crate::shaders::tonemap::TONEMAP;
 use lucid_engine::capture::{PngEncoding, ToneCurve};
-use lucid_engine::graph::{Access, ImageHandle, RenderGraph};
+use lucid_engine::graph::{ImageHandle, RenderGraph};
 use lucid_engine::memory::ImageDesc;
 
 /// The byte order of the 8-bit output.
@@ -41,16 +41,10 @@ pub fn add_ordered(
         ToneCurve::AgX => 2,
     };
     let swap_rb = u32::from(order == ChannelOrder::Bgra);
-    let mut p = g.add_pass("tonemap");
-    let hdr = p.read(hdr, Access::ComputeRead);
-    let ldr = p.create_image("tonemap.ldr", ImageDesc::rgba8(width, height));
-    let ldr = p.write(ldr, Access::ComputeWrite);
-    p.execute(move |ctx| {
-        ctx.compute(&TONEMAP)
-            .image("u_hdr", hdr)
-            .image("u_ldr", ldr)
-            .push(&[encoding.exposure.to_bits(), curve, swap_rb])
-            .dispatch_threads([width, height, 1])
-    });
+    let mut pass = g.compute_pass("tonemap", &TONEMAP);
+    pass.read("u_hdr", hdr);
+    let ldr = pass.create_image("u_ldr", "tonemap.ldr", ImageDesc::rgba8(width, height));
+    pass.push(&[encoding.exposure.to_bits(), curve, swap_rb]);
+    pass.dispatch([width, height, 1]);
     ldr
 }
