@@ -1,7 +1,7 @@
 //! Render graphs executed on the device (lavapipe in CI) with validation on: exact outputs,
 //! aliasing, history across frames, specialization, reflection and binding errors.
 
-use lucid_engine::graph::{Access, Executor, RenderGraph};
+use lucid_engine::graph::{Access, Executor, ImageHandle, RenderGraph};
 use lucid_engine::memory::ImageDesc;
 use lucid_engine::shader::DescriptorKind;
 use lucid_passes::shaders::test_pattern::{ACCUMULATE, COMBINE, GRADIENT, SCALE};
@@ -317,6 +317,52 @@ fn binding_undeclared_or_missing_resources_are_errors() {
         .unwrap()
         .to_string();
     assert!(message.contains("\"u_in\" was not bound"), "{message}");
+    assert_no_validation_messages(&ctx);
+}
+
+/// Executes a gradient and a `ComputePass` of SCALE that `declare` sets up besides its output;
+/// returns the frame's error.
+fn scale_pass_error(
+    executor: &mut Executor,
+    declare: impl FnOnce(&mut lucid_engine::graph::ComputePass<'_>, ImageHandle),
+) -> String {
+    let mut g = RenderGraph::new();
+    let mut gradient = g.compute_pass("gradient", &GRADIENT);
+    let a = gradient.create_image("u_out", "a", ImageDesc::rgba32f(8, 8));
+    gradient.push(&[1.0f32.to_bits(), 4u32]);
+    gradient.dispatch([8, 8, 1]);
+    let mut scale = g.compute_pass("scale", &SCALE);
+    declare(&mut scale, a);
+    let out = scale.create_image("u_out", "b", ImageDesc::rgba32f(8, 8));
+    scale.dispatch([8, 8, 1]);
+    g.readback(out);
+    executor
+        .execute(g.compile().unwrap())
+        .expect_err("must fail")
+        .to_string()
+}
+
+#[test]
+fn a_compute_pass_is_checked_against_the_shader_reflection() {
+    let (ctx, mut executor) = executor(false);
+    let message = scale_pass_error(&mut executor, |p, a| {
+        p.read("u_typo", a).push(&2.0f32);
+    });
+    assert!(
+        message.contains("u_typo") && message.contains("u_in") && message.contains("scale"),
+        "{message}"
+    );
+    let message = scale_pass_error(&mut executor, |p, _| {
+        p.push(&2.0f32);
+    });
+    assert!(message.contains("\"u_in\" was not bound"), "{message}");
+    let message = scale_pass_error(&mut executor, |p, a| {
+        p.read("u_in", a).push(&[2.0f32, 3.0]);
+    });
+    assert!(
+        message.contains("push constants are 8 bytes but the shader expects 4"),
+        "{message}"
+    );
     assert_no_validation_messages(&ctx);
 }
 
