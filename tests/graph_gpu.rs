@@ -4,8 +4,8 @@
 use lucid_engine::graph::{Access, Executor, ImageHandle, RenderGraph};
 use lucid_engine::memory::ImageDesc;
 use lucid_engine::shader::DescriptorKind;
+use lucid_passes::debug::test_pattern::{self, Params};
 use lucid_passes::shaders::test_pattern::{ACCUMULATE, COMBINE, GRADIENT, SCALE};
-use lucid_passes::test_pattern::{self, Params};
 use lucid_tests::{assert_no_validation_messages, executor, run};
 
 fn assert_close(got: &[[f32; 4]], want: &[[f32; 4]], tolerance: f32) {
@@ -25,7 +25,7 @@ fn assert_close(got: &[[f32; 4]], want: &[[f32; 4]], tolerance: f32) {
 
 fn run_pattern(executor: &mut Executor, w: u32, h: u32, params: &Params) -> Vec<[f32; 4]> {
     let mut g = RenderGraph::new();
-    let out = test_pattern::add(&mut g, w, h, params);
+    let out = test_pattern::add_test_pattern(&mut g, w, h, params);
     let readback = g.readback(out.combined);
     run(executor, g).image(readback).unwrap().pixels
 }
@@ -186,7 +186,7 @@ fn frames_in_flight_overlap_and_each_returns_its_outputs() {
     let mut frames = Vec::new();
     for gain in [1.0f32, 2.0] {
         let mut g = RenderGraph::new();
-        let out = test_pattern::add(&mut g, 16, 16, &Params { gain, ..params });
+        let out = test_pattern::add_test_pattern(&mut g, 16, 16, &Params { gain, ..params });
         let readback = g.readback(out.pattern);
         frames.push((
             executor.execute(g.compile().unwrap()).unwrap(),

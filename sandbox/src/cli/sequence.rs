@@ -10,8 +10,8 @@ use clap::Args;
 use lucid_engine::capture::{self, ExrPrecision, ImageData};
 use lucid_engine::scene::{Camera, Scene};
 use lucid_engine::{Context, ContextDesc};
+use lucid_passes::denoise::svgf::{SvgfMode, SvgfParams};
 use lucid_passes::renderer::{Denoiser, Renderer, Settings};
-use lucid_passes::svgf::{SvgfMode, SvgfParams};
 use std::path::{Path, PathBuf};
 
 /// Options of `lucid sequence`.

@@ -7,7 +7,7 @@ use lucid_engine::capture::ImageData;
 use lucid_engine::graph::RenderGraph;
 use lucid_engine::scene::{builtin, Camera};
 use lucid_engine::{Context, ContextDesc};
-use lucid_passes::debug_view::View;
+use lucid_passes::debug::debug_view::View;
 
 const SIZE: [u32; 2] = [48, 32];
 

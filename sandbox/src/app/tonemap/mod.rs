@@ -1,9 +1,9 @@
-//! The display transform as a graph pass: the renderer's tone mapping (`lucid_passes::tonemap`),
+//! The display transform as a graph pass: the renderer's tone mapping (`lucid_passes::post::tonemap`),
 //! with the bytes in the order of the image they are copied into.
 
 use crate::settings::DisplaySettings;
 use lucid_engine::graph::{ImageHandle, RenderGraph};
-use lucid_passes::tonemap::{self, ChannelOrder};
+use lucid_passes::post::tonemap::{self, ChannelOrder};
 
 /// Adds the tone-mapping pass reading `hdr`; returns an RGBA8 image of `extent` whose bytes are
 /// in BGRA order when `bgra` is set.
@@ -19,7 +19,7 @@ pub fn add(
     } else {
         ChannelOrder::Rgba
     };
-    tonemap::add_ordered(
+    tonemap::add_tonemap_ordered(
         graph,
         hdr,
         extent[0],

@@ -59,7 +59,7 @@ pub struct Outputs {
 }
 
 /// Adds the three passes to `g`.
-pub fn add(g: &mut RenderGraph, width: u32, height: u32, params: &Params) -> Outputs {
+pub fn add_test_pattern(g: &mut RenderGraph, width: u32, height: u32, params: &Params) -> Outputs {
     let gradient_push = GradientPush {
         gain: params.gain,
         checker: params.checker.max(1),

@@ -1,7 +1,7 @@
 //! The G-buffer: primary visibility at pixel centres (`shaders/gbuffer/gbuffer.comp`), for
 //! denoisers and debug views.
 
-use crate::scene_buffers::SceneHandles;
+use crate::plumbing::scene_buffers::SceneHandles;
 use crate::shaders::gbuffer::GBUFFER;
 use ash::vk;
 use lucid_engine::graph::{BufferHandle, ImageHandle, RenderGraph};
@@ -27,7 +27,7 @@ pub struct GBuffer {
 
 /// Adds the G-buffer pass. `prev_transforms` holds last frame's object-to-world rows
 /// (3 × vec4 per scene instance).
-pub fn add(
+pub fn add_gbuffer(
     g: &mut RenderGraph,
     scene: &SceneHandles,
     frame: BufferHandle,

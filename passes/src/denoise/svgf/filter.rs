@@ -3,7 +3,7 @@
 
 use super::demodulate::Demodulated;
 use super::SvgfParams;
-use crate::gbuffer::GBuffer;
+use crate::denoise::gbuffer::GBuffer;
 use crate::shaders::svgf::{ATROUS, ATROUS_FEEDBACK, MODULATE, MOMENTS, VARIANCE};
 use lucid_engine::graph::{ImageHandle, RenderGraph};
 use lucid_engine::memory::ImageDesc;

@@ -11,7 +11,7 @@
 //!    replayed then); where a light or an object changed it measures the share of shading that
 //!    changed. The replay costs no extra paths: the picked pixel's sample is the replayed one.
 //! 2. **Temporal accumulation** (`temporal`): the light-transport pass demodulated each sample by
-//!    its own first hit, `(radiance - emission) / albedo` ([`transport::SurfaceImages`]); reproject the
+//!    its own first hit, `(radiance - emission) / albedo` ([`light_transport::SurfaceImages`]); reproject the
 //!    history with the motion vectors (bilinear taps validated by depth, normal and object id,
 //!    else a 3x3 search, else a disocclusion), blend this illumination, the first two luminance
 //!    moments and the first hits' albedo and emission with moving averages whose weight the
@@ -40,8 +40,8 @@ pub use demodulate::{ALBEDO_ACCUMULATED_KEY, EMISSION_ACCUMULATED_KEY};
 pub use params::{SvgfMode, SvgfParams};
 pub use schedule::{Apply, Schedule};
 
-use crate::gbuffer::GBuffer;
-use crate::transport::{self, ReplayParams};
+use crate::denoise::gbuffer::GBuffer;
+use crate::light_transport::{self, ReplayParams};
 use lucid_engine::graph::{ImageHandle, RenderGraph, TemporalImage};
 
 /// History key of the filtered illumination (output of the first a-trous iteration).
@@ -69,7 +69,7 @@ pub struct FrameInputs {
     /// This frame's noisy radiance.
     pub radiance: ImageHandle,
     /// The light transport's images for denoisers (the temporal filter's input).
-    pub surface: transport::SurfaceImages,
+    pub surface: light_transport::SurfaceImages,
     /// The (accumulated) output the spatial modes filter.
     pub accumulated: ImageHandle,
     /// Frames averaged into `accumulated` before this one (0: it is this frame's radiance).
@@ -116,7 +116,7 @@ pub struct Denoised {
 /// Adds what `apply` asks for. The spatial modes average the first hits' albedo and emission
 /// every frame, filtered or not, so that they match the accumulated radiance once the filter
 /// starts.
-pub fn add(
+pub fn add_svgf(
     g: &mut RenderGraph,
     inputs: &FrameInputs,
     params: &SvgfParams,
@@ -127,7 +127,7 @@ pub fn add(
         gradient: None,
     };
     match apply {
-        Apply::Temporal { continues } => add_temporal(g, inputs, params, continues),
+        Apply::Temporal { continues } => add_svgf_temporal(g, inputs, params, continues),
         Apply::Spatial => {
             let surface = demodulate::accumulate_surface(g, inputs);
             spatial(add_spatial(g, inputs, params, surface))
@@ -143,7 +143,7 @@ pub fn add(
 
 /// Adds full SVGF on `inputs.radiance`; `continues`: the histories hold last frame (else they are
 /// ignored, as after a reset).
-pub fn add_temporal(
+pub fn add_svgf_temporal(
     g: &mut RenderGraph,
     inputs: &FrameInputs,
     params: &SvgfParams,

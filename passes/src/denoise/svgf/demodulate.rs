@@ -2,7 +2,7 @@
 //! (`shaders/svgf/demodulate.comp`).
 
 use super::FrameInputs;
-use crate::accumulate;
+use crate::denoise::accumulate;
 use crate::shaders::svgf::DEMODULATE;
 use lucid_engine::graph::{ImageHandle, RenderGraph};
 use lucid_engine::memory::ImageDesc;
@@ -31,8 +31,14 @@ pub(super) fn accumulate_surface(
     inputs: &FrameInputs,
 ) -> (ImageHandle, ImageHandle) {
     let (w, h, n) = (inputs.width, inputs.height, inputs.accumulated_frames);
-    let albedo = accumulate::add_keyed(g, ALBEDO_ACCUMULATED_KEY, inputs.surface.albedo, (w, h), n);
-    let emission = accumulate::add_keyed(
+    let albedo = accumulate::add_accumulate_keyed(
+        g,
+        ALBEDO_ACCUMULATED_KEY,
+        inputs.surface.albedo,
+        (w, h),
+        n,
+    );
+    let emission = accumulate::add_accumulate_keyed(
         g,
         EMISSION_ACCUMULATED_KEY,
         inputs.surface.emission,

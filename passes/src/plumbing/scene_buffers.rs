@@ -142,7 +142,7 @@ pub fn specialization(gpu: &GpuScene) -> Specialization {
 }
 
 /// The constants of `shaders/common/traverse.glsl` alone, for passes that only trace (see
-/// [`crate::ray_query`]): `HAS_SPHERES`, and `SINGLE_INSTANCE` when the packing is one triangle
+/// [`crate::debug::ray_query`]): `HAS_SPHERES`, and `SINGLE_INSTANCE` when the packing is one triangle
 /// instance ([`GpuScene::single_instance`]; the traversal then skips the top level).
 pub fn traversal_specialization(gpu: &GpuScene) -> Specialization {
     Specialization::new()

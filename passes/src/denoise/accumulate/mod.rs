@@ -10,19 +10,19 @@ pub const HISTORY_KEY: &str = "accumulate.radiance";
 
 /// Adds accumulation of `input`: with `accumulated` = n frames already averaged (0 restarts), the
 /// result is the mean of the last n + 1 frames.
-pub fn add(
+pub fn add_accumulate(
     g: &mut RenderGraph,
     input: ImageHandle,
     width: u32,
     height: u32,
     accumulated: u32,
 ) -> ImageHandle {
-    add_keyed(g, HISTORY_KEY, input, (width, height), accumulated)
+    add_accumulate_keyed(g, HISTORY_KEY, input, (width, height), accumulated)
 }
 
 /// Adds accumulation of the `rgba32f` image `input` into the history `key` (also the pass name),
-/// as [`add`] does.
-pub fn add_keyed(
+/// as [`add_accumulate`] does.
+pub fn add_accumulate_keyed(
     g: &mut RenderGraph,
     key: &str,
     input: ImageHandle,

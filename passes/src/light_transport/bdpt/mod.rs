@@ -20,9 +20,9 @@ mod params;
 
 pub use params::{Params, LIGHT_VERTEX_BYTES};
 
-use crate::scene_buffers::SceneHandles;
+use crate::light_transport::{Images, Outputs};
+use crate::plumbing::scene_buffers::SceneHandles;
 use crate::shaders::bdpt::{CAMERA, LIGHT};
-use crate::transport::{Images, Outputs};
 use lucid_engine::graph::{Access, BufferHandle, PassContext, RenderGraph};
 use lucid_engine::shader::Specialization;
 use lucid_engine::EngineError;
@@ -73,13 +73,13 @@ pub struct Frame {
     pub samples_per_pixel: u32,
     /// Longest path in segments (Mitsuba's convention).
     pub max_depth: u32,
-    /// Write the denoiser's images too ([`crate::transport::SurfaceImages`]).
+    /// Write the denoiser's images too ([`crate::light_transport::SurfaceImages`]).
     pub surface: bool,
 }
 
 /// Adds the light and camera passes, reading the scene and the frame constants; the outputs are
 /// those of the path tracer.
-pub fn add(
+pub fn add_bdpt(
     g: &mut RenderGraph,
     scene: &SceneHandles,
     frame_constants: BufferHandle,
@@ -97,7 +97,7 @@ pub fn add(
     let spec = spec
         .clone()
         .set("MIS_POWER", config.heuristic == MisHeuristic::Power);
-    let stats = crate::stats::add_counter(g, "bdpt.stats");
+    let stats = crate::plumbing::stats::add_counter(g, "bdpt.stats");
     let splat = add_splat_clear(g, u64::from(width * height) * SPLAT_BYTES_PER_PIXEL);
 
     let mut pass = g.compute_pass("bdpt.light", &LIGHT);

@@ -16,18 +16,18 @@ pub enum ChannelOrder {
 }
 
 /// Adds tone mapping of `hdr` (RGBA f32) with `encoding`; returns the sRGB-encoded RGBA8 image.
-pub fn add(
+pub fn add_tonemap(
     g: &mut RenderGraph,
     hdr: ImageHandle,
     width: u32,
     height: u32,
     encoding: PngEncoding,
 ) -> ImageHandle {
-    add_ordered(g, hdr, width, height, encoding, ChannelOrder::Rgba)
+    add_tonemap_ordered(g, hdr, width, height, encoding, ChannelOrder::Rgba)
 }
 
-/// Like [`add`], with the channels stored in `order`.
-pub fn add_ordered(
+/// Like [`add_tonemap`], with the channels stored in `order`.
+pub fn add_tonemap_ordered(
     g: &mut RenderGraph,
     hdr: ImageHandle,
     width: u32,

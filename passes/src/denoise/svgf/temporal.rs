@@ -2,9 +2,9 @@
 
 use super::demodulate::Demodulated;
 use super::{Histories, SvgfParams};
-use crate::gbuffer::GBuffer;
+use crate::denoise::gbuffer::GBuffer;
+use crate::light_transport;
 use crate::shaders::svgf::TEMPORAL;
-use crate::transport;
 use lucid_engine::graph::{ImageHandle, RenderGraph};
 use lucid_engine::memory::ImageDesc;
 
@@ -38,7 +38,7 @@ pub(super) struct Integrated {
 /// frame's moments, albedo, emission and surface records.
 pub(super) fn add(
     g: &mut RenderGraph,
-    (radiance, surface): (ImageHandle, &transport::SurfaceImages),
+    (radiance, surface): (ImageHandle, &light_transport::SurfaceImages),
     gbuffer: &GBuffer,
     gradient: ImageHandle,
     (history, continues): (&Histories, bool),

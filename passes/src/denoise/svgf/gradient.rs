@@ -2,8 +2,8 @@
 //! the light transport's replay of last frame's path compared with what that path gave last frame,
 //! then spread over a neighbourhood.
 
+use crate::light_transport::ReplayParams;
 use crate::shaders::svgf::{GRADIENT, GRADIENT_FILTER};
-use crate::transport::ReplayParams;
 use lucid_engine::graph::{ImageHandle, RenderGraph};
 use lucid_engine::memory::ImageDesc;
 

@@ -1,7 +1,7 @@
 //! Debug views: any intermediate image of a frame mapped to displayable linear RGB
 //! (`shaders/debug_view/debug_view.comp`).
 
-use crate::placeholder::add_zero_image;
+use crate::plumbing::placeholder::add_zero_image;
 use crate::renderer::FrameImages;
 use crate::shaders::debug_view::DEBUG_VIEW;
 use lucid_engine::graph::{ImageHandle, RenderGraph};
@@ -55,7 +55,7 @@ impl View {
 }
 
 /// The image `view` shows of `frame` (a visualisation pass for G-buffer channels).
-pub fn add(
+pub fn add_debug_view(
     g: &mut RenderGraph,
     frame: &FrameImages,
     view: View,

@@ -1,8 +1,7 @@
 //! Batch ray queries on the GPU (`shaders/ray_query/ray_query.comp`): closest hit and occlusion
-//! for a buffer of rays. Tests check the GPU traversal against the CPU BVH with it; the sandbox can
-//! pick with it.
+//! for a buffer of rays. Tests check the GPU traversal against the CPU BVH with it.
 
-use crate::scene_buffers::SceneHandles;
+use crate::plumbing::scene_buffers::SceneHandles;
 use crate::shaders::ray_query::RAY_QUERY;
 use bytemuck::{Pod, Zeroable};
 use lucid_engine::graph::{BufferHandle, RenderGraph};
@@ -36,8 +35,8 @@ pub struct QueryHit {
 pub const SPHERE_BIT: u32 = 0x8000_0000;
 
 /// Adds a pass answering `count` rays from `rays`, specialised with `spec` (see
-/// [`crate::scene_buffers::traversal_specialization`]); returns the buffer of [`QueryHit`]s.
-pub fn add(
+/// [`crate::plumbing::scene_buffers::traversal_specialization`]); returns the buffer of [`QueryHit`]s.
+pub fn add_ray_query(
     g: &mut RenderGraph,
     scene: &SceneHandles,
     spec: &Specialization,

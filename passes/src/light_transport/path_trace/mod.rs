@@ -2,10 +2,10 @@
 //! N samples per pixel (`shaders/path_trace/path_trace.comp`, `shaders/common/path.glsl`); replays
 //! last frame's paths where asked ([`Replay`]).
 
-use crate::placeholder::add_zero_image;
-use crate::scene_buffers::SceneHandles;
+use crate::light_transport::{Images, Outputs, Replay, ReplayParams};
+use crate::plumbing::placeholder::add_zero_image;
+use crate::plumbing::scene_buffers::SceneHandles;
 use crate::shaders::path_trace::PATH_TRACE;
-use crate::transport::{Images, Outputs, Replay, ReplayParams};
 use lucid_engine::graph::{BufferHandle, RenderGraph};
 use lucid_engine::memory::ImageDesc;
 use lucid_engine::shader::Specialization;
@@ -13,7 +13,7 @@ use lucid_engine::shader::Specialization;
 /// Adds the path tracer at `width`×`height`, reading the scene and the frame constants; the pixels
 /// `replay` picks replay last frame's paths (without it the pass does not depend on the G-buffer);
 /// the denoiser's images are written when `surface`.
-pub fn add(
+pub fn add_path_trace(
     g: &mut RenderGraph,
     scene: &SceneHandles,
     frame: BufferHandle,
@@ -22,7 +22,7 @@ pub fn add(
     (width, height): (u32, u32),
     surface: bool,
 ) -> Outputs {
-    let stats = crate::stats::add_counter(g, "path_trace.stats");
+    let stats = crate::plumbing::stats::add_counter(g, "path_trace.stats");
     let motion = match replay {
         Some(r) => r.motion,
         // Bound, never read: nothing is replayed, and the pass does not wait for the G-buffer.
