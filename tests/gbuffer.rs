@@ -148,7 +148,7 @@ fn camera_motion_reprojects_onto_the_same_objects() {
 
 #[test]
 fn debug_views_show_gbuffer_channels() {
-    use lucid_passes::debug_view::{self, View};
+    use lucid_passes::debug::debug_view::{self, View};
     let ctx = context(false);
     let mut renderer =
         Renderer::new(&ctx, scene("cornell-box"), SIZE, SIZE, Settings::default()).unwrap();
@@ -157,7 +157,7 @@ fn debug_views_show_gbuffer_channels() {
     let views: Vec<_> = View::ALL
         .iter()
         .map(|&v| {
-            let shown = debug_view::add(&mut g, &images, v, SIZE, SIZE);
+            let shown = debug_view::add_debug_view(&mut g, &images, v, SIZE, SIZE);
             (v, g.readback(shown))
         })
         .collect();

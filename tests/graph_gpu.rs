@@ -1,11 +1,11 @@
 //! Render graphs executed on the device (lavapipe in CI) with validation on: exact outputs,
 //! aliasing, history across frames, specialization, reflection and binding errors.
 
-use lucid_engine::graph::{Access, Executor, RenderGraph};
+use lucid_engine::graph::{Access, Executor, ImageHandle, RenderGraph};
 use lucid_engine::memory::ImageDesc;
 use lucid_engine::shader::DescriptorKind;
+use lucid_passes::debug::test_pattern::{self, Params};
 use lucid_passes::shaders::test_pattern::{ACCUMULATE, COMBINE, GRADIENT, SCALE};
-use lucid_passes::test_pattern::{self, Params};
 use lucid_tests::{assert_no_validation_messages, executor, run};
 
 fn assert_close(got: &[[f32; 4]], want: &[[f32; 4]], tolerance: f32) {
@@ -25,7 +25,7 @@ fn assert_close(got: &[[f32; 4]], want: &[[f32; 4]], tolerance: f32) {
 
 fn run_pattern(executor: &mut Executor, w: u32, h: u32, params: &Params) -> Vec<[f32; 4]> {
     let mut g = RenderGraph::new();
-    let out = test_pattern::add(&mut g, w, h, params);
+    let out = test_pattern::add_test_pattern(&mut g, w, h, params);
     let readback = g.readback(out.combined);
     run(executor, g).image(readback).unwrap().pixels
 }
@@ -186,7 +186,7 @@ fn frames_in_flight_overlap_and_each_returns_its_outputs() {
     let mut frames = Vec::new();
     for gain in [1.0f32, 2.0] {
         let mut g = RenderGraph::new();
-        let out = test_pattern::add(&mut g, 16, 16, &Params { gain, ..params });
+        let out = test_pattern::add_test_pattern(&mut g, 16, 16, &Params { gain, ..params });
         let readback = g.readback(out.pattern);
         frames.push((
             executor.execute(g.compile().unwrap()).unwrap(),
@@ -317,6 +317,52 @@ fn binding_undeclared_or_missing_resources_are_errors() {
         .unwrap()
         .to_string();
     assert!(message.contains("\"u_in\" was not bound"), "{message}");
+    assert_no_validation_messages(&ctx);
+}
+
+/// Executes a gradient and a `ComputePass` of SCALE that `declare` sets up besides its output;
+/// returns the frame's error.
+fn scale_pass_error(
+    executor: &mut Executor,
+    declare: impl FnOnce(&mut lucid_engine::graph::ComputePass<'_>, ImageHandle),
+) -> String {
+    let mut g = RenderGraph::new();
+    let mut gradient = g.compute_pass("gradient", &GRADIENT);
+    let a = gradient.create_image("u_out", "a", ImageDesc::rgba32f(8, 8));
+    gradient.push(&[1.0f32.to_bits(), 4u32]);
+    gradient.dispatch([8, 8, 1]);
+    let mut scale = g.compute_pass("scale", &SCALE);
+    declare(&mut scale, a);
+    let out = scale.create_image("u_out", "b", ImageDesc::rgba32f(8, 8));
+    scale.dispatch([8, 8, 1]);
+    g.readback(out);
+    executor
+        .execute(g.compile().unwrap())
+        .expect_err("must fail")
+        .to_string()
+}
+
+#[test]
+fn a_compute_pass_is_checked_against_the_shader_reflection() {
+    let (ctx, mut executor) = executor(false);
+    let message = scale_pass_error(&mut executor, |p, a| {
+        p.read("u_typo", a).push(&2.0f32);
+    });
+    assert!(
+        message.contains("u_typo") && message.contains("u_in") && message.contains("scale"),
+        "{message}"
+    );
+    let message = scale_pass_error(&mut executor, |p, _| {
+        p.push(&2.0f32);
+    });
+    assert!(message.contains("\"u_in\" was not bound"), "{message}");
+    let message = scale_pass_error(&mut executor, |p, a| {
+        p.read("u_in", a).push(&[2.0f32, 3.0]);
+    });
+    assert!(
+        message.contains("push constants are 8 bytes but the shader expects 4"),
+        "{message}"
+    );
     assert_no_validation_messages(&ctx);
 }
 

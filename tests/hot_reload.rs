@@ -2,8 +2,8 @@
 //! reported with file and line while the previous pipeline stays in use.
 
 use lucid_engine::graph::{Executor, RenderGraph};
-use lucid_passes::hot_reload::{source_shader_dir, Reload, ShaderWatcher};
-use lucid_passes::test_pattern::{self, Params};
+use lucid_passes::debug::test_pattern::{self, Params};
+use lucid_passes::plumbing::hot_reload::{source_shader_dir, Reload, ShaderWatcher};
 use lucid_tests::{assert_no_validation_messages, executor, run};
 use std::path::Path;
 
@@ -21,7 +21,7 @@ fn copy_dir(from: &Path, to: &Path) {
 
 fn red_at(executor: &mut Executor, x: u32) -> f32 {
     let mut g = RenderGraph::new();
-    let out = test_pattern::add(&mut g, 16, 4, &Params::default());
+    let out = test_pattern::add_test_pattern(&mut g, 16, 4, &Params::default());
     let readback = g.readback(out.pattern);
     run(executor, g).image(readback).unwrap().pixels[x as usize][0]
 }

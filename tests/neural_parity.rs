@@ -4,7 +4,7 @@
 //! pooling and upsampling, the history warp and the recurrent blend are all covered.
 
 use lucid_engine::graph::{Access, RenderGraph};
-use lucid_passes::neural::{self, Network, NetworkWeights, RECORD_CHANNELS};
+use lucid_passes::denoise::neural::{self, Network, NetworkWeights, RECORD_CHANNELS};
 use safetensors::SafeTensors;
 
 /// Half-precision activations give relative differences of about 1e-4 per layer, after seven layers still well under 5e-3.

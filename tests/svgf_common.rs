@@ -4,8 +4,8 @@
 use lucid_engine::capture::{rec709_luminance, ImageData};
 use lucid_engine::scene::{Camera, Material, Scene};
 use lucid_engine::Context;
+use lucid_passes::denoise::svgf::{SvgfMode, SvgfParams};
 use lucid_passes::renderer::{Denoiser, Renderer, Settings};
-use lucid_passes::svgf::{SvgfMode, SvgfParams};
 use lucid_tests::render::frame_images;
 
 /// Side of the square test images.

@@ -3,8 +3,8 @@
 
 use lucid_engine::capture::{PngEncoding, ToneCurve};
 use lucid_engine::graph::RenderGraph;
+use lucid_passes::post::tonemap::{self, ChannelOrder};
 use lucid_passes::renderer::{Renderer, Settings};
-use lucid_passes::tonemap::{self, ChannelOrder};
 use lucid_tests::render::scene;
 use lucid_tests::{assert_no_validation_messages, context, run};
 
@@ -20,8 +20,10 @@ fn gpu_tone_mapping_matches_the_cpu_encoding() {
         };
         let mut g = RenderGraph::new();
         let (images, _) = renderer.add_frame(&mut g);
-        let rgba = tonemap::add_ordered(&mut g, images.hdr, 32, 32, encoding, ChannelOrder::Rgba);
-        let bgra = tonemap::add_ordered(&mut g, images.hdr, 32, 32, encoding, ChannelOrder::Bgra);
+        let rgba =
+            tonemap::add_tonemap_ordered(&mut g, images.hdr, 32, 32, encoding, ChannelOrder::Rgba);
+        let bgra =
+            tonemap::add_tonemap_ordered(&mut g, images.hdr, 32, 32, encoding, ChannelOrder::Bgra);
         let ids = [g.readback(images.hdr), g.readback(rgba), g.readback(bgra)];
         let out = run(renderer.executor_mut(), g);
         let hdr = out.image(ids[0]).unwrap();

@@ -12,8 +12,8 @@ use lucid_engine::scene::builtin::{self, BuildOptions};
 use lucid_engine::scene::gpu::pack_flat;
 use lucid_engine::scene::{FlatScene, Scene};
 use lucid_engine::shader::ShaderLibrary;
-use lucid_passes::ray_query::{self, QueryHit, QueryRay, SPHERE_BIT};
-use lucid_passes::scene_buffers::{traversal_specialization, SceneBuffers};
+use lucid_passes::debug::ray_query::{self, QueryHit, QueryRay, SPHERE_BIT};
+use lucid_passes::plumbing::scene_buffers::{traversal_specialization, SceneBuffers};
 use lucid_tests::{assert_no_validation_messages, context, run};
 use std::sync::Arc;
 
@@ -119,7 +119,7 @@ fn check_scene(scene: &Scene, dynamic: &[bool], rays_per_scene: usize) -> bool {
     let mut g = RenderGraph::new();
     let scene_handles = buffers.import(&mut g);
     let rays_handle = g.import_buffer("rays", ray_buffer);
-    let hits = ray_query::add(
+    let hits = ray_query::add_ray_query(
         &mut g,
         &scene_handles,
         &spec,

@@ -7,7 +7,7 @@ use ash::vk;
 use lucid_engine::capture::PngEncoding;
 use lucid_engine::graph::{Access, ImageHandle, RenderGraph, ResourceState};
 use lucid_engine::memory::{color_range, Image};
-use lucid_passes::tonemap::{self, ChannelOrder};
+use lucid_passes::post::tonemap::{self, ChannelOrder};
 use std::sync::Arc;
 
 /// Colour of the window where there is no frame to show.
@@ -94,7 +94,7 @@ impl PresentTarget {
             ChannelOrder::Rgba
         };
         let [width, height] = self.extent();
-        tonemap::add_ordered(graph, hdr, width, height, encoding, order)
+        tonemap::add_tonemap_ordered(graph, hdr, width, height, encoding, order)
     }
 
     /// Adds the copy of `ldr` (from [`Self::add_tone_map`]) into `window` (from [`Self::import`]);

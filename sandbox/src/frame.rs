@@ -28,10 +28,10 @@ impl Session {
         self.last_shader_check = now;
         let library = self.source.executor().library();
         match self.shader_watcher.poll(library) {
-            Some(lucid_passes::hot_reload::Reload::Reloaded(n)) => {
+            Some(lucid_passes::plumbing::hot_reload::Reload::Reloaded(n)) => {
                 self.state.message = Some(format!("reloaded {n} shaders"));
             }
-            Some(lucid_passes::hot_reload::Reload::Failed(error)) => {
+            Some(lucid_passes::plumbing::hot_reload::Reload::Failed(error)) => {
                 self.state.message =
                     Some(format!("shader error (previous shaders kept):\n{error}"));
             }

@@ -52,7 +52,7 @@ pub struct Session {
     pub(super) frames_presented: u64,
     pub(super) failures_in_a_row: u32,
     /// Recompiles shaders edited under `shaders/` while the app runs.
-    pub(super) shader_watcher: lucid_passes::hot_reload::ShaderWatcher,
+    pub(super) shader_watcher: lucid_passes::plumbing::hot_reload::ShaderWatcher,
     pub(super) last_shader_check: f64,
     pub(super) capture_requested: bool,
     pub(super) exit: bool,
@@ -99,8 +99,8 @@ impl Session {
             last_frame: 0.0,
             frames_presented: 0,
             failures_in_a_row: 0,
-            shader_watcher: lucid_passes::hot_reload::ShaderWatcher::new(
-                lucid_passes::hot_reload::source_shader_dir(),
+            shader_watcher: lucid_passes::plumbing::hot_reload::ShaderWatcher::new(
+                lucid_passes::plumbing::hot_reload::source_shader_dir(),
             ),
             last_shader_check: 0.0,
             capture_requested: false,

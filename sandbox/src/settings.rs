@@ -107,9 +107,9 @@ pub struct RenderSettings {
     /// Whether samples accumulate over frames while nothing changes.
     pub accumulate: bool,
     /// The image shown: final, or an intermediate of the frame.
-    pub view: lucid_passes::debug_view::View,
+    pub view: lucid_passes::debug::debug_view::View,
     /// SVGF's mode and parameters (used when `denoiser` is SVGF).
-    pub svgf: lucid_passes::svgf::SvgfParams,
+    pub svgf: lucid_passes::denoise::svgf::SvgfParams,
 }
 
 impl RenderSettings {
@@ -130,7 +130,7 @@ impl RenderSettings {
             self.spp,
             self.max_depth
         );
-        if self.view != lucid_passes::debug_view::View::Final {
+        if self.view != lucid_passes::debug::debug_view::View::Final {
             text.push_str(&format!(", {}", self.view.label()));
         }
         text
@@ -145,8 +145,8 @@ impl Default for RenderSettings {
             max_depth: 8,
             denoiser: Denoiser::default(),
             accumulate: true,
-            view: lucid_passes::debug_view::View::Final,
-            svgf: lucid_passes::svgf::SvgfParams::default(),
+            view: lucid_passes::debug::debug_view::View::Final,
+            svgf: lucid_passes::denoise::svgf::SvgfParams::default(),
         }
     }
 }
@@ -236,7 +236,7 @@ mod tests {
         assert_eq!(right.compared(), left);
         assert_eq!(left.summary(), "path tracing, none, 4 spp, depth 8");
         let depth_view = RenderSettings {
-            view: lucid_passes::debug_view::View::Depth,
+            view: lucid_passes::debug::debug_view::View::Depth,
             ..right
         };
         assert_eq!(

@@ -22,6 +22,7 @@
 mod access;
 mod builder;
 mod compile;
+mod compute_pass;
 mod dump;
 mod execute;
 mod frame;
@@ -35,6 +36,7 @@ pub use access::{Access, AccessInfo, ResourceState};
 pub use builder::{
     PassBuilder, PassFn, ReadbackId, RenderGraph, ResourceDecl, ResourceDesc, ResourceKind,
 };
+pub use compute_pass::ComputePass;
 pub use execute::{Executor, FrameId, FrameOutputs, PassTiming, SubmitOptions};
 pub use handle::{BufferHandle, Handle, ImageHandle, ResourceId, TemporalImage};
 pub use pass_context::{Dispatch, PassContext};

@@ -19,11 +19,13 @@ mod settings;
 
 pub use settings::{Algorithm, Denoiser, Settings};
 
-use crate::frame_constants::{self, FrameConstants};
-use crate::gbuffer::{self, GBuffer};
-use crate::scene_buffers::{specialization, SceneBuffers, SceneHandles};
-use crate::transport::{self, Replay, ReplayParams};
-use crate::{accumulate, bdpt, neural, path_trace, svgf, tonemap};
+use crate::denoise::gbuffer::{self, GBuffer};
+use crate::denoise::{accumulate, neural, svgf};
+use crate::light_transport::{self, Replay, ReplayParams};
+use crate::light_transport::{bdpt, path_trace};
+use crate::plumbing::frame_constants::{self, FrameConstants};
+use crate::plumbing::scene_buffers::{specialization, SceneBuffers, SceneHandles};
+use crate::post::tonemap;
 use lucid_engine::bvh::Bvh;
 use lucid_engine::capture::ImageData;
 use lucid_engine::graph::{BufferHandle, Executor, FrameId, ImageHandle, ReadbackId, RenderGraph};
@@ -38,7 +40,7 @@ pub struct FrameImages {
     /// Noisy radiance of this frame.
     pub radiance: ImageHandle,
     /// Radiance without the first hit's emission, divided by its albedo (see
-    /// [`crate::transport::SurfaceImages::demodulated`]); traced only when a denoiser runs.
+    /// [`crate::light_transport::SurfaceImages::demodulated`]); traced only when a denoiser runs.
     pub demodulated: Option<ImageHandle>,
     /// SVGF's temporal gradients ([`svgf::Denoised::gradient`]); `None` unless temporal SVGF ran.
     pub gradient: Option<ImageHandle>,
@@ -382,7 +384,7 @@ impl Renderer {
         let frame = frame_constants::add(g, &constants);
         let scene = self.buffers.import(g);
         let prev_transforms = add_prev_transforms(g, &self.prev_transforms);
-        let gbuffer = gbuffer::add(g, &scene, frame, prev_transforms, &self.spec, w, h);
+        let gbuffer = gbuffer::add_gbuffer(g, &scene, frame, prev_transforms, &self.spec, w, h);
         let spp = self.settings.samples_per_pixel.max(1);
         let svgf_params = self.settings.svgf;
         let svgf_apply = match self.settings.denoiser {
@@ -415,7 +417,7 @@ impl Renderer {
         let traced = self.add_transport(g, &scene, frame, (&gbuffer, replay), surface);
         // Without accumulation the frame's radiance is its HDR image: no pass copies it.
         let hdr = if self.settings.accumulate {
-            accumulate::add(g, traced.radiance, w, h, accumulated)
+            accumulate::add_accumulate(g, traced.radiance, w, h, accumulated)
         } else {
             traced.radiance
         };
@@ -436,7 +438,7 @@ impl Renderer {
                     width: w,
                     height: h,
                 };
-                let denoised = svgf::add(g, &inputs, &svgf_params, apply);
+                let denoised = svgf::add_svgf(g, &inputs, &svgf_params, apply);
                 (denoised.image, denoised.gradient)
             }
             _ => match neural_record {
@@ -447,7 +449,7 @@ impl Renderer {
                 None => (hdr, None),
             },
         };
-        let ldr = tonemap::add(g, hdr, w, h, self.settings.display);
+        let ldr = tonemap::add_tonemap(g, hdr, w, h, self.settings.display);
         let stats = g.readback(traced.stats);
         self.prev_camera = camera;
         self.prev_replay_stratum = replay.stratum;
@@ -481,7 +483,7 @@ impl Renderer {
         frame: BufferHandle,
         (gbuffer, replay): (&GBuffer, ReplayParams),
         surface: bool,
-    ) -> transport::Outputs {
+    ) -> light_transport::Outputs {
         let (w, h) = (self.width, self.height);
         match self.settings.algorithm {
             Algorithm::PathTracing => {
@@ -490,7 +492,7 @@ impl Renderer {
                     params: replay,
                     motion: gbuffer.motion,
                 });
-                path_trace::add(
+                path_trace::add_path_trace(
                     g,
                     scene,
                     frame,
@@ -508,7 +510,7 @@ impl Renderer {
                     max_depth: self.settings.max_depth,
                     surface,
                 };
-                bdpt::add(
+                bdpt::add_bdpt(
                     g,
                     scene,
                     frame,

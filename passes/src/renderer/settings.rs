@@ -1,6 +1,6 @@
 //! What a frame renders: algorithm, samples, depth, accumulation and display settings.
 
-use crate::svgf::SvgfParams;
+use crate::denoise::svgf::SvgfParams;
 use lucid_engine::capture::{PngEncoding, ToneCurve};
 
 /// The light-transport algorithm, switchable per frame.
@@ -46,7 +46,7 @@ pub enum Denoiser {
     None,
     /// SVGF, in the mode of [`SvgfParams::mode`].
     Svgf,
-    /// The learned recurrent denoiser ([`crate::neural`]).
+    /// The learned recurrent denoiser ([`crate::denoise::neural`]).
     Neural,
 }
 

@@ -1,5 +1,5 @@
 //! `lucid dataset`: renders the learned denoiser's training data: camera-path sequences whose
-//! frames hold the denoiser's 1-sample inputs (the record of `lucid_passes::neural`: demodulated
+//! frames hold the denoiser's 1-sample inputs (the record of `lucid_passes::denoise::neural`: demodulated
 //! radiance, albedo, emission, normal, roughness, depth, motion) and a many-sample reference, one
 //! safetensors file per sequence plus `index.json` (read by `training/data.py`).
 //!
@@ -17,7 +17,7 @@ use half::f16;
 use lucid_engine::graph::RenderGraph;
 use lucid_engine::scene::{builtin, Camera, Scene};
 use lucid_engine::{Context, ContextDesc};
-use lucid_passes::neural::RECORD_CHANNELS;
+use lucid_passes::denoise::neural::RECORD_CHANNELS;
 use lucid_passes::renderer::{Denoiser, Renderer, Settings};
 use safetensors::tensor::{Dtype, TensorView};
 use std::collections::HashMap;
@@ -117,7 +117,7 @@ pub fn run(args: &DatasetArgs) -> anyhow::Result<()> {
     }
     progress.finish();
     let index = serde_json::json!({
-        "format": lucid_passes::neural::FORMAT,
+        "format": lucid_passes::denoise::neural::FORMAT,
         "record_channels": RECORD_CHANNELS,
         "reference_spp": args.reference_spp,
         "held_out": HELD_OUT,

@@ -11,9 +11,9 @@ use lucid_engine::capture::{self, ExrPrecision, ImageData};
 use lucid_engine::graph::RenderGraph;
 use lucid_engine::scene::{Camera, Scene};
 use lucid_engine::{Context, ContextDesc};
-use lucid_passes::neural::{record_image, RECORD_ALBEDO, RECORD_NORMAL};
+use lucid_passes::denoise::svgf::{SvgfMode, SvgfParams};
+use lucid_passes::denoise::neural::{record_image, RECORD_ALBEDO, RECORD_NORMAL};
 use lucid_passes::renderer::{Denoiser, Renderer, Settings};
-use lucid_passes::svgf::{SvgfMode, SvgfParams};
 use std::path::{Path, PathBuf};
 
 /// Options of `lucid sequence`.

@@ -80,7 +80,13 @@ impl FrameSource for RendererSource {
         self.renderer.set_settings(next);
         let (images, _) = self.renderer.add_frame(graph);
         let [w, h] = request.extent;
-        let shown = lucid_passes::debug_view::add(graph, &images, request.settings.view, w, h);
+        let shown = lucid_passes::debug::debug_view::add_debug_view(
+            graph,
+            &images,
+            request.settings.view,
+            w,
+            h,
+        );
         let Some(right_settings) = request.split else {
             self.split = None;
             return Ok(shown);

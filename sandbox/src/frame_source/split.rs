@@ -13,7 +13,7 @@ use lucid_engine::graph::{Access, RenderGraph};
 use lucid_engine::memory::{Image, ImageDesc};
 use lucid_engine::scene::Scene;
 use lucid_engine::Context;
-use lucid_passes::debug_view;
+use lucid_passes::debug::debug_view;
 use lucid_passes::renderer::Renderer;
 use std::sync::Arc;
 
@@ -50,7 +50,7 @@ impl SplitRenderer {
 
         let mut graph = RenderGraph::new();
         let (images, _) = self.renderer.add_frame(&mut graph);
-        let shown = debug_view::add(&mut graph, &images, settings.view, width, height);
+        let shown = debug_view::add_debug_view(&mut graph, &images, settings.view, width, height);
         let shown = settle_reads(&mut graph, shown);
         let target = graph.import_image("sandbox.split_right", output.clone());
         let mut p = graph.add_pass("sandbox.split_copy");

@@ -7,7 +7,7 @@ use lucid_engine::graph::{Executor, ImageHandle, RenderGraph};
 use lucid_engine::scene::Camera;
 use lucid_engine::shader::ShaderLibrary;
 use lucid_engine::Context;
-use lucid_passes::test_pattern;
+use lucid_passes::debug::test_pattern;
 
 /// The test pattern as a [`FrameSource`].
 pub struct TestPatternSource {
@@ -45,7 +45,7 @@ impl FrameSource for TestPatternSource {
         self.accumulated += u64::from(request.settings.spp.max(1));
         let params = pattern_params(request);
         let [w, h] = request.extent;
-        Ok(test_pattern::add(graph, w, h, &params).combined)
+        Ok(test_pattern::add_test_pattern(graph, w, h, &params).combined)
     }
 
     fn executor(&mut self) -> &mut Executor {

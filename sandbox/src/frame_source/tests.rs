@@ -7,7 +7,7 @@ use lucid_engine::capture::ImageData;
 use lucid_engine::graph::RenderGraph;
 use lucid_engine::scene::{builtin, Camera};
 use lucid_engine::{Context, ContextDesc};
-use lucid_passes::debug_view::View;
+use lucid_passes::debug::debug_view::View;
 
 const SIZE: [u32; 2] = [48, 32];
 
@@ -28,7 +28,7 @@ fn frame(
     };
     let hdr = source.render(&mut graph, &request).unwrap();
     let encoding = DisplaySettings::default().png_encoding();
-    let ldr = lucid_passes::tonemap::add(&mut graph, hdr, SIZE[0], SIZE[1], encoding);
+    let ldr = lucid_passes::post::tonemap::add_tonemap(&mut graph, hdr, SIZE[0], SIZE[1], encoding);
     let readback = graph.readback(ldr);
     let executor = source.executor();
     let id = executor.execute(graph.compile().unwrap()).unwrap();

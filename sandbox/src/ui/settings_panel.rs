@@ -108,7 +108,7 @@ fn renderer(ui: &mut egui::Ui, r: &mut RenderSettings) {
     egui::ComboBox::from_label("view")
         .selected_text(r.view.label())
         .show_ui(ui, |ui| {
-            for v in lucid_passes::debug_view::View::ALL {
+            for v in lucid_passes::debug::debug_view::View::ALL {
                 ui.selectable_value(&mut r.view, v, v.label());
             }
         });

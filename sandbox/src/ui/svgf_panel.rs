@@ -1,6 +1,6 @@
 //! The SVGF denoiser's mode and parameters in the settings panel.
 
-use lucid_passes::svgf::{SvgfMode, SvgfParams};
+use lucid_passes::denoise::svgf::{SvgfMode, SvgfParams};
 
 /// The modes the panel offers, by name (the budgets keep their current values when switched to).
 fn mode_label(mode: SvgfMode) -> &'static str {

@@ -1,0 +1,157 @@
+//! Bidirectional path tracing with a light vertex cache (Davidovic et al. 2014, "Progressive Light
+//! Transport Simulation on the GPU"), in two passes:
+//!
+//! - **light** (`shaders/bdpt/light.comp`): light subpaths from emitters picked by power, each
+//!   stored vertex by vertex in its own slots of a light vertex cache and connected to the camera
+//!   (light tracing), whose contributions are splatted with 64-bit fixed-point atomics;
+//! - **camera** (`shaders/bdpt/camera.comp`): camera subpaths with emission hits, next-event
+//!   estimation and connections to cached light vertices (a light subpath drawn uniformly, then
+//!   one of its vertices), all combined with SmallVCM's recursive MIS weights; adds the splats and
+//!   writes the frame's radiance.
+//!
+//! Neither the cache's layout nor the splat sums depend on thread timing, so a frame repeats bit
+//! for bit, as the path tracer's does.
+//!
+//! The sun and the environment emit no light subpaths: the paths they light are found by the
+//! camera subpaths' BSDF sampling and NEE, weighted between the two as the path tracer does. Light
+//! tracing needs a pinhole camera; with a lens its strategy is dropped from the weights.
+
+mod params;
+
+pub use params::{Params, LIGHT_VERTEX_BYTES};
+
+use crate::light_transport::{Images, Outputs};
+use crate::plumbing::scene_buffers::SceneHandles;
+use crate::shaders::bdpt::{CAMERA, LIGHT};
+use lucid_engine::graph::{Access, BufferHandle, PassContext, RenderGraph};
+use lucid_engine::shader::Specialization;
+use lucid_engine::EngineError;
+
+/// The multiple-importance-sampling heuristic combining the strategies.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub enum MisHeuristic {
+    /// Balance heuristic (SmallVCM's choice).
+    Balance,
+    /// Power heuristic with exponent 2 (the path tracer's choice).
+    #[default]
+    Power,
+}
+
+/// BDPT tuning.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Config {
+    /// Light subpaths per camera sample (fewer when the cache budget cannot hold them).
+    pub light_paths_per_sample: u32,
+    /// Cached light vertices each camera vertex connects to.
+    pub connections: u32,
+    /// The MIS heuristic.
+    pub heuristic: MisHeuristic,
+    /// Most bytes the light vertex cache may take; 128 MiB is the storage-buffer range every
+    /// Vulkan device supports.
+    pub cache_bytes: u64,
+}
+
+impl Default for Config {
+    fn default() -> Self {
+        Self {
+            light_paths_per_sample: 1,
+            connections: 1,
+            heuristic: MisHeuristic::Power,
+            cache_bytes: 128 << 20,
+        }
+    }
+}
+
+/// The image and sampling of a frame.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct Frame {
+    /// Width in pixels.
+    pub width: u32,
+    /// Height in pixels.
+    pub height: u32,
+    /// Camera samples per pixel.
+    pub samples_per_pixel: u32,
+    /// Longest path in segments (Mitsuba's convention).
+    pub max_depth: u32,
+    /// Write the denoiser's images too ([`crate::light_transport::SurfaceImages`]).
+    pub surface: bool,
+}
+
+/// Adds the light and camera passes, reading the scene and the frame constants; the outputs are
+/// those of the path tracer.
+pub fn add_bdpt(
+    g: &mut RenderGraph,
+    scene: &SceneHandles,
+    frame_constants: BufferHandle,
+    spec: &Specialization,
+    frame: Frame,
+    config: &Config,
+) -> Outputs {
+    let (width, height, surface) = (frame.width, frame.height, frame.surface);
+    let params = Params::new(
+        config,
+        width * height,
+        frame.samples_per_pixel,
+        frame.max_depth,
+    );
+    let spec = spec
+        .clone()
+        .set("MIS_POWER", config.heuristic == MisHeuristic::Power);
+    let stats = crate::plumbing::stats::add_counter(g, "bdpt.stats");
+    let splat = add_splat_clear(g, u64::from(width * height) * SPLAT_BYTES_PER_PIXEL);
+
+    let mut pass = g.compute_pass("bdpt.light", &LIGHT);
+    scene.read(&mut pass);
+    pass.read("b_frame", frame_constants);
+    let cache = pass.create_buffer("b_lvc", "bdpt.cache", params.cache_bytes());
+    let lengths = pass.create_buffer(
+        "b_lvc_lengths",
+        "bdpt.cache_lengths",
+        params.lengths_bytes(),
+    );
+    let splat = pass.read_write("b_splat", splat);
+    let stats = pass.read_write("b_stats", stats);
+    pass.specialization(&spec)
+        .push(&params)
+        .require(require_int64_atomics);
+    pass.dispatch(params.light_threads());
+
+    let mut pass = g.compute_pass("bdpt.camera", &CAMERA);
+    scene.read(&mut pass);
+    pass.read("b_frame", frame_constants)
+        .read("b_lvc", cache)
+        .read("b_lvc_lengths", lengths)
+        .read("b_splat", splat);
+    let stats = pass.read_write("b_stats", stats);
+    let images = Images::create(&mut pass, "bdpt", (width, height), surface);
+    pass.specialization(&spec).push(&params);
+    pass.dispatch([width, height, 1]);
+    images.with_stats(stats)
+}
+
+/// Fails on a device without the 64-bit buffer atomics the light pass splats with.
+fn require_int64_atomics(ctx: &PassContext<'_>) -> lucid_engine::Result<()> {
+    let info = ctx.context().info();
+    if info.int64_atomics {
+        return Ok(());
+    }
+    Err(EngineError::MissingFeature {
+        device: info.name.clone(),
+        missing: "64-bit integer buffer atomics (shaderInt64, shaderBufferInt64Atomics), \
+                  which bidirectional path tracing splats light paths with"
+            .into(),
+    })
+}
+
+/// Bytes of the light-tracing splats per pixel: RGB in 64-bit fixed point (`splat_fixed` in
+/// `shaders/bdpt/bdpt.glsl`).
+const SPLAT_BYTES_PER_PIXEL: u64 = 3 * 8;
+
+/// Adds a pass creating the zeroed light-tracing splat buffer.
+fn add_splat_clear(g: &mut RenderGraph, bytes: u64) -> BufferHandle {
+    let mut p = g.add_pass("bdpt.splat.clear");
+    let splat = p.create_buffer("bdpt.splat", bytes);
+    let splat = p.write(splat, Access::TransferWrite);
+    p.execute(move |ctx| ctx.fill_buffer(splat, 0));
+    splat
+}

@@ -1,0 +1,41 @@
+//! Path tracing: next-event estimation with multiple importance sampling, Russian roulette,
+//! N samples per pixel (`shaders/path_trace/path_trace.comp`, `shaders/common/path.glsl`); replays
+//! last frame's paths where asked ([`Replay`]).
+
+use crate::light_transport::{Images, Outputs, Replay, ReplayParams};
+use crate::plumbing::placeholder::add_zero_image;
+use crate::plumbing::scene_buffers::SceneHandles;
+use crate::shaders::path_trace::PATH_TRACE;
+use lucid_engine::graph::{BufferHandle, RenderGraph};
+use lucid_engine::memory::ImageDesc;
+use lucid_engine::shader::Specialization;
+
+/// Adds the path tracer at `width`×`height`, reading the scene and the frame constants; the pixels
+/// `replay` picks replay last frame's paths (without it the pass does not depend on the G-buffer);
+/// the denoiser's images are written when `surface`.
+pub fn add_path_trace(
+    g: &mut RenderGraph,
+    scene: &SceneHandles,
+    frame: BufferHandle,
+    spec: &Specialization,
+    replay: Option<&Replay>,
+    (width, height): (u32, u32),
+    surface: bool,
+) -> Outputs {
+    let stats = crate::plumbing::stats::add_counter(g, "path_trace.stats");
+    let motion = match replay {
+        Some(r) => r.motion,
+        // Bound, never read: nothing is replayed, and the pass does not wait for the G-buffer.
+        None => add_zero_image(g, "path_trace.no_motion", ImageDesc::rgba16f(1, 1)),
+    };
+    let mut pass = g.compute_pass("path_trace", &PATH_TRACE);
+    scene.read(&mut pass);
+    pass.specialization(spec).read("b_frame", frame);
+    let stats = pass.read_write("b_stats", stats);
+    pass.read("u_motion", motion);
+    let replay = replay.map_or(ReplayParams::default(), |r| r.params);
+    let images = Images::create(&mut pass, "path_trace", (width, height), surface);
+    pass.push(&replay);
+    pass.dispatch([width, height, 1]);
+    images.with_stats(stats)
+}

@@ -1,0 +1,151 @@
+//! The scene on the GPU: one storage buffer per array of a packed [`GpuScene`], imported into each
+//! frame's graph and bound by the names the shaders declare in `shaders/common/scene.glsl`.
+
+use bytemuck::Pod;
+use lucid_engine::graph::{BufferHandle, ComputePass, RenderGraph};
+use lucid_engine::memory::Buffer;
+use lucid_engine::scene::gpu::GpuScene;
+use lucid_engine::scene::SceneFeatures;
+use lucid_engine::shader::Specialization;
+use lucid_engine::{Context, Result};
+use std::sync::Arc;
+
+/// The names of the scene buffers in the shaders, in [`SceneBuffers::buffers`] order.
+const NAMES: [&str; 14] = [
+    "b_vertices",
+    "b_indices",
+    "b_blas",
+    "b_tlas",
+    "b_instances",
+    "b_spheres",
+    "b_materials",
+    "b_lights",
+    "b_light_table",
+    "b_texels",
+    "b_textures",
+    "b_scene",
+    "b_triangle_ids",
+    "b_triangles",
+];
+
+/// Device-local copies of a packed scene.
+pub struct SceneBuffers {
+    buffers: [Arc<Buffer>; 14],
+    /// The features the scene uses (drive shader specialization).
+    pub features: SceneFeatures,
+}
+
+fn upload<T: Pod>(ctx: &Context, name: &str, data: &[T]) -> Result<Arc<Buffer>> {
+    Buffer::with_data(
+        ctx,
+        name,
+        "scene",
+        ash::vk::BufferUsageFlags::STORAGE_BUFFER,
+        bytemuck::cast_slice(data),
+    )
+    .map(Arc::new)
+}
+
+impl SceneBuffers {
+    /// Uploads every array of `gpu`, and the per-triangle `[material, instance]` ids of the
+    /// flattened static geometry (see `lucid_engine::scene::gpu::pack_flat`).
+    pub fn upload(ctx: &Context, gpu: &GpuScene, triangle_ids: &[[u32; 2]]) -> Result<Self> {
+        Ok(Self {
+            buffers: [
+                upload(ctx, NAMES[0], &gpu.vertices)?,
+                upload(ctx, NAMES[1], &gpu.indices)?,
+                upload(ctx, NAMES[2], &gpu.blas_nodes)?,
+                upload(ctx, NAMES[3], &gpu.tlas_nodes)?,
+                upload(ctx, NAMES[4], &gpu.instances)?,
+                upload(ctx, NAMES[5], &gpu.spheres)?,
+                upload(ctx, NAMES[6], &gpu.materials)?,
+                upload(ctx, NAMES[7], &gpu.lights)?,
+                upload(ctx, NAMES[8], &gpu.light_table)?,
+                upload(ctx, NAMES[9], &gpu.texels)?,
+                upload(ctx, NAMES[10], &gpu.textures)?,
+                upload(ctx, NAMES[11], std::slice::from_ref(&gpu.params))?,
+                upload(ctx, NAMES[12], triangle_ids)?,
+                upload(ctx, NAMES[13], &gpu.triangles)?,
+            ],
+            features: gpu.features,
+        })
+    }
+
+    /// Re-uploads what moving instances or the camera changes (TLAS, instances, lights, params).
+    /// Frames in flight keep the old buffers alive until they finish.
+    pub fn update_top_level(&mut self, ctx: &Context, gpu: &GpuScene) -> Result<()> {
+        self.buffers[3] = upload(ctx, NAMES[3], &gpu.tlas_nodes)?;
+        self.buffers[4] = upload(ctx, NAMES[4], &gpu.instances)?;
+        self.buffers[7] = upload(ctx, NAMES[7], &gpu.lights)?;
+        self.buffers[8] = upload(ctx, NAMES[8], &gpu.light_table)?;
+        self.buffers[11] = upload(ctx, NAMES[11], std::slice::from_ref(&gpu.params))?;
+        Ok(())
+    }
+
+    /// Replaces the materials (and params) after a material edit.
+    pub fn update_materials(&mut self, ctx: &Context, gpu: &GpuScene) -> Result<()> {
+        self.buffers[6] = upload(ctx, NAMES[6], &gpu.materials)?;
+        self.update_top_level(ctx, gpu)
+    }
+
+    /// Imports the buffers into a frame's graph.
+    pub fn import(&self, g: &mut RenderGraph) -> SceneHandles {
+        SceneHandles {
+            handles: std::array::from_fn(|i| g.import_buffer(NAMES[i], self.buffers[i].clone())),
+        }
+    }
+
+    /// Bytes of scene data on the GPU.
+    pub fn bytes(&self) -> u64 {
+        self.buffers.iter().map(|b| b.size()).sum()
+    }
+}
+
+/// The scene buffers of one frame's graph.
+#[derive(Clone, Copy, Debug)]
+pub struct SceneHandles {
+    handles: [BufferHandle; 14],
+}
+
+impl SceneHandles {
+    /// Reads every scene buffer in `pass`, bound by its shader name.
+    pub fn read(&self, pass: &mut ComputePass<'_>) {
+        for (name, h) in NAMES.iter().zip(self.handles) {
+            pass.read(name, h);
+        }
+    }
+}
+
+/// The specialization constants that compile out what a scene lacks: its features, and the
+/// traversal's constants ([`traversal_specialization`]).
+pub fn specialization(gpu: &GpuScene) -> Specialization {
+    let used = |name: &str| {
+        gpu.features
+            .specialization_constants()
+            .iter()
+            .find(|(n, _)| *n == name)
+            .is_some_and(|(_, v)| *v)
+    };
+    [
+        "HAS_CONDUCTOR",
+        "HAS_DIELECTRIC",
+        "HAS_DIELECTRIC_ROUGH",
+        "HAS_SUN",
+        "HAS_DELTA_LIGHTS",
+        "HAS_ENVIRONMENT",
+        "HAS_TEXTURES",
+    ]
+    .into_iter()
+    .fold(traversal_specialization(gpu), |spec, name| {
+        spec.set(name, used(name))
+    })
+}
+
+/// The constants of `shaders/common/traverse.glsl` alone, for passes that only trace (see
+/// [`crate::debug::ray_query`]): `HAS_SPHERES`, and `SINGLE_INSTANCE` when the packing is one triangle
+/// instance ([`GpuScene::single_instance`]; the traversal then skips the top level).
+pub fn traversal_specialization(gpu: &GpuScene) -> Specialization {
+    Specialization::new()
+        .set("HAS_SPHERES", gpu.features.spheres)
+        .set("SINGLE_INSTANCE", gpu.single_instance())
+}

@@ -1,0 +1,3 @@
+//! Post-processing of the finished HDR image.
+
+pub mod tonemap;
