@@ -13,7 +13,11 @@ use crate::scene::{CameraKey, CameraPath, PathInterpolation, SceneError};
 /// Distance the camera keys keep from walls, floor and ceiling.
 const WALL_MARGIN: f32 = 0.4;
 /// Distance the camera tries to keep from objects and hanging lights.
-const CLEARANCE: f32 = 0.3;
+const CLEARANCE: f32 = 0.6;
+/// Horizontal distance the camera keys try to keep from what they look at.
+const VIEW_DISTANCE: f32 = 1.2;
+/// Steepest angle, in degrees, a key tries to look down or up.
+const MAX_PITCH_DEGREES: f32 = 45.0;
 /// Tries at a path that keeps clear of everything before taking the last.
 const ATTEMPTS: usize = 48;
 
@@ -30,8 +34,8 @@ enum Move {
 struct Setting<'a> {
     room: &'a Room,
     obstacles: &'a [Obstacle],
-    /// Points the camera may look at (object centres).
-    targets: Vec<Vec3>,
+    /// What the camera may look at (objects standing low in the room).
+    targets: Vec<Obstacle>,
     vfov: f32,
     seconds: f32,
 }
@@ -44,13 +48,18 @@ pub fn random_path(
     room: &Room,
     obstacles: &[Obstacle],
 ) -> Result<CameraPath, SceneError> {
-    let mut targets: Vec<Vec3> = obstacles
+    let mut targets: Vec<Obstacle> = obstacles
         .iter()
         .filter(|o| o.bottom < 0.5 * room.height)
-        .map(Obstacle::focus)
+        .copied()
         .collect();
     if targets.is_empty() {
-        targets.push(Vec3::new(0.0, 0.8, 0.0));
+        targets.push(Obstacle {
+            center: Vec2::ZERO,
+            radius: 0.0,
+            bottom: 0.0,
+            top: 1.6,
+        });
     }
     let setting = Setting {
         room,
@@ -73,12 +82,13 @@ pub fn random_path(
 impl Setting<'_> {
     fn attempt(&self, rng: &mut Rng, kind: Move) -> Result<CameraPath, SceneError> {
         let eye = self.eye(rng);
-        let target = self.targets[rng.index(self.targets.len())];
+        let object = self.targets[rng.index(self.targets.len())];
+        let target = object.focus();
         let (keys, interpolation) = match kind {
             Move::Pan => (self.pan(rng, eye, target), PathInterpolation::CatmullRom),
-            Move::Dolly => return Ok(self.dolly(rng, eye, target)),
+            Move::Dolly => return Ok(self.dolly(rng, eye, &object)),
             Move::FastTurn => (self.fast_turn(rng, eye, target), PathInterpolation::Linear),
-            Move::Orbit => (self.orbit(rng, target), PathInterpolation::CatmullRom),
+            Move::Orbit => (self.orbit(rng, &object), PathInterpolation::CatmullRom),
         };
         CameraPath::new(keys, interpolation)
     }
@@ -116,12 +126,13 @@ impl Setting<'_> {
             .collect()
     }
 
-    /// Walking 0.8 to 2.5 m straight towards `target` through `eye`
+    /// Walking 0.8 to 2.5 m straight towards `object` through `eye`
     /// (stopping at least 1 m short of it), or the same walk backwards.
-    fn dolly(&self, rng: &mut Rng, eye: Vec3, target: Vec3) -> CameraPath {
+    fn dolly(&self, rng: &mut Rng, eye: Vec3, object: &Obstacle) -> CameraPath {
+        let target = object.focus();
         let flat = Vec3::new(target.x - eye.x, 0.0, target.z - eye.z);
         let length = rng.range(0.8, 2.5);
-        let forward = length.min((flat.length() - 1.0).max(0.0));
+        let forward = length.min((flat.length() - object.radius - 1.0).max(0.0));
         let direction = flat.normalize_or_zero();
         let far = self
             .room
@@ -144,7 +155,7 @@ impl Setting<'_> {
         let furthest = self
             .targets
             .iter()
-            .copied()
+            .map(Obstacle::focus)
             .max_by(|p, q| angle(*p).total_cmp(&angle(*q)))
             .filter(|p| angle(*p) > 80f32.to_radians());
         let second = furthest.unwrap_or_else(|| {
@@ -161,11 +172,12 @@ impl Setting<'_> {
         ]
     }
 
-    /// Circling `target` by 60° to 150° at a radius of 1 to 2.5 m, keys
+    /// Circling `object` by 60° to 150° at 1 to 2.5 m from its side, keys
     /// every half second (pulled inside the room where the circle leaves
     /// it).
-    fn orbit(&self, rng: &mut Rng, target: Vec3) -> Vec<CameraKey> {
-        let radius = rng.range(1.0, 2.5);
+    fn orbit(&self, rng: &mut Rng, object: &Obstacle) -> Vec<CameraKey> {
+        let target = object.focus();
+        let radius = object.radius + rng.range(1.0, 2.5);
         let height = rng.range(1.0, 1.9);
         let start = rng.range(0.0, std::f32::consts::TAU);
         let sweep = rng.range(60.0f32, 150.0).to_radians() * rng.sign();
@@ -185,17 +197,19 @@ impl Setting<'_> {
     }
 
     /// Whether the camera stays clear of every obstacle and of the walls
-    /// all along `path` and no key looks down (or up) steeper than 60°.
+    /// all along `path`, and every key looks at something at least
+    /// [`VIEW_DISTANCE`] away and no steeper than [`MAX_PITCH_DEGREES`].
     fn is_clear(&self, path: &CameraPath) -> bool {
         let steep = path.keys().iter().any(|k| {
             let d = k.target - k.position;
-            d.y.abs() > 60f32.to_radians().tan() * Vec2::new(d.x, d.z).length()
+            let flat = Vec2::new(d.x, d.z).length();
+            flat < VIEW_DISTANCE || d.y.abs() > MAX_PITCH_DEGREES.to_radians().tan() * flat
         });
         let steps = (path.duration() / 0.05).ceil() as u32;
         !steep
             && (0..=steps).all(|i| {
                 let p = path.sample(i as f32 * 0.05).position;
-                self.room.contains(p, CLEARANCE)
+                self.room.contains(p, 0.5 * WALL_MARGIN)
                     && !self.obstacles.iter().any(|o| o.blocks(p, CLEARANCE))
             })
     }

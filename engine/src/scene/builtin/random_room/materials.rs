@@ -47,6 +47,13 @@ pub fn object_material(rng: &mut Rng, index: u32) -> Material {
     }
 }
 
+/// A colour of brightness about `lo` to `hi` whose channels stray from
+/// each other by up to the fraction `spread` (0 is grey).
+pub fn muted(rng: &mut Rng, lo: f32, hi: f32, spread: f32) -> Vec3 {
+    let grey = rng.range(lo, hi);
+    (grey * (Vec3::ONE + rng.color(-spread, spread))).clamp(Vec3::ZERO, Vec3::ONE)
+}
+
 /// A light colour with its largest channel 1: mostly a white between warm
 /// and cool, sometimes saturated.
 pub fn light_tint(rng: &mut Rng) -> Vec3 {

@@ -5,6 +5,7 @@
 
 use glam::{Vec2, Vec3};
 
+use super::materials::muted;
 use super::rng::Rng;
 use crate::scene::builtin::shapes::{wall_with_openings, MeshBuilder};
 use crate::scene::{Environment, Material, Scene, Sun};
@@ -56,7 +57,7 @@ impl Room {
 
 /// A pale, slightly tinted wall or ceiling albedo.
 fn pale(rng: &mut Rng) -> Vec3 {
-    Vec3::splat(rng.range(0.35, 0.85)) + rng.color(-0.08, 0.08)
+    muted(rng, 0.35, 0.85, 0.12)
 }
 
 /// Adds the shell of `room`; returns whether it has windows.
@@ -64,7 +65,7 @@ pub fn add(scene: &mut Scene, rng: &mut Rng, room: &Room) -> bool {
     let (a, b, h) = (room.half.x, room.half.y, room.height);
     let wall = scene.add_material(Material::diffuse("wall", pale(rng)));
     let wainscot = if rng.chance(0.4) {
-        let band = Material::diffuse("wainscot", rng.color(0.08, 0.7));
+        let band = Material::diffuse("wainscot", muted(rng, 0.08, 0.7, 0.5));
         Some((scene.add_material(band), rng.range(0.6, 1.2) / h))
     } else {
         None
@@ -79,7 +80,7 @@ pub fn add(scene: &mut Scene, rng: &mut Rng, room: &Room) -> bool {
     let up = Vec3::Y * h;
     for (k, (corner, along)) in walls.into_iter().enumerate() {
         let material = if rng.chance(0.2) {
-            let accent = Material::diffuse(&format!("accent-wall-{k}"), rng.color(0.05, 0.8));
+            let accent = Material::diffuse(&format!("accent-wall-{k}"), muted(rng, 0.1, 0.7, 0.7));
             scene.add_material(accent)
         } else {
             wall
@@ -117,7 +118,7 @@ pub fn add(scene: &mut Scene, rng: &mut Rng, room: &Room) -> bool {
 /// A plain floor, or half the time a checkerboard of two albedos.
 fn add_floor(scene: &mut Scene, rng: &mut Rng, room: &Room) {
     let (a, b) = (room.half.x, room.half.y);
-    let base = scene.add_material(Material::diffuse("floor", rng.color(0.05, 0.6)));
+    let base = scene.add_material(Material::diffuse("floor", muted(rng, 0.05, 0.6, 0.4)));
     if !rng.chance(0.5) {
         let mut mesh = MeshBuilder::new();
         mesh.quad(
@@ -130,7 +131,7 @@ fn add_floor(scene: &mut Scene, rng: &mut Rng, room: &Room) {
         scene.add_mesh_instance(mesh.build("floor", base));
         return;
     }
-    let other = scene.add_material(Material::diffuse("floor-tile", rng.color(0.05, 0.8)));
+    let other = scene.add_material(Material::diffuse("floor-tile", muted(rng, 0.05, 0.8, 0.4)));
     let tile = rng.range(0.4, 1.0);
     let (nx, nz) = (
         (2.0 * a / tile).round().max(1.0) as u32,
