@@ -24,11 +24,10 @@ use crate::gbuffer::{self, GBuffer};
 use crate::scene_buffers::{specialization, SceneBuffers, SceneHandles};
 use crate::transport::{self, Replay, ReplayParams};
 use crate::{accumulate, bdpt, path_trace, svgf, tonemap};
-use lucid_engine::bvh::Bvh;
 use lucid_engine::capture::ImageData;
 use lucid_engine::graph::{BufferHandle, Executor, FrameId, ImageHandle, ReadbackId, RenderGraph};
 use lucid_engine::scene::gpu::{self, apply_flattening, pack_flat, GpuCamera, GpuScene};
-use lucid_engine::scene::{Camera, FlatScene, Material, Scene};
+use lucid_engine::scene::{Bvh, Camera, FlatScene, Material, Scene};
 use lucid_engine::shader::{ShaderLibrary, Specialization};
 use lucid_engine::{Context, EngineError, Result};
 

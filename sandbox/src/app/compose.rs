@@ -7,8 +7,8 @@ use super::overlay::{Overlay, OverlayFrame};
 use super::settings::DisplaySettings;
 use super::tonemap;
 use ash::vk;
-use lucid_engine::graph::{Access, ImageHandle, ReadbackId, RenderGraph, ResourceState};
-use lucid_engine::memory::color_range;
+use lucid_engine::graph::{Access, ImageHandle, ReadbackId, RenderGraph};
+use lucid_engine::memory::{color_range, ResourceState};
 
 /// Colour of the window where there is no frame to show.
 const EMPTY: [f32; 4] = [0.05, 0.05, 0.06, 1.0];
