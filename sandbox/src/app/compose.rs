@@ -60,7 +60,6 @@ pub fn add(
             let bgra = desc.format == vk::Format::B8G8R8A8_UNORM;
             let ldr = tonemap::add(graph, hdr, [desc.width, desc.height], display, bgra);
             if extras.capture_hdr {
-                let hdr = settle_reads(graph, hdr);
                 readbacks.hdr = Some(graph.readback(hdr));
             }
             copy(graph, ldr, swap)
@@ -71,28 +70,14 @@ pub fn add(
         Some((overlay, frame)) => overlay.add_pass(graph, swap, target.index(), frame)?,
         None => swap,
     };
-    let swap = if extras.screenshot {
+    if extras.screenshot {
         readbacks.screen = Some(graph.readback(swap));
-        settle_reads(graph, swap)
-    } else {
-        swap
-    };
+    }
     let mut p = graph.add_pass("sandbox.present");
     p.read(swap, Access::Present);
     p.side_effect();
     p.execute(|_| Ok(()));
     Ok(readbacks)
-}
-
-/// Makes the graph wait for every earlier read of `image` before its next layout change, with an
-/// empty pass declaring a transfer write. The engine derives the source stages of a layout change
-/// between two reads from the last write only, which races the first read (a write-after-read
-/// hazard that synchronization validation reports); a declared write waits for all reads.
-fn settle_reads(graph: &mut RenderGraph, image: ImageHandle) -> ImageHandle {
-    let mut p = graph.add_pass("sandbox.settle_reads");
-    let image = p.write(image, Access::TransferWrite);
-    p.execute(|_| Ok(()));
-    image
 }
 
 fn copy(graph: &mut RenderGraph, src: ImageHandle, dst: ImageHandle) -> ImageHandle {
