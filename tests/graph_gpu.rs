@@ -424,3 +424,57 @@ fn a_cleared_image_reads_back_its_colour_through_a_compute_pass() {
     assert_close(&got, &vec![colour.map(|c| 2.0 * c); (w * h) as usize], 0.0);
     assert_no_validation_messages(&ctx);
 }
+
+#[test]
+fn layout_changes_after_reads_wait_for_them() {
+    // Cleared (transfer), read by two compute passes, then read back (a new layout), or first
+    // cleared again: each layout change must wait for the compute reads, not only for the clear
+    // that last wrote the image, or synchronization validation reports the hazard.
+    let (ctx, mut executor) = executor(true);
+    let (w, h) = (4, 3);
+    let colour = [0.25f32, 0.5, 0.75, 1.0];
+    let second = [1.0f32, 0.0, 0.5, 1.0];
+    for clear_again in [false, true] {
+        let mut g = RenderGraph::new();
+        let mut p = g.add_pass("clear");
+        let t = p.create_image("cleared", ImageDesc::rgba32f(w, h));
+        let cleared = p.write(t, Access::TransferWrite);
+        p.execute(move |ctx| ctx.clear_image(cleared, colour));
+        let mut scaled = Vec::new();
+        for factor in [2.0f32, 3.0] {
+            let mut p = g.add_pass(&format!("scale by {factor}"));
+            let input = p.read(cleared, Access::ComputeRead);
+            let t = p.create_image(&format!("scaled by {factor}"), ImageDesc::rgba32f(w, h));
+            let out = p.write(t, Access::ComputeWrite);
+            p.execute(move |ctx| {
+                ctx.compute(&SCALE)
+                    .image("u_in", input)
+                    .image("u_out", out)
+                    .push(&factor)
+                    .dispatch_threads([w, h, 1])
+            });
+            scaled.push((factor, g.readback(out)));
+        }
+        let (last, want) = if clear_again {
+            let mut p = g.add_pass("clear again");
+            let again = p.write(cleared, Access::TransferWrite);
+            p.execute(move |ctx| ctx.clear_image(again, second));
+            (again, second)
+        } else {
+            (cleared, colour)
+        };
+        let readback = g.readback(last);
+        let outputs = run(&mut executor, g);
+        let pixels = (w * h) as usize;
+        for (factor, id) in scaled {
+            let got = outputs.image(id).unwrap().pixels;
+            assert_close(&got, &vec![colour.map(|c| factor * c); pixels], 0.0);
+        }
+        assert_close(
+            &outputs.image(readback).unwrap().pixels,
+            &vec![want; pixels],
+            0.0,
+        );
+        assert_no_validation_messages(&ctx);
+    }
+}

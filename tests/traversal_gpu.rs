@@ -5,12 +5,12 @@
 
 use ash::vk;
 use glam::{Affine3A, Quat, Vec3};
-use lucid_engine::bvh::{Bvh, HitKind, Ray};
+use lucid_engine::bvh::{HitKind, Ray};
 use lucid_engine::graph::{Executor, RenderGraph};
 use lucid_engine::memory::Buffer;
 use lucid_engine::scene::builtin::{self, BuildOptions};
 use lucid_engine::scene::gpu::pack_flat;
-use lucid_engine::scene::{FlatScene, Scene};
+use lucid_engine::scene::{Bvh, FlatScene, Scene};
 use lucid_engine::shader::ShaderLibrary;
 use lucid_passes::debug::ray_query::{self, QueryHit, QueryRay, SPHERE_BIT};
 use lucid_passes::plumbing::scene_buffers::{traversal_specialization, SceneBuffers};

@@ -6,9 +6,9 @@
 
 use std::time::Instant;
 
-use lucid_engine::bvh::Bvh;
 use lucid_engine::scene::builtin::{self, BuildOptions};
 use lucid_engine::scene::gpu::GpuScene;
+use lucid_engine::scene::Bvh;
 
 fn run(label: &str, name: &str, detail: f32) {
     let t = Instant::now();

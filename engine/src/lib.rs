@@ -3,6 +3,7 @@
 //!
 //! Everything runs headless by default; a window is optional (see [`context::Context::with_surface`]).
 
+mod access;
 pub mod bvh;
 pub mod capture;
 pub mod context;

@@ -2,9 +2,9 @@
 //! (reduced detail), top-level rebuilds and SAH sanity.
 
 use glam::{Affine3A, Vec2, Vec3};
-use lucid_engine::bvh::{ray_sphere, ray_triangle, Bvh, HitKind, Ray};
+use lucid_engine::bvh::{ray_sphere, ray_triangle, HitKind, Ray};
 use lucid_engine::scene::builtin::{self, BuildOptions};
-use lucid_engine::scene::Scene;
+use lucid_engine::scene::{Bvh, Scene};
 
 struct Rng(u64);
 

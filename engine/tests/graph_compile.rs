@@ -536,3 +536,59 @@ fn a_layout_transition_waits_for_reads_in_other_stages() {
     );
     assert!(hazards(&plan).is_empty(), "{:?}", hazards(&plan));
 }
+
+#[test]
+fn a_layout_change_after_reads_in_several_passes_waits_for_all_of_them() {
+    // Cleared (transfer), sampled by a compute pass and by a fragment pass (one layout), then
+    // copied out or cleared again (another layout): the transition must wait for both reads, not
+    // only for the clear that last wrote the image.
+    for (next, access) in [
+        ("copy_out", Access::TransferRead),
+        ("clear_again", Access::TransferWrite),
+    ] {
+        let mut g = RenderGraph::new();
+        let mut p = g.add_pass("clear");
+        let a = p.create_image("a", desc());
+        let a = p.write(a, Access::TransferWrite);
+        noop(p);
+        for (name, read) in [
+            ("sample_compute", Access::ComputeSampled),
+            ("sample_fragment", Access::FragmentSampled),
+        ] {
+            let mut p = g.add_pass(name);
+            p.read(a, read);
+            p.side_effect();
+            noop(p);
+        }
+        let mut p = g.add_pass(next);
+        if access.info().writes {
+            p.write(a, access);
+        } else {
+            p.read(a, access);
+        }
+        p.side_effect();
+        noop(p);
+        let plan = g.compile().unwrap().plan;
+        let id = plan.resource_id("a").unwrap();
+        let b = plan
+            .pass(next)
+            .unwrap()
+            .barriers
+            .iter()
+            .find(|b| b.resource == id)
+            .unwrap();
+        assert_eq!(
+            b.old_layout,
+            Some(vk::ImageLayout::SHADER_READ_ONLY_OPTIMAL),
+            "{next}: {b:?}"
+        );
+        assert_eq!(b.new_layout, access.info().layout, "{next}: {b:?}");
+        let reads =
+            vk::PipelineStageFlags2::COMPUTE_SHADER | vk::PipelineStageFlags2::FRAGMENT_SHADER;
+        assert!(
+            matches!(b.src, BarrierSrc::Earlier { stage, .. } if stage.contains(reads)),
+            "{next}: {b:?}"
+        );
+        assert!(hazards(&plan).is_empty(), "{next}: {:?}", hazards(&plan));
+    }
+}

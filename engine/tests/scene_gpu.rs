@@ -3,14 +3,14 @@
 //! memory per triangle.
 
 use glam::{Affine3A, Vec2, Vec3, Vec4};
-use lucid_engine::bvh::{ray_sphere, ray_triangle, Aabb, Bvh};
+use lucid_engine::bvh::{ray_sphere, ray_triangle, Aabb};
 use lucid_engine::scene::builtin::{self, BuildOptions};
 use lucid_engine::scene::gpu::bvh_pack::{Child, EMPTY};
 use lucid_engine::scene::gpu::{
     apply_flattening, decode_normal, light_kind, pack_flat, texture_format, GpuBvhNode, GpuLight,
     GpuScene, INSTANCE_FLATTENED,
 };
-use lucid_engine::scene::{luminance, FlatScene, Scene};
+use lucid_engine::scene::{luminance, Bvh, FlatScene, Scene};
 
 const REDUCED: BuildOptions = BuildOptions { detail: 0.01 };
 

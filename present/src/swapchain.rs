@@ -5,8 +5,7 @@
 use crate::{vk_error, WindowSurface};
 use anyhow::{bail, Context as _};
 use ash::vk;
-use lucid_engine::graph::ResourceState;
-use lucid_engine::memory::{color_range, Image, ImageDesc};
+use lucid_engine::memory::{color_range, Image, ImageDesc, ResourceState};
 use lucid_engine::Context;
 use std::sync::Arc;
 use winit::window::Window;

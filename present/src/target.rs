@@ -5,7 +5,8 @@
 use crate::image_copy;
 use ash::vk;
 use lucid_engine::capture::PngEncoding;
-use lucid_engine::graph::{Access, ImageHandle, RenderGraph, ResourceState};
+use lucid_engine::graph::{Access, ImageHandle, RenderGraph};
+use lucid_engine::memory::ResourceState;
 use lucid_engine::memory::{color_range, Image};
 use lucid_passes::post::tonemap::{self, ChannelOrder};
 use std::sync::Arc;

@@ -5,7 +5,7 @@
 
 use super::overlay::{Overlay, OverlayFrame};
 use super::settings::DisplaySettings;
-use lucid_engine::graph::{Access, ImageHandle, ReadbackId, RenderGraph};
+use lucid_engine::graph::{ImageHandle, ReadbackId, RenderGraph};
 use lucid_present::PresentTarget;
 
 /// What to add beyond showing the frame.
@@ -42,7 +42,6 @@ pub fn add(
         Some(hdr) => {
             let ldr = target.add_tone_map(graph, hdr, display.png_encoding());
             if extras.capture_hdr {
-                let hdr = settle_reads(graph, hdr);
                 readbacks.hdr = Some(graph.readback(hdr));
             }
             target.add_copy(graph, ldr, swap)
@@ -53,23 +52,9 @@ pub fn add(
         Some((overlay, frame)) => overlay.add_pass(graph, swap, target.index(), frame)?,
         None => swap,
     };
-    let swap = if extras.screenshot {
+    if extras.screenshot {
         readbacks.screen = Some(graph.readback(swap));
-        settle_reads(graph, swap)
-    } else {
-        swap
-    };
+    }
     target.add_present(graph, swap);
     Ok(readbacks)
-}
-
-/// Makes the graph wait for every earlier read of `image` before its next layout change, with an
-/// empty pass declaring a transfer write. The engine derives the source stages of a layout change
-/// between two reads from the last write only, which races the first read (a write-after-read
-/// hazard that synchronization validation reports); a declared write waits for all reads.
-fn settle_reads(graph: &mut RenderGraph, image: ImageHandle) -> ImageHandle {
-    let mut p = graph.add_pass("sandbox.settle_reads");
-    let image = p.write(image, Access::TransferWrite);
-    p.execute(|_| Ok(()));
-    image
 }

@@ -5,8 +5,7 @@ use glam::{UVec3, Vec3};
 use rayon::prelude::*;
 
 use super::build::{self, PrimRef};
-use super::{Aabb, BvhNode};
-use crate::scene::Sphere;
+use super::{Aabb, BvhNode, Sphere};
 
 /// The geometry a [`Blas`] was built over.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -80,7 +79,7 @@ impl Blas {
         }
     }
 
-    /// SAH cost of the tree (see [`crate::bvh::Bvh::sah_cost`]).
+    /// SAH cost of the tree (see `scene::Bvh::sah_cost`).
     pub fn sah_cost(&self) -> f32 {
         build::sah_cost(&self.nodes)
     }

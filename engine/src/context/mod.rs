@@ -1,4 +1,5 @@
-//! The Vulkan context: instance, validation, device, compute queue and the memory allocator.
+//! The Vulkan context: instance, validation, device, compute queue and the memory allocator with
+//! its bookkeeping by category.
 //!
 //! Headless is the default: [`Context::new`] needs no window. A windowed app uses
 //! [`Context::with_surface`]; an application that already has Vulkan uses [`Context::from_existing`].
@@ -6,6 +7,7 @@
 mod debug;
 mod device;
 mod instance;
+pub(crate) mod memory_report;
 mod options;
 mod select;
 
@@ -15,9 +17,9 @@ pub use options::{ContextDesc, Validation};
 pub use select::{select_device, DeviceCandidate, DeviceKind};
 
 use crate::error::{EngineError, Result, VkResultExt};
-use crate::memory::MemoryTracker;
 use ash::vk;
 use gpu_allocator::vulkan::{Allocator, AllocatorCreateDesc};
+use memory_report::MemoryTracker;
 use std::ffi::CString;
 use std::mem::ManuallyDrop;
 use std::sync::{Arc, Mutex, MutexGuard};

@@ -1,11 +1,12 @@
 //! Compile: cull, order, derive barriers, compute transient lifetimes and alias their memory.
 //! Plain data: no Vulkan calls, testable without a GPU.
 
-use super::access::{Access, ResourceState};
-use super::builder::{PassWork, RenderGraph, ResourceDesc, ResourceKind};
 use super::handle::ResourceId;
 use super::plan::{AliasSlot, Barrier, BarrierSrc, Plan, PlannedPass, PlannedResource};
+use super::render_graph::{PassWork, RenderGraph, ResourceDesc, ResourceKind};
 use super::GraphError;
+use crate::access::Access;
+use crate::memory::ResourceState;
 use ash::vk;
 use std::collections::HashMap;
 

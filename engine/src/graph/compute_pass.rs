@@ -17,8 +17,8 @@
 //! must be bound, each access must suit its binding's kind, and the push constants must have the
 //! size of its push-constant block.
 
-use super::access::Access;
-use super::builder::{PassBuilder, RenderGraph};
+use crate::access::Access;
+use super::render_graph::{PassBuilder, RenderGraph};
 use super::handle::{BufferHandle, Handle, ImageHandle, TemporalImage};
 use super::pass_context::{Dispatch, PassContext};
 use crate::error::Result;

@@ -1,7 +1,7 @@
 //! Human-readable dumps of a compiled plan: text, and Graphviz for `dot -Tsvg`.
 
-use super::builder::{ResourceDesc, ResourceKind};
 use super::plan::{BarrierSrc, Plan};
+use super::render_graph::{ResourceDesc, ResourceKind};
 use std::collections::HashMap;
 use std::fmt::Write;
 

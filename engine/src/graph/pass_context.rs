@@ -1,9 +1,9 @@
 //! What a pass sees while recording: bind declared resources by the shader's reflected names and
 //! dispatch by thread count.
 
-use super::access::Access;
 use super::handle::{BufferHandle, Handle, ImageHandle, ResourceId};
 use super::GraphError;
+use crate::access::Access;
 use crate::context::Context;
 use crate::error::{EngineError, Result};
 use crate::memory::{Buffer, Image};

@@ -1,8 +1,9 @@
 //! The compiled graph as plain data: order, culled passes, barriers, lifetimes and aliasing.
 
-use super::access::{Access, ResourceState};
-use super::builder::{ResourceDesc, ResourceKind};
 use super::handle::ResourceId;
+use super::render_graph::{ResourceDesc, ResourceKind};
+use crate::access::Access;
+use crate::memory::ResourceState;
 use ash::vk;
 
 /// Where a barrier's source scope comes from.

@@ -1,13 +1,13 @@
 //! Physical transients, kept across frames while the graph's shape stays the same. Members of one
 //! alias slot are bound into one shared memory block.
 
-use super::access::ResourceState;
-use super::builder::{ResourceDesc, ResourceKind};
 use super::handle::ResourceId;
 use super::pass_context::Physical;
 use super::plan::Plan;
+use super::render_graph::{ResourceDesc, ResourceKind};
 use crate::context::Context;
 use crate::error::Result;
+use crate::memory::ResourceState;
 use crate::memory::{Buffer, BufferDesc, Image, MemoryBlock, MemoryLocation};
 use ash::vk;
 use std::collections::HashMap;

@@ -1,9 +1,8 @@
 //! Buffers: device-local, upload (host-visible) and readback, with staging uploads and reads.
 
-use super::{allocate, free, MemoryLocation};
+use super::{allocate, free, MemoryLocation, ResourceState};
 use crate::context::{Context, Shared};
 use crate::error::{EngineError, Result, VkResultExt};
-use crate::graph::ResourceState;
 use ash::vk;
 use gpu_allocator::vulkan::Allocation;
 use std::sync::{Arc, Mutex};

@@ -1,9 +1,8 @@
 //! 2D images with one view, either owning their memory or bound into a shared (aliased) block.
 
-use super::{allocate, free, FormatInfo, MemoryLocation};
+use super::{allocate, free, FormatInfo, MemoryLocation, ResourceState};
 use crate::context::{Context, Shared};
 use crate::error::{EngineError, Result, VkResultExt};
-use crate::graph::ResourceState;
 use ash::vk;
 use gpu_allocator::vulkan::Allocation;
 use std::sync::{Arc, Mutex};

@@ -5,13 +5,14 @@ mod block;
 mod buffer;
 mod format;
 mod image;
-mod report;
+mod resource_state;
 
+pub use crate::context::memory_report::{MemoryReport, MemoryTracker};
 pub use block::MemoryBlock;
 pub use buffer::{Buffer, BufferDesc};
 pub use format::{texels_to_rgba, FormatInfo};
 pub use image::{color_range, Image, ImageDesc};
-pub use report::{MemoryReport, MemoryTracker};
+pub use resource_state::ResourceState;
 
 pub use gpu_allocator::MemoryLocation;
 

@@ -1,9 +1,10 @@
 //! Scene description: meshes, spheres, instances, materials, textures,
-//! lights, cameras and camera paths, plus glTF import, built-in scenes and
-//! the packed GPU layout.
+//! lights, cameras and camera paths, plus glTF import, built-in scenes, the
+//! two-level BVH built over a scene and the packed GPU layout.
 
 mod alias;
 pub mod builtin;
+mod bvh;
 mod camera;
 mod camera_path;
 mod error;
@@ -17,10 +18,11 @@ mod light_list;
 mod material;
 mod mesh;
 mod model;
-mod sphere;
 mod texture;
 
+pub use crate::bvh::Sphere;
 pub use alias::{AliasEntry, AliasTable};
+pub use bvh::{Bvh, BvhInstance, InstanceSource};
 pub use camera::{look_rotation, Camera};
 pub use camera_path::{CameraKey, CameraPath, PathInterpolation};
 pub use error::SceneError;
@@ -33,5 +35,4 @@ pub use light_list::{LightDistribution, LightEntry, LightSource};
 pub use material::{Material, MaterialKind, SMOOTH_ALPHA};
 pub use mesh::Mesh;
 pub use model::{AnalyticRadiance, Scene};
-pub use sphere::Sphere;
 pub use texture::{TexelData, Texture};

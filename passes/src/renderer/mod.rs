@@ -26,11 +26,10 @@ use crate::light_transport::{bdpt, path_trace};
 use crate::plumbing::frame_constants::{self, FrameConstants};
 use crate::plumbing::scene_buffers::{specialization, SceneBuffers, SceneHandles};
 use crate::post::tonemap;
-use lucid_engine::bvh::Bvh;
 use lucid_engine::capture::ImageData;
 use lucid_engine::graph::{BufferHandle, Executor, FrameId, ImageHandle, ReadbackId, RenderGraph};
 use lucid_engine::scene::gpu::{self, apply_flattening, pack_flat, GpuCamera, GpuScene};
-use lucid_engine::scene::{Camera, FlatScene, Material, Scene};
+use lucid_engine::scene::{Bvh, Camera, FlatScene, Material, Scene};
 use lucid_engine::shader::{ShaderLibrary, Specialization};
 use lucid_engine::{Context, EngineError, Result};
 

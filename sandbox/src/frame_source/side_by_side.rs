@@ -26,7 +26,6 @@ pub fn add(
 ) -> ImageHandle {
     let [width, height] = extent;
     let split = split_column(width);
-    let left = settle_reads(graph, left);
     let mut p = graph.add_pass("sandbox.side_by_side");
     let left = p.read(left, Access::TransferRead);
     let right = p.read(right, Access::TransferRead);
@@ -40,17 +39,6 @@ pub fn add(
         copy_columns(pcx, right, out, split..width, height)
     });
     out
-}
-
-/// Makes the graph wait for every earlier read of `image`, a renderer's compute output, before a
-/// transfer changes its layout: an empty pass declaring a compute read-write. (The engine derives
-/// the source stages of a layout change between two reads from the last write only; a declared
-/// write waits for all reads, and reading keeps the pass that produced the image.)
-pub fn settle_reads(graph: &mut RenderGraph, image: ImageHandle) -> ImageHandle {
-    let mut p = graph.add_pass("sandbox.settle_reads");
-    let image = p.write(image, Access::ComputeReadWrite);
-    p.execute(|_| Ok(()));
-    image
 }
 
 /// Records a copy of `columns` (all `height` rows) from `src` to the same place in `dst`, which a

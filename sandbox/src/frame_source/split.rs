@@ -5,7 +5,7 @@
 //! graph derives from the image's tracked state orders its read after this write.
 
 use super::renderer::{new_renderer, renderer_settings, samples_accumulated};
-use super::side_by_side::{self, copy_columns, settle_reads, split_column};
+use super::side_by_side::{self, copy_columns, split_column};
 use super::{renderer_ms, FrameRequest, SideStats};
 use crate::settings::RenderSettings;
 use ash::vk;
@@ -51,7 +51,6 @@ impl SplitRenderer {
         let mut graph = RenderGraph::new();
         let (images, _) = self.renderer.add_frame(&mut graph);
         let shown = debug_view::add_debug_view(&mut graph, &images, settings.view, width, height);
-        let shown = settle_reads(&mut graph, shown);
         let target = graph.import_image("sandbox.split_right", output.clone());
         let mut p = graph.add_pass("sandbox.split_copy");
         let src = p.read(shown, Access::TransferRead);

@@ -3,8 +3,7 @@
 //! order, and the NEE lights are those of the original scene, remapped to the packed one.
 
 use super::{emitter_inverse_orders, GpuScene, INSTANCE_TRIANGLES};
-use crate::bvh::Bvh;
-use crate::scene::{FlatScene, Placement, Scene};
+use crate::scene::{Bvh, FlatScene, Placement, Scene};
 
 /// `GpuInstance::kind` of the merged static instance: material and object id come per triangle from
 /// the triangle-ids buffer.

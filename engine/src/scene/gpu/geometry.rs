@@ -5,8 +5,7 @@ use glam::Vec2;
 use super::bvh_pack::{pack_tree, GpuBvhNode};
 use super::encode::{encode_normal, encode_uv};
 use super::layout::{GpuSphere, GpuTriangle, GpuVertex};
-use crate::bvh::Bvh;
-use crate::scene::Scene;
+use crate::scene::{Bvh, Scene};
 
 /// Packed geometry and bottom levels.
 pub struct PackedGeometry {

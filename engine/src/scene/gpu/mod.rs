@@ -39,7 +39,7 @@ use std::mem::size_of;
 use glam::Affine3A;
 
 use super::{LightDistribution, Scene, SceneFeatures};
-use crate::bvh::{Bvh, InstanceSource};
+use crate::scene::{Bvh, InstanceSource};
 
 /// `GpuInstance::kind` of a mesh instance.
 pub const INSTANCE_TRIANGLES: u32 = 0;

@@ -1,9 +1,9 @@
 //! Setup: passes declare the resources they create, read and write, with access types.
 
-use super::access::Access;
 use super::handle::{BufferHandle, Handle, ImageHandle, ResourceId, TemporalImage};
 use super::pass_context::PassContext;
 use super::GraphError;
+use crate::access::Access;
 use crate::memory::{Buffer, Image, ImageDesc};
 use std::sync::Arc;
 

@@ -1,5 +1,9 @@
 //! The engine's error type: every failure a caller can act on, each with a message that says what to do.
 
+mod graph_error;
+
+pub use graph_error::GraphError;
+
 use ash::vk;
 use thiserror::Error;
 
@@ -57,7 +61,7 @@ pub enum EngineError {
     },
     /// The render graph was set up wrongly or could not be executed.
     #[error(transparent)]
-    Graph(#[from] crate::graph::GraphError),
+    Graph(#[from] GraphError),
     /// A required feature or extension is missing on the chosen device.
     #[error("device {device} lacks {missing}")]
     MissingFeature {

@@ -1,18 +1,19 @@
 //! Execute: record a compiled graph into a frame slot's command buffer, resolve barriers against
 //! tracked state, time each pass, submit with a timeline semaphore, and return readbacks.
 
-use super::access::{Access, ResourceState};
-use super::builder::{External, PassWork, ResourceDesc, ResourceKind};
-use super::frame::{FrameSlot, PendingReadback};
+use super::frame_slot::{FrameSlot, PendingReadback};
 use super::handle::ResourceId;
 use super::pass_context::{PassContext, Physical};
 use super::plan::{Barrier, BarrierSrc, Plan};
+use super::render_graph::{External, PassWork, ResourceDesc, ResourceKind};
 use super::temporal::TemporalStore;
 use super::transients::TransientPool;
 use super::{CompiledGraph, GraphError, ReadbackId};
+use crate::access::Access;
 use crate::capture::ImageData;
 use crate::context::Context;
 use crate::error::{EngineError, Result, VkResultExt};
+use crate::memory::ResourceState;
 use crate::memory::{
     color_range, texels_to_rgba, Buffer, BufferDesc, Image, ImageDesc, MemoryLocation,
 };

@@ -4,10 +4,10 @@
 use glam::{Affine3A, Vec2};
 use rayon::prelude::*;
 
-use super::intersect::{ray_sphere, ray_triangle};
-use super::traverse::walk;
-use super::{Aabb, Blas, BlasGeometry, Hit, HitKind, Ray, Tlas};
-use crate::scene::{Scene, SceneError};
+use super::{Scene, SceneError};
+use crate::bvh::{
+    ray_sphere, ray_triangle, walk, Aabb, Blas, BlasGeometry, Hit, HitKind, Ray, Tlas,
+};
 
 /// What a BVH instance places.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
