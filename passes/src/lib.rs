@@ -14,6 +14,7 @@ pub mod path_trace;
 pub mod placeholder;
 pub mod ray_query;
 pub mod renderer;
+pub mod samples_per_pixel;
 pub mod scene_buffers;
 pub mod stats;
 pub mod svgf;

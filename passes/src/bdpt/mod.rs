@@ -20,6 +20,7 @@ mod params;
 
 pub use params::{Params, LIGHT_VERTEX_BYTES};
 
+use crate::samples_per_pixel::SamplesPerPixel;
 use crate::scene_buffers::SceneHandles;
 use crate::shaders::bdpt::{CAMERA, LIGHT};
 use crate::transport::{Images, Outputs};
@@ -70,7 +71,7 @@ pub struct Frame {
     /// Height in pixels.
     pub height: u32,
     /// Camera samples per pixel.
-    pub samples_per_pixel: u32,
+    pub samples_per_pixel: SamplesPerPixel,
     /// Longest path in segments (Mitsuba's convention).
     pub max_depth: u32,
     /// Write the denoiser's images too ([`crate::transport::SurfaceImages`]).

@@ -50,7 +50,9 @@ pub use display::available as display_available;
 pub use gpu::{Began, PresentTarget, Presenter};
 pub use options::{AppOptions, Screenshot, Startup};
 pub use scene::DEFAULT_SCENE;
-pub use settings::{Algorithm, Denoiser, DisplaySettings, RenderSettings, ToneMapper};
+pub use settings::{
+    Algorithm, Denoiser, DisplaySettings, RenderSettings, SamplesPerPixel, ToneCurve,
+};
 
 use anyhow::Context as _;
 use lucid_engine::Validation;
