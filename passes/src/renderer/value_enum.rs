@@ -45,7 +45,10 @@ mod tests {
                 Ok(algorithm)
             );
         }
-        assert_eq!(Algorithm::from_str("BDPT", true), Ok(Algorithm::Bidirectional));
+        assert_eq!(
+            Algorithm::from_str("BDPT", true),
+            Ok(Algorithm::Bidirectional)
+        );
         assert_eq!(Denoiser::from_str("svgf", false), Ok(Denoiser::Svgf));
         assert_eq!(Denoiser::from_str("none", false), Ok(Denoiser::None));
         assert!(Denoiser::from_str("oidn", true).is_err());

@@ -57,7 +57,8 @@ pub fn renderer_settings(base: &Settings, panel: &RenderSettings) -> Settings {
 
 /// Samples per pixel in a renderer's current output.
 pub fn samples_accumulated(renderer: &Renderer) -> u64 {
-    u64::from(renderer.accumulated_frames()) * u64::from(renderer.settings().samples_per_pixel.get())
+    u64::from(renderer.accumulated_frames())
+        * u64::from(renderer.settings().samples_per_pixel.get())
 }
 
 impl FrameSource for RendererSource {
