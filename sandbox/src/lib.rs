@@ -46,7 +46,9 @@ mod window_test;
 
 pub use options::{AppOptions, Screenshot, Startup};
 pub use scene::DEFAULT_SCENE;
-pub use settings::{Algorithm, Denoiser, DisplaySettings, RenderSettings, ToneMapper};
+pub use settings::{
+    Algorithm, Denoiser, DisplaySettings, RenderSettings, SamplesPerPixel, ToneCurve,
+};
 
 use anyhow::Context as _;
 use lucid_engine::Validation;

@@ -1,93 +1,19 @@
 //! What the panels edit: renderer settings (handed to the frame source) and display settings
-//! (applied by the app's tone-mapping pass).
+//! (applied by the app's tone-mapping pass). Algorithm, denoiser, samples per pixel and tone curve
+//! are the renderer's and the engine's own types (with their panel labels), re-exported here.
 
-use lucid_engine::capture::{PngEncoding, ToneCurve};
+pub use lucid_engine::capture::ToneCurve;
+pub use lucid_passes::renderer::{Algorithm, Denoiser, SamplesPerPixel};
 
-/// The light-transport algorithm.
-///
-/// ```
-/// use lucid_sandbox::Algorithm;
-/// for algorithm in Algorithm::ALL {
-///     println!("{}", algorithm.label()); // "path tracing", "bidirectional"
-/// }
-/// assert_eq!(Algorithm::PathTracing.other(), Algorithm::Bidirectional);
-/// ```
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
-pub enum Algorithm {
-    /// Unidirectional path tracing with next-event estimation.
-    #[default]
-    PathTracing,
-    /// Bidirectional path tracing.
-    Bidirectional,
-}
-
-impl Algorithm {
-    /// Every algorithm, in the order the panel lists them.
-    pub const ALL: [Self; 2] = [Self::PathTracing, Self::Bidirectional];
-
-    /// The name shown in the panel.
-    pub fn label(self) -> &'static str {
-        match self {
-            Self::PathTracing => "path tracing",
-            Self::Bidirectional => "bidirectional",
-        }
-    }
-
-    /// The other algorithm (what the split view compares with by default).
-    pub fn other(self) -> Self {
-        match self {
-            Self::PathTracing => Self::Bidirectional,
-            Self::Bidirectional => Self::PathTracing,
-        }
-    }
-
-    /// The renderer's algorithm.
-    pub fn renderer(self) -> lucid_passes::renderer::Algorithm {
-        match self {
-            Self::PathTracing => lucid_passes::renderer::Algorithm::PathTracing,
-            Self::Bidirectional => lucid_passes::renderer::Algorithm::Bidirectional,
-        }
-    }
-}
-
-/// The denoiser applied to the noisy frame.
-///
-/// ```
-/// use lucid_sandbox::Denoiser;
-/// assert_eq!(Denoiser::default(), Denoiser::Svgf);
-/// assert_eq!(Denoiser::None.label(), "none");
-/// ```
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
-pub enum Denoiser {
-    /// The raw estimate.
-    None,
-    /// Spatiotemporal variance-guided filtering.
-    #[default]
-    Svgf,
-    /// The learned recurrent denoiser.
-    Neural,
-}
-
-impl Denoiser {
-    /// Every denoiser, in the order the panel lists them.
-    pub const ALL: [Self; 3] = [Self::None, Self::Svgf, Self::Neural];
-
-    /// The name shown in the panel.
-    pub fn label(self) -> &'static str {
-        match self {
-            Self::None => "none",
-            Self::Svgf => "SVGF",
-            Self::Neural => "learned",
-        }
-    }
-}
+use lucid_engine::capture::PngEncoding;
 
 /// What the renderer is asked to do each frame.
 ///
 /// ```
-/// use lucid_sandbox::{Denoiser, RenderSettings};
+/// use lucid_sandbox::{Denoiser, RenderSettings, SamplesPerPixel};
+/// assert_eq!(RenderSettings::default().denoiser, Denoiser::Svgf);
 /// let settings = RenderSettings {
-///     spp: 4,
+///     spp: SamplesPerPixel::new(4).unwrap(),
 ///     denoiser: Denoiser::None,
 ///     ..RenderSettings::default()
 /// };
@@ -99,7 +25,7 @@ pub struct RenderSettings {
     /// The light-transport algorithm.
     pub algorithm: Algorithm,
     /// Samples per pixel per frame.
-    pub spp: u32,
+    pub spp: SamplesPerPixel,
     /// Maximum number of path vertices after the camera.
     pub max_depth: u32,
     /// The denoiser.
@@ -141,9 +67,9 @@ impl Default for RenderSettings {
     fn default() -> Self {
         Self {
             algorithm: Algorithm::default(),
-            spp: 1,
+            spp: SamplesPerPixel::ONE,
             max_depth: 8,
-            denoiser: Denoiser::default(),
+            denoiser: Denoiser::Svgf,
             accumulate: true,
             view: lucid_passes::debug::debug_view::View::Final,
             svgf: lucid_passes::denoise::svgf::SvgfParams::default(),
@@ -151,63 +77,32 @@ impl Default for RenderSettings {
     }
 }
 
-/// The tone curve of the display transform.
-///
-/// ```
-/// use lucid_sandbox::ToneMapper;
-/// assert_eq!(ToneMapper::AgX.curve(), lucid_engine::capture::ToneCurve::AgX);
-/// assert_eq!(ToneMapper::ALL.map(ToneMapper::label), ["ACES", "AgX", "clamp"]);
-/// ```
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
-pub enum ToneMapper {
-    /// The ACES filmic fit.
-    #[default]
-    Aces,
-    /// AgX.
-    AgX,
-    /// Clamp to `[0, 1]`.
-    Clamp,
-}
-
-impl ToneMapper {
-    /// Every tone mapper, in the order the panel lists them.
-    pub const ALL: [Self; 3] = [Self::Aces, Self::AgX, Self::Clamp];
-
-    /// The name shown in the panel.
-    pub fn label(self) -> &'static str {
-        match self {
-            Self::Aces => "ACES",
-            Self::AgX => "AgX",
-            Self::Clamp => "clamp",
-        }
-    }
-
-    /// The engine's curve of the same name (used for PNG captures).
-    pub fn curve(self) -> ToneCurve {
-        match self {
-            Self::Aces => ToneCurve::Aces,
-            Self::AgX => ToneCurve::AgX,
-            Self::Clamp => ToneCurve::Clamp,
-        }
-    }
-}
-
 /// How the HDR output becomes display pixels.
 ///
 /// ```
-/// use lucid_sandbox::{DisplaySettings, ToneMapper};
+/// use lucid_sandbox::{DisplaySettings, ToneCurve};
+/// assert_eq!(DisplaySettings::default().tone_curve, ToneCurve::Aces);
 /// let display = DisplaySettings {
 ///     exposure: 1.0, // one stop brighter
-///     tone_mapper: ToneMapper::AgX,
+///     tone_curve: ToneCurve::AgX,
 /// };
 /// assert_eq!(display.png_encoding().exposure, 1.0);
 /// ```
-#[derive(Clone, Copy, Debug, Default, PartialEq)]
+#[derive(Clone, Copy, Debug, PartialEq)]
 pub struct DisplaySettings {
     /// Exposure in stops.
     pub exposure: f32,
     /// The tone curve.
-    pub tone_mapper: ToneMapper,
+    pub tone_curve: ToneCurve,
+}
+
+impl Default for DisplaySettings {
+    fn default() -> Self {
+        Self {
+            exposure: 0.0,
+            tone_curve: ToneCurve::Aces,
+        }
+    }
 }
 
 impl DisplaySettings {
@@ -215,7 +110,7 @@ impl DisplaySettings {
     pub fn png_encoding(&self) -> PngEncoding {
         PngEncoding {
             exposure: self.exposure,
-            tone: self.tone_mapper.curve(),
+            tone: self.tone_curve,
         }
     }
 }
@@ -227,7 +122,7 @@ mod tests {
     #[test]
     fn the_compared_configuration_differs_only_in_the_algorithm() {
         let left = RenderSettings {
-            spp: 4,
+            spp: SamplesPerPixel::new(4).unwrap(),
             denoiser: Denoiser::None,
             ..RenderSettings::default()
         };

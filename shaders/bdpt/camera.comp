@@ -167,7 +167,7 @@ vec3 emission_hit(Surface s, vec3 d, vec3 prev_p, uint depth, float dvcm, float 
 vec3 trace_camera(vec3 o, vec3 d, inout uint rng, uint max_depth, uint rr_depth, out vec3 first_albedo,
                   out vec3 first_emission) {
     Camera cam = b_frame.f.camera;
-    uvec2 size = b_frame.f.size.xy;
+    uvec2 size = uvec2(b_frame.f.width, b_frame.f.height);
     float aspect = float(size.x) / float(size.y);
     vec3 radiance = vec3(0.0);
     CameraVertex c;
@@ -254,14 +254,14 @@ vec3 trace_camera(vec3 o, vec3 d, inout uint rng, uint max_depth, uint rr_depth,
 
 void main() {
     ivec2 pixel = ivec2(gl_GlobalInvocationID.xy);
-    uvec2 size = b_frame.f.size.xy;
+    uvec2 size = uvec2(b_frame.f.width, b_frame.f.height);
     if (any(greaterThanEqual(uvec2(pixel), size))) {
         return;
     }
-    uint rng = rng_init(uvec2(pixel), b_frame.f.frame.x, b_frame.f.frame.y);
-    uint spp = max(b_frame.f.frame.z, 1u);
-    uint max_depth = b_frame.f.frame.w;
-    uint rr_depth = uint(b_frame.f.params.x);
+    uint rng = rng_init(uvec2(pixel), b_frame.f.frame_index, b_frame.f.seed);
+    uint spp = b_frame.f.samples_per_pixel;
+    uint max_depth = b_frame.f.max_depth;
+    uint rr_depth = b_frame.f.rr_depth;
     float aspect = float(size.x) / float(size.y);
     vec3 sum = vec3(0.0);
     vec3 albedo_sum = vec3(0.0);

@@ -44,7 +44,7 @@ uint connect_to_camera(Surface s, BsdfParams m, vec3 t, vec3 b, vec3 wl, vec3 be
     if (c.position_aperture.w > 0.0) {
         return 0u;
     }
-    uvec2 size = b_frame.f.size.xy;
+    uvec2 size = uvec2(b_frame.f.width, b_frame.f.height);
     float aspect = float(size.x) / float(size.y);
     vec3 film = camera_project(c, s.p, aspect);
     if (film.z <= 0.0 || any(lessThan(film.xy, vec2(0.0))) || any(greaterThanEqual(film.xy, vec2(1.0)))) {
@@ -103,12 +103,12 @@ void store_vertex(uint slot, Surface s, vec3 wl, vec3 beta, float dvcm, float dv
 
 void main() {
     uint index = gl_GlobalInvocationID.y * pc.stride + gl_GlobalInvocationID.x;
-    uint max_depth = b_frame.f.frame.w;
+    uint max_depth = b_frame.f.max_depth;
     if (index >= pc.light_paths || max_depth < 2u) {
         return;
     }
-    uint rr_depth = uint(b_frame.f.params.x);
-    uint rng = rng_init(uvec2(index, LIGHT_STREAM), b_frame.f.frame.x, b_frame.f.frame.y);
+    uint rr_depth = b_frame.f.rr_depth;
+    uint rng = rng_init(uvec2(index, LIGHT_STREAM), b_frame.f.frame_index, b_frame.f.seed);
     uint first_slot = index * pc.path_vertices;
     uint stored = 0u;
     EmitSample e;

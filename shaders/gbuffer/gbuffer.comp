@@ -26,7 +26,7 @@ layout(set = 0, binding = 22, rgba16f) uniform writeonly image2D u_motion;      
 
 void main() {
     ivec2 pixel = ivec2(gl_GlobalInvocationID.xy);
-    uvec2 size = b_frame.f.size.xy;
+    uvec2 size = uvec2(b_frame.f.width, b_frame.f.height);
     if (any(greaterThanEqual(uvec2(pixel), size))) {
         return;
     }

@@ -33,11 +33,11 @@ layout(push_constant) uniform Push { ReplayParams replay; } push;
 
 void main() {
     ivec2 pixel = ivec2(gl_GlobalInvocationID.xy);
-    uvec2 size = b_frame.f.size.xy;
+    uvec2 size = uvec2(b_frame.f.width, b_frame.f.height);
     if (any(greaterThanEqual(uvec2(pixel), size))) {
         return;
     }
-    uint frame = b_frame.f.frame.x;
+    uint frame = b_frame.f.frame_index;
     // The pixel whose random numbers and camera this thread's paths use: its own, or on a replay
     // pick, last frame's pixel it came from.
     ivec2 source = pixel;
@@ -50,10 +50,10 @@ void main() {
             camera = b_frame.f.prev_camera;
         }
     }
-    uint rng = rng_init(uvec2(source), frame, b_frame.f.frame.y);
-    uint spp = max(b_frame.f.frame.z, 1u);
-    uint max_depth = b_frame.f.frame.w;
-    uint rr_depth = uint(b_frame.f.params.x);
+    uint rng = rng_init(uvec2(source), frame, b_frame.f.seed);
+    uint spp = b_frame.f.samples_per_pixel;
+    uint max_depth = b_frame.f.max_depth;
+    uint rr_depth = b_frame.f.rr_depth;
     float aspect = float(size.x) / float(size.y);
     uint rays = 0u;
     uint dropped = 0u;

@@ -1,4 +1,6 @@
-//! Shared helpers for Lucid's GPU tests: a validated context and checks on validation messages.
+//! Shared helpers for Lucid's GPU tests (the tests are `tests/tests/*.rs`): a validated context,
+//! checks on validation messages, rendering ([`render`]), the SVGF tests' methods and statistics
+//! ([`svgf`]) and the statistics comparing Monte Carlo estimates ([`bdpt_stats`]).
 
 use lucid_engine::graph::{Executor, FrameOutputs, RenderGraph};
 use lucid_engine::shader::ShaderLibrary;
@@ -43,4 +45,6 @@ pub fn assert_no_validation_messages(ctx: &Context) {
     }
 }
 
+pub mod bdpt_stats;
 pub mod render;
+pub mod svgf;

@@ -13,6 +13,8 @@ mod image_data;
 mod png_io;
 mod srgb;
 mod tone;
+#[cfg(feature = "clap")]
+mod tone_value_enum;
 
 pub use error::CaptureError;
 pub use exr_io::{load_exr, save_exr, ExrPrecision};

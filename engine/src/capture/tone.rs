@@ -13,6 +13,12 @@ const MAX_SCENE_VALUE: f64 = 1.0e30;
 
 /// How linear scene values are compressed into the displayable `[0, 1]`
 /// range before sRGB encoding.
+///
+/// ```
+/// use lucid_engine::capture::ToneCurve;
+/// assert_eq!(ToneCurve::ALL.map(ToneCurve::label), ["ACES", "AgX", "clamp"]);
+/// assert_eq!(ToneCurve::ALL.map(ToneCurve::short_name), ["aces", "agx", "clamp"]);
+/// ```
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
 pub enum ToneCurve {
     /// Clamp each channel to `[0, 1]`.
@@ -74,6 +80,27 @@ fn agx(rgb: [f64; 3]) -> [f64; 3] {
 }
 
 impl ToneCurve {
+    /// Every tone curve, in the order menus and the command line list them.
+    pub const ALL: [ToneCurve; 3] = [ToneCurve::Aces, ToneCurve::AgX, ToneCurve::Clamp];
+
+    /// The short name used on the command line (`aces`, `agx`, `clamp`).
+    pub fn short_name(self) -> &'static str {
+        match self {
+            ToneCurve::Clamp => "clamp",
+            ToneCurve::Aces => "aces",
+            ToneCurve::AgX => "agx",
+        }
+    }
+
+    /// The name shown in user interfaces (`ACES`, `AgX`, `clamp`).
+    pub fn label(self) -> &'static str {
+        match self {
+            ToneCurve::Clamp => "clamp",
+            ToneCurve::Aces => "ACES",
+            ToneCurve::AgX => "AgX",
+        }
+    }
+
     /// Maps linear, non-negative scene RGB to linear display RGB in `[0, 1]`.
     /// Negative values and NaN count as 0, `+inf` as very bright.
     pub fn apply(self, rgb: [f32; 3]) -> [f32; 3] {

@@ -17,10 +17,10 @@
 //! must be bound, each access must suit its binding's kind, and the push constants must have the
 //! size of its push-constant block.
 
-use crate::access::Access;
-use super::render_graph::{PassBuilder, RenderGraph};
 use super::handle::{BufferHandle, Handle, ImageHandle, TemporalImage};
 use super::pass_context::{Dispatch, PassContext};
+use super::render_graph::{PassBuilder, RenderGraph};
+use crate::access::Access;
 use crate::error::Result;
 use crate::memory::ImageDesc;
 use crate::shader::{ShaderSource, SpecValue, Specialization};

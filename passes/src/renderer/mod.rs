@@ -16,7 +16,10 @@
 //! ```
 
 mod settings;
+#[cfg(feature = "clap")]
+mod value_enum;
 
+pub use crate::samples_per_pixel::{SamplesPerPixel, ZeroSamplesPerPixel};
 pub use settings::{Algorithm, Denoiser, Settings};
 
 use crate::denoise::gbuffer::{self, GBuffer};
@@ -371,20 +374,21 @@ impl Renderer {
         let constants = FrameConstants {
             camera,
             prev_camera: self.prev_camera,
-            frame: [
-                self.frame_index,
-                self.settings.seed,
-                self.settings.samples_per_pixel.max(1),
-                self.settings.max_depth,
-            ],
-            size: [w, h, accumulated, 0],
-            params: [self.settings.rr_depth as f32, 0.0, 0.0, 0.0],
+            frame_index: self.frame_index,
+            seed: self.settings.seed,
+            samples_per_pixel: self.settings.samples_per_pixel.get(),
+            max_depth: self.settings.max_depth,
+            width: w,
+            height: h,
+            accumulated,
+            rr_depth: self.settings.rr_depth,
+            padding: [0; 4],
         };
         let frame = frame_constants::add(g, &constants);
         let scene = self.buffers.import(g);
         let prev_transforms = add_prev_transforms(g, &self.prev_transforms);
         let gbuffer = gbuffer::add_gbuffer(g, &scene, frame, prev_transforms, &self.spec, w, h);
-        let spp = self.settings.samples_per_pixel.max(1);
+        let spp = self.settings.samples_per_pixel;
         let svgf_params = self.settings.svgf;
         let svgf_apply = match self.settings.denoiser {
             Denoiser::None => None,
@@ -505,7 +509,7 @@ impl Renderer {
                 let sampling = bdpt::Frame {
                     width: w,
                     height: h,
-                    samples_per_pixel: self.settings.samples_per_pixel.max(1),
+                    samples_per_pixel: self.settings.samples_per_pixel,
                     max_depth: self.settings.max_depth,
                     surface,
                 };

@@ -1,9 +1,19 @@
-//! What a frame renders: algorithm, samples, depth, accumulation and display settings.
+//! What a frame renders: algorithm, samples, depth, accumulation and display settings. The
+//! command line, the sandbox's panels and embedding code all use these types; with the `clap`
+//! feature, [`Algorithm`] and [`Denoiser`] are `clap::ValueEnum`s (`renderer/value_enum.rs`).
 
 use crate::denoise::svgf::SvgfParams;
+use crate::samples_per_pixel::SamplesPerPixel;
 use lucid_engine::capture::{PngEncoding, ToneCurve};
 
 /// The light-transport algorithm, switchable per frame.
+///
+/// ```
+/// use lucid_passes::renderer::Algorithm;
+/// assert_eq!(Algorithm::ALL.map(Algorithm::label), ["path tracing", "bidirectional"]);
+/// assert_eq!(Algorithm::ALL.map(Algorithm::short_name), ["pt", "bdpt"]);
+/// assert_eq!(Algorithm::PathTracing.other(), Algorithm::Bidirectional);
+/// ```
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
 pub enum Algorithm {
     /// Unidirectional path tracing with NEE and MIS.
@@ -14,7 +24,7 @@ pub enum Algorithm {
 }
 
 impl Algorithm {
-    /// Every algorithm, for menus and argument parsing.
+    /// Every algorithm, in the order menus and the command line list them.
     pub const ALL: [Algorithm; 2] = [Algorithm::PathTracing, Algorithm::Bidirectional];
 
     /// Whether the algorithm can replay last frame's paths where asked (SVGF's temporal gradients
@@ -24,7 +34,7 @@ impl Algorithm {
         self == Algorithm::PathTracing
     }
 
-    /// The short name used on the command line (`pt`, `bdpt`).
+    /// The short name used on the command line and in reports (`pt`, `bdpt`).
     pub fn short_name(self) -> &'static str {
         match self {
             Algorithm::PathTracing => "pt",
@@ -32,13 +42,30 @@ impl Algorithm {
         }
     }
 
-    /// Parses a short name.
-    pub fn from_short_name(name: &str) -> Option<Self> {
-        Self::ALL.into_iter().find(|a| a.short_name() == name)
+    /// The name shown in user interfaces (`path tracing`, `bidirectional`).
+    pub fn label(self) -> &'static str {
+        match self {
+            Algorithm::PathTracing => "path tracing",
+            Algorithm::Bidirectional => "bidirectional",
+        }
+    }
+
+    /// The other algorithm (what a side-by-side comparison shows by default).
+    pub fn other(self) -> Self {
+        match self {
+            Algorithm::PathTracing => Algorithm::Bidirectional,
+            Algorithm::Bidirectional => Algorithm::PathTracing,
+        }
     }
 }
 
 /// The denoiser applied after tracing.
+///
+/// ```
+/// use lucid_passes::renderer::Denoiser;
+/// assert_eq!(Denoiser::ALL.map(Denoiser::label), ["none", "SVGF", "learned"]);
+/// assert_eq!(Denoiser::ALL.map(Denoiser::short_name), ["none", "svgf", "neural"]);
+/// ```
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
 pub enum Denoiser {
     /// The (accumulated) radiance as traced.
@@ -50,13 +77,36 @@ pub enum Denoiser {
     Neural,
 }
 
+impl Denoiser {
+    /// Every denoiser, in the order menus and the command line list them.
+    pub const ALL: [Denoiser; 3] = [Denoiser::None, Denoiser::Svgf, Denoiser::Neural];
+
+    /// The short name used on the command line (`none`, `svgf`, `neural`).
+    pub fn short_name(self) -> &'static str {
+        match self {
+            Denoiser::None => "none",
+            Denoiser::Svgf => "svgf",
+            Denoiser::Neural => "neural",
+        }
+    }
+
+    /// The name shown in user interfaces (`none`, `SVGF`, `learned`).
+    pub fn label(self) -> &'static str {
+        match self {
+            Denoiser::None => "none",
+            Denoiser::Svgf => "SVGF",
+            Denoiser::Neural => "learned",
+        }
+    }
+}
+
 /// Render settings. Changing anything but exposure and tone curve restarts accumulation.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Settings {
     /// The light-transport algorithm.
     pub algorithm: Algorithm,
     /// Samples per pixel per frame.
-    pub samples_per_pixel: u32,
+    pub samples_per_pixel: SamplesPerPixel,
     /// Longest path, in Mitsuba's convention (1: emitters seen directly, 2: direct lighting, ...).
     pub max_depth: u32,
     /// Depth from which Russian roulette may end paths.
@@ -77,7 +127,7 @@ impl Default for Settings {
     fn default() -> Self {
         Self {
             algorithm: Algorithm::PathTracing,
-            samples_per_pixel: 1,
+            samples_per_pixel: SamplesPerPixel::ONE,
             max_depth: 8,
             rr_depth: 5,
             seed: 0,

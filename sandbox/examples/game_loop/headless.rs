@@ -87,7 +87,7 @@ mod tests {
             frames: Some(11),
             every: 10,
             size: (128, 128),
-            spp: 8,
+            spp: lucid_passes::renderer::SamplesPerPixel::new(8).unwrap(),
             svgf: false,
             camera_moves: false,
             out: out.clone(),

@@ -20,7 +20,7 @@ mod windowed;
 mod xvfb;
 
 use anyhow::{bail, Context as _};
-use lucid_passes::renderer::{Denoiser, Settings};
+use lucid_passes::renderer::{Denoiser, SamplesPerPixel, Settings};
 use std::path::PathBuf;
 
 /// What the command line asks for.
@@ -31,7 +31,7 @@ struct Options {
     frames: Option<u32>,
     every: u32,
     size: (u32, u32),
-    spp: u32,
+    spp: SamplesPerPixel,
     svgf: bool,
     camera_moves: bool,
     out: PathBuf,
@@ -62,7 +62,7 @@ fn parse() -> anyhow::Result<Options> {
         frames: None,
         every: 10,
         size: (640, 360),
-        spp: 1,
+        spp: SamplesPerPixel::ONE,
         svgf: false,
         camera_moves: true,
         out: PathBuf::from("game_loop_frames"),
@@ -83,7 +83,10 @@ fn parse() -> anyhow::Result<Options> {
                 o.size = size.with_context(|| format!("--size {v} is not WxH"))?;
             }
             "--out" => o.out = PathBuf::from(value()?),
-            "--spp" => o.spp = value()?.parse::<u32>().context("--spp")?.max(1),
+            "--spp" => {
+                let count = value()?.parse::<u32>().context("--spp")?;
+                o.spp = count.try_into().context("--spp")?;
+            }
             "--svgf" => o.svgf = true,
             "--no-sway" => o.camera_moves = false,
             other => bail!("unknown argument {other}; {USAGE}"),

@@ -295,7 +295,7 @@ mod tests {
             frames: Some(FRAMES),
             every: 1,
             size: (160, 96),
-            spp: 1,
+            spp: lucid_passes::renderer::SamplesPerPixel::ONE,
             svgf: true,
             camera_moves: true,
             out: std::env::temp_dir(),

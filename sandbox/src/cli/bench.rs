@@ -116,7 +116,7 @@ pub fn run(args: &BenchArgs) -> anyhow::Result<()> {
     let wall_s = wall.elapsed().as_secs_f64();
     let mean_ms = frame_ms.iter().sum::<f64>() / frame_ms.len() as f64;
     let image_mean_ms = image_ms.iter().sum::<f64>() / image_ms.len() as f64;
-    let paths = w as f64 * h as f64 * args.options.spp as f64;
+    let paths = w as f64 * h as f64 * f64::from(args.options.spp.get());
     let mean_rays = rays.iter().sum::<f64>() / rays.len() as f64;
     let pipelines = renderer.executor().library().pipeline_statistics();
     if capture_statistics {
@@ -129,7 +129,7 @@ pub fn run(args: &BenchArgs) -> anyhow::Result<()> {
         "triangles": renderer.scene().triangle_count(),
         "algorithm": settings.algorithm.short_name(),
         "size": [w, h],
-        "spp": args.options.spp,
+        "spp": args.options.spp.get(),
         "max_depth": args.options.max_depth,
         "frames": args.frames,
         "dynamic": args.dynamic,

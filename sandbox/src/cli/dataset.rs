@@ -9,6 +9,7 @@
 //! new sequence is a camera cut.
 
 use super::progress::Progress;
+use super::render_options::samples_per_pixel;
 use super::size::Size;
 use anyhow::{bail, Context as _};
 use clap::Args;
@@ -18,7 +19,7 @@ use lucid_engine::graph::RenderGraph;
 use lucid_engine::scene::{builtin, Camera, Scene};
 use lucid_engine::{Context, ContextDesc};
 use lucid_passes::denoise::neural::RECORD_CHANNELS;
-use lucid_passes::renderer::{Denoiser, Renderer, Settings};
+use lucid_passes::renderer::{Denoiser, Renderer, SamplesPerPixel, Settings};
 use safetensors::tensor::{Dtype, TensorView};
 use std::collections::HashMap;
 use std::path::{Path, PathBuf};
@@ -30,7 +31,7 @@ pub const HELD_OUT: [&str; 2] = ["classroom", "caustics"];
 const SKIPPED: [&str; 1] = ["furnace"];
 
 /// Samples per pixel per frame of the reference renders (more are accumulated over frames).
-const REFERENCE_SPP_PER_FRAME: u32 = 16;
+const REFERENCE_SPP_PER_FRAME: SamplesPerPixel = SamplesPerPixel::new(16).unwrap();
 
 /// Options of `lucid dataset`.
 #[derive(Debug, Args)]
@@ -54,8 +55,8 @@ pub struct DatasetArgs {
     #[arg(long, default_value_t = 2, value_parser = clap::value_parser!(u32).range(1..=64))]
     sequences: u32,
     /// Samples per pixel of each reference frame.
-    #[arg(long, default_value_t = 256, value_parser = clap::value_parser!(u32).range(1..=65536))]
-    reference_spp: u32,
+    #[arg(long, default_value = "256", value_parser = samples_per_pixel(65536))]
+    reference_spp: SamplesPerPixel,
     /// Leave out the built-in scenes (procedural rooms only).
     #[arg(long)]
     no_builtin: bool,
@@ -119,7 +120,7 @@ pub fn run(args: &DatasetArgs) -> anyhow::Result<()> {
     let index = serde_json::json!({
         "format": lucid_passes::denoise::neural::FORMAT,
         "record_channels": RECORD_CHANNELS,
-        "reference_spp": args.reference_spp,
+        "reference_spp": args.reference_spp.get(),
         "held_out": HELD_OUT,
         "sequences": index,
     });
@@ -227,7 +228,10 @@ fn render_sequence(
     };
     let mut noisy = Renderer::new(ctx, scene.clone(), w, h, noisy_settings)?;
     let mut reference = Renderer::new(ctx, scene.clone(), w, h, reference_settings)?;
-    let reference_frames = args.reference_spp.div_ceil(REFERENCE_SPP_PER_FRAME);
+    let reference_frames = args
+        .reference_spp
+        .get()
+        .div_ceil(REFERENCE_SPP_PER_FRAME.get());
     let pixels = (w * h) as usize;
     let mut records: Vec<u16> =
         Vec::with_capacity(cameras.len() * pixels * RECORD_CHANNELS as usize);

@@ -1,7 +1,7 @@
 //! `lucid evaluate`: metrics of rendered sequences against their reference, per frame, as CSV and
 //! an SVG plot.
 
-use super::sequence::{frame_path, METHODS};
+use super::sequence::{frame_path, Method};
 use anyhow::Context as _;
 use clap::Args;
 use lucid_engine::capture::{self, ImageData, PngEncoding};
@@ -50,7 +50,11 @@ const COLUMNS: [(&str, Metric); 5] = [
 pub fn evaluate_folder(dir: &Path, display: &PngEncoding) -> anyhow::Result<()> {
     let reference = load_frames(&dir.join("reference"))?;
     let mut results = Vec::new();
-    for &method in METHODS.iter().chain(&EXTERNAL_METHODS) {
+    for &method in Method::ALL
+        .map(Method::name)
+        .iter()
+        .chain(&EXTERNAL_METHODS)
+    {
         let folder = dir.join(method);
         if folder.is_dir() {
             let frames = load_frames(&folder)?;

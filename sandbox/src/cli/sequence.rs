@@ -3,7 +3,7 @@
 
 use super::evaluate;
 use super::progress::Progress;
-use super::render_options::RenderOptions;
+use super::render_options::{samples_per_pixel, RenderOptions};
 use super::scene_source;
 use anyhow::Context as _;
 use clap::Args;
@@ -11,9 +11,9 @@ use lucid_engine::capture::{self, ExrPrecision, ImageData};
 use lucid_engine::graph::RenderGraph;
 use lucid_engine::scene::{Camera, Scene};
 use lucid_engine::{Context, ContextDesc};
-use lucid_passes::denoise::svgf::{SvgfMode, SvgfParams};
 use lucid_passes::denoise::neural::{record_image, RECORD_ALBEDO, RECORD_NORMAL};
-use lucid_passes::renderer::{Denoiser, Renderer, Settings};
+use lucid_passes::denoise::svgf::{SvgfMode, SvgfParams};
+use lucid_passes::renderer::{Denoiser, Renderer, SamplesPerPixel, Settings};
 use std::path::{Path, PathBuf};
 
 /// Options of `lucid sequence`.
@@ -28,8 +28,8 @@ pub struct SequenceArgs {
     #[arg(long, default_value_t = 30.0)]
     fps: f32,
     /// Samples per pixel of each reference frame.
-    #[arg(long, default_value_t = 1024, value_parser = clap::value_parser!(u32).range(1..))]
-    reference_spp: u32,
+    #[arg(long, default_value = "1024", value_parser = samples_per_pixel(u32::MAX.into()))]
+    reference_spp: SamplesPerPixel,
     /// Output folder: `<method>/NNNN.exr` frames, first-hit `albedo/` and `normal/` frames,
     /// `metrics.csv` and `metrics.svg`.
     #[arg(long, default_value = "sequence")]
@@ -38,10 +38,63 @@ pub struct SequenceArgs {
 
 /// The sequences rendered besides the reference: the noisy input and each denoiser, at `--spp`
 /// samples per pixel (1 by default).
-pub const METHODS: [&str; 4] = ["none", "spatial", "svgf", "neural"];
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Method {
+    /// No denoiser.
+    Noisy,
+    /// SVGF's spatial filter on every frame, without history.
+    Spatial,
+    /// Temporal SVGF.
+    Svgf,
+    /// The learned recurrent denoiser.
+    Neural,
+}
+
+impl Method {
+    /// Every method, in the order they are rendered and evaluated.
+    pub const ALL: [Method; 4] = [Method::Noisy, Method::Spatial, Method::Svgf, Method::Neural];
+
+    /// The method's folder and its name in the metrics (`none`, `spatial`, `svgf`, `neural`).
+    pub fn name(self) -> &'static str {
+        match self {
+            Method::Noisy => Denoiser::None.short_name(),
+            Method::Spatial => "spatial",
+            Method::Svgf => Denoiser::Svgf.short_name(),
+            Method::Neural => Denoiser::Neural.short_name(),
+        }
+    }
+
+    /// `base` with this method's denoiser.
+    fn settings(self, base: Settings) -> Settings {
+        let svgf = |mode| SvgfParams {
+            mode,
+            ..SvgfParams::default()
+        };
+        match self {
+            Method::Noisy => Settings {
+                denoiser: Denoiser::None,
+                ..base
+            },
+            Method::Spatial => Settings {
+                denoiser: Denoiser::Svgf,
+                svgf: svgf(SvgfMode::EveryFrame),
+                ..base
+            },
+            Method::Svgf => Settings {
+                denoiser: Denoiser::Svgf,
+                svgf: svgf(SvgfMode::Temporal),
+                ..base
+            },
+            Method::Neural => Settings {
+                denoiser: Denoiser::Neural,
+                ..base
+            },
+        }
+    }
+}
 
 /// Samples per pixel per frame of the reference renders (more are accumulated over frames).
-const REFERENCE_SPP_PER_FRAME: u32 = 16;
+const REFERENCE_SPP_PER_FRAME: SamplesPerPixel = SamplesPerPixel::new(16).unwrap();
 
 /// Renders every sequence and writes the evaluation.
 pub fn run(args: &SequenceArgs) -> anyhow::Result<()> {
@@ -61,7 +114,10 @@ pub fn run(args: &SequenceArgs) -> anyhow::Result<()> {
         denoiser: Denoiser::None,
         ..base
     };
-    let reference_frames = args.reference_spp.div_ceil(REFERENCE_SPP_PER_FRAME);
+    let reference_frames = args
+        .reference_spp
+        .get()
+        .div_ceil(REFERENCE_SPP_PER_FRAME.get());
     render(
         &ctx,
         &scene,
@@ -71,32 +127,9 @@ pub fn run(args: &SequenceArgs) -> anyhow::Result<()> {
         reference_settings,
         reference_frames,
     )?;
-    for method in METHODS {
-        let svgf = |mode| SvgfParams {
-            mode,
-            ..SvgfParams::default()
-        };
-        let settings = match method {
-            "spatial" => Settings {
-                denoiser: Denoiser::Svgf,
-                svgf: svgf(SvgfMode::EveryFrame),
-                ..base
-            },
-            "svgf" => Settings {
-                denoiser: Denoiser::Svgf,
-                svgf: svgf(SvgfMode::Temporal),
-                ..base
-            },
-            "neural" => Settings {
-                denoiser: Denoiser::Neural,
-                ..base
-            },
-            _ => Settings {
-                denoiser: Denoiser::None,
-                ..base
-            },
-        };
-        render(&ctx, &scene, args, &cameras, method, settings, 1)?;
+    for method in Method::ALL {
+        let settings = method.settings(base);
+        render(&ctx, &scene, args, &cameras, method.name(), settings, 1)?;
     }
     render_aux(&ctx, &scene, args, &cameras, base)?;
     evaluate::evaluate_folder(&args.out, &args.options.display())

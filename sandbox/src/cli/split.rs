@@ -1,16 +1,15 @@
 //! `lucid view --split ALGO/DENOISER[/SPP[/DEPTH]]`: the configuration of the split view's right
 //! half, e.g. `bdpt/none` or `pt/svgf/4/12`; what it leaves out is the left half's.
 
-use super::render_options::{AlgoArg, DenoiseArg};
 use clap::ValueEnum;
-use lucid_sandbox::{Algorithm, Denoiser, RenderSettings};
+use lucid_sandbox::{Algorithm, Denoiser, RenderSettings, SamplesPerPixel};
 
 /// The parsed `--split` value.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct SplitSpec {
-    algo: AlgoArg,
-    denoise: DenoiseArg,
-    spp: Option<u32>,
+    algo: Algorithm,
+    denoise: Denoiser,
+    spp: Option<SamplesPerPixel>,
     max_depth: Option<u32>,
 }
 
@@ -23,9 +22,9 @@ impl std::str::FromStr for SplitSpec {
         if !(2..=4).contains(&parts.len()) {
             return Err(format!("{s:?} is not {usage}"));
         }
-        let algo = AlgoArg::from_str(parts[0], true)
+        let algo = Algorithm::from_str(parts[0], true)
             .map_err(|_| format!("{:?} in {s:?} is not an algorithm (pt or bdpt)", parts[0]))?;
-        let denoise = DenoiseArg::from_str(parts[1], true)
+        let denoise = Denoiser::from_str(parts[1], true)
             .map_err(|_| format!("{:?} in {s:?} is not a denoiser (none or svgf)", parts[1]))?;
         let number = |i: usize, what: &str, max: u32| -> Result<Option<u32>, String> {
             parts
@@ -41,7 +40,7 @@ impl std::str::FromStr for SplitSpec {
         Ok(Self {
             algo,
             denoise,
-            spp: number(2, "a sample count", 1024)?,
+            spp: number(2, "a sample count", 1024)?.and_then(SamplesPerPixel::new),
             max_depth: number(3, "a path length", 64)?,
         })
     }
@@ -51,29 +50,12 @@ impl SplitSpec {
     /// The right half's settings: `left`'s with what the spec gives replaced.
     pub fn apply(&self, left: &RenderSettings) -> RenderSettings {
         RenderSettings {
-            algorithm: algorithm(self.algo),
-            denoiser: denoiser(self.denoise),
+            algorithm: self.algo,
+            denoiser: self.denoise,
             spp: self.spp.unwrap_or(left.spp),
             max_depth: self.max_depth.unwrap_or(left.max_depth),
             ..*left
         }
-    }
-}
-
-/// The sandbox's algorithm for a command-line one.
-pub fn algorithm(algo: AlgoArg) -> Algorithm {
-    match algo {
-        AlgoArg::Pt => Algorithm::PathTracing,
-        AlgoArg::Bdpt => Algorithm::Bidirectional,
-    }
-}
-
-/// The sandbox's denoiser for a command-line one.
-pub fn denoiser(denoise: DenoiseArg) -> Denoiser {
-    match denoise {
-        DenoiseArg::None => Denoiser::None,
-        DenoiseArg::Svgf => Denoiser::Svgf,
-        DenoiseArg::Neural => Denoiser::Neural,
     }
 }
 
@@ -84,7 +66,7 @@ mod tests {
     #[test]
     fn parses_specs_and_fills_in_the_left_half() {
         let left = RenderSettings {
-            spp: 2,
+            spp: SamplesPerPixel::new(2).unwrap(),
             max_depth: 5,
             ..RenderSettings::default()
         };
@@ -92,14 +74,14 @@ mod tests {
         let right = short.apply(&left);
         assert_eq!(right.algorithm, Algorithm::Bidirectional);
         assert_eq!(right.denoiser, Denoiser::None);
-        assert_eq!((right.spp, right.max_depth), (2, 5));
+        assert_eq!((right.spp.get(), right.max_depth), (2, 5));
         let full: SplitSpec = "pt/svgf/4/12".parse().unwrap();
         let right = full.apply(&left);
         assert_eq!(
             (right.algorithm, right.denoiser),
             (Algorithm::PathTracing, Denoiser::Svgf)
         );
-        assert_eq!((right.spp, right.max_depth), (4, 12));
+        assert_eq!((right.spp.get(), right.max_depth), (4, 12));
     }
 
     #[test]

@@ -1,11 +1,14 @@
 //! `lucid view` (and `lucid` without a subcommand): the interactive sandbox window.
 
-use super::render_options::{AlgoArg, DenoiseArg};
+use super::render_options::samples_per_pixel;
 use super::size::Size;
-use super::split::{algorithm, denoiser, SplitSpec};
+use super::split::SplitSpec;
 use anyhow::Context as _;
 use clap::Args;
-use lucid_sandbox::{AppOptions, RenderSettings, Screenshot, Startup, DEFAULT_SCENE};
+use lucid_sandbox::{
+    Algorithm, AppOptions, Denoiser, RenderSettings, SamplesPerPixel, Screenshot, Startup,
+    DEFAULT_SCENE,
+};
 use std::path::PathBuf;
 
 /// Options of `lucid view` (and of `lucid` without a subcommand).
@@ -24,14 +27,14 @@ pub struct ViewArgs {
     #[arg(long, num_args = 2, value_names = ["N", "FILE"])]
     screenshot_after: Option<Vec<String>>,
     /// Light-transport algorithm (of the left half in a split view).
-    #[arg(long, value_enum, default_value_t = AlgoArg::Pt)]
-    algo: AlgoArg,
+    #[arg(long, value_enum, default_value_t = Algorithm::PathTracing)]
+    algo: Algorithm,
     /// Denoiser (of the left half in a split view).
-    #[arg(long, value_enum, default_value_t = DenoiseArg::Svgf)]
-    denoise: DenoiseArg,
+    #[arg(long, value_enum, default_value_t = Denoiser::Svgf)]
+    denoise: Denoiser,
     /// Samples per pixel per frame.
-    #[arg(long, default_value_t = 1, value_parser = clap::value_parser!(u32).range(1..=1024))]
-    spp: u32,
+    #[arg(long, default_value_t = SamplesPerPixel::ONE, value_parser = samples_per_pixel(1024))]
+    spp: SamplesPerPixel,
     /// Longest path.
     #[arg(long, default_value_t = 8, value_parser = clap::value_parser!(u32).range(1..=64))]
     max_depth: u32,
@@ -60,8 +63,8 @@ pub fn run(args: &ViewArgs) -> anyhow::Result<()> {
         _ => None,
     };
     let render = RenderSettings {
-        algorithm: algorithm(args.algo),
-        denoiser: denoiser(args.denoise),
+        algorithm: args.algo,
+        denoiser: args.denoise,
         spp: args.spp,
         max_depth: args.max_depth,
         ..RenderSettings::default()

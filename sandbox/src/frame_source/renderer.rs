@@ -4,11 +4,11 @@
 
 use super::split::SplitRenderer;
 use super::{renderer_ms, side_by_side, FrameRequest, FrameSource, SideStats};
-use crate::settings::{Denoiser, RenderSettings};
+use crate::settings::RenderSettings;
 use lucid_engine::graph::{Executor, ImageHandle, RenderGraph};
 use lucid_engine::scene::Scene;
 use lucid_engine::Context;
-use lucid_passes::renderer::{self, Renderer, Settings};
+use lucid_passes::renderer::{Renderer, Settings};
 
 /// Renders the loaded scene with the chosen algorithm and denoiser.
 pub struct RendererSource {
@@ -45,15 +45,11 @@ pub fn new_renderer(ctx: &Context, scene: Scene, extent: [u32; 2]) -> anyhow::Re
 /// The renderer settings the panels describe (display settings are the app's own).
 pub fn renderer_settings(base: &Settings, panel: &RenderSettings) -> Settings {
     Settings {
-        algorithm: panel.algorithm.renderer(),
-        samples_per_pixel: panel.spp.max(1),
+        algorithm: panel.algorithm,
+        samples_per_pixel: panel.spp,
         max_depth: panel.max_depth.max(1),
         accumulate: panel.accumulate,
-        denoiser: match panel.denoiser {
-            Denoiser::None => renderer::Denoiser::None,
-            Denoiser::Svgf => renderer::Denoiser::Svgf,
-            Denoiser::Neural => renderer::Denoiser::Neural,
-        },
+        denoiser: panel.denoiser,
         svgf: panel.svgf,
         ..*base
     }
@@ -61,7 +57,8 @@ pub fn renderer_settings(base: &Settings, panel: &RenderSettings) -> Settings {
 
 /// Samples per pixel in a renderer's current output.
 pub fn samples_accumulated(renderer: &Renderer) -> u64 {
-    u64::from(renderer.accumulated_frames()) * u64::from(renderer.settings().samples_per_pixel)
+    u64::from(renderer.accumulated_frames())
+        * u64::from(renderer.settings().samples_per_pixel.get())
 }
 
 impl FrameSource for RendererSource {

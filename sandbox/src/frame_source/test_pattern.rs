@@ -42,7 +42,7 @@ impl FrameSource for TestPatternSource {
             self.accumulated = 0;
         }
         self.last = Some(state);
-        self.accumulated += u64::from(request.settings.spp.max(1));
+        self.accumulated += u64::from(request.settings.spp.get());
         let params = pattern_params(request);
         let [w, h] = request.extent;
         Ok(test_pattern::add_test_pattern(graph, w, h, &params).combined)

@@ -1,7 +1,7 @@
 //! The editable sections: scene, renderer, display and camera.
 
 use super::Requests;
-use crate::settings::{Algorithm, Denoiser, RenderSettings, ToneMapper};
+use crate::settings::{Algorithm, Denoiser, RenderSettings, SamplesPerPixel, ToneCurve};
 use crate::state::{AppState, PathMode};
 use lucid_engine::scene::SceneFeatures;
 
@@ -84,11 +84,13 @@ fn renderer(ui: &mut egui::Ui, r: &mut RenderSettings) {
                 ui.selectable_value(&mut r.algorithm, a, a.label());
             }
         });
+    let mut spp = r.spp.get();
     ui.add(
-        egui::DragValue::new(&mut r.spp)
+        egui::DragValue::new(&mut spp)
             .range(1..=1024)
             .prefix("samples per pixel: "),
     );
+    r.spp = SamplesPerPixel::new(spp).unwrap_or(r.spp);
     ui.add(
         egui::DragValue::new(&mut r.max_depth)
             .range(1..=64)
@@ -102,7 +104,7 @@ fn renderer(ui: &mut egui::Ui, r: &mut RenderSettings) {
             }
         });
     if r.denoiser == Denoiser::Svgf {
-        super::svgf_panel::svgf(ui, &mut r.svgf, r.algorithm.renderer().replays_paths());
+        super::svgf_panel::svgf(ui, &mut r.svgf, r.algorithm.replays_paths());
     }
     ui.checkbox(&mut r.accumulate, "accumulate");
     egui::ComboBox::from_label("view")
@@ -134,10 +136,10 @@ fn display(ui: &mut egui::Ui, state: &mut AppState, requests: &mut Requests) {
     let d = &mut state.display;
     ui.add(egui::Slider::new(&mut d.exposure, -10.0..=10.0).text("exposure (EV)"));
     egui::ComboBox::from_label("tone mapper")
-        .selected_text(d.tone_mapper.label())
+        .selected_text(d.tone_curve.label())
         .show_ui(ui, |ui| {
-            for t in ToneMapper::ALL {
-                ui.selectable_value(&mut d.tone_mapper, t, t.label());
+            for t in ToneCurve::ALL {
+                ui.selectable_value(&mut d.tone_curve, t, t.label());
             }
         });
     if ui.button("Capture EXR + PNG (F12)").clicked() {

@@ -26,8 +26,8 @@ mod weights;
 pub use weights::{Layer, NetworkWeights, WeightsError, BUILTIN, FEATURES, FORMAT, LAYERS};
 
 use crate::denoise::gbuffer::GBuffer;
-use crate::shaders::neural::{CONV, FEATURES as FEATURES_SHADER, OUTPUT, POOL, RECORD};
 use crate::light_transport::SurfaceImages;
+use crate::shaders::neural::{CONV, FEATURES as FEATURES_SHADER, OUTPUT, POOL, RECORD};
 use lucid_engine::capture::ImageData;
 use lucid_engine::graph::{Access, BufferHandle, ImageHandle, RenderGraph};
 use lucid_engine::memory::{Buffer, ImageDesc};

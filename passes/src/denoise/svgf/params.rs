@@ -43,7 +43,7 @@ pub struct SvgfParams {
     /// samples fresh).
     pub gradient_stratum: u32,
     /// Replay gradient paths every frame, not only after the scene changed (in a static scene the
-    /// gradients are exactly zero, which `tests/svgf_history.rs` checks with this set).
+    /// gradients are exactly zero, which `tests/tests/svgf_history.rs` checks with this set).
     pub gradients_every_frame: bool,
 }
 

@@ -1,6 +1,7 @@
 //! Which denoising a frame gets under an [`SvgfMode`].
 
 use super::params::SvgfMode;
+use crate::samples_per_pixel::SamplesPerPixel;
 use std::time::Instant;
 
 /// What the denoiser does in one frame.
@@ -34,12 +35,12 @@ impl Schedule {
         mode: SvgfMode,
         frame_index: u32,
         accumulated: u32,
-        samples_per_pixel: u32,
+        samples_per_pixel: SamplesPerPixel,
     ) -> Apply {
         if accumulated == 0 || self.started.is_none() {
             self.started = Some(Instant::now());
         }
-        let samples = u64::from(accumulated + 1) * u64::from(samples_per_pixel.max(1));
+        let samples = u64::from(accumulated + 1) * u64::from(samples_per_pixel.get());
         let spatial_if = |ready: bool| {
             if ready {
                 Apply::Spatial
@@ -68,24 +69,27 @@ impl Schedule {
 mod tests {
     use super::*;
 
+    const ONE: SamplesPerPixel = SamplesPerPixel::ONE;
+    const FOUR: SamplesPerPixel = SamplesPerPixel::new(4).unwrap();
+
     #[test]
     fn sample_budget_waits_for_enough_samples() {
         let mut s = Schedule::default();
         let mode = SvgfMode::AfterSamples(8);
-        assert_eq!(s.decide(mode, 0, 0, 4), Apply::Nothing);
-        assert_eq!(s.decide(mode, 1, 1, 4), Apply::Spatial);
-        assert_eq!(s.decide(mode, 2, 0, 4), Apply::Nothing);
+        assert_eq!(s.decide(mode, 0, 0, FOUR), Apply::Nothing);
+        assert_eq!(s.decide(mode, 1, 1, FOUR), Apply::Spatial);
+        assert_eq!(s.decide(mode, 2, 0, FOUR), Apply::Nothing);
     }
 
     #[test]
     fn time_budget_restarts_with_accumulation() {
         let mut s = Schedule::default();
         assert_eq!(
-            s.decide(SvgfMode::AfterSeconds(60.0), 0, 0, 1),
+            s.decide(SvgfMode::AfterSeconds(60.0), 0, 0, ONE),
             Apply::Nothing
         );
         assert_eq!(
-            s.decide(SvgfMode::AfterSeconds(0.0), 1, 3, 1),
+            s.decide(SvgfMode::AfterSeconds(0.0), 1, 3, ONE),
             Apply::Spatial
         );
     }
@@ -94,9 +98,9 @@ mod tests {
     fn temporal_history_continues_only_from_the_previous_frame() {
         let mut s = Schedule::default();
         let temporal = |continues| Apply::Temporal { continues };
-        assert_eq!(s.decide(SvgfMode::Temporal, 5, 0, 1), temporal(false));
-        assert_eq!(s.decide(SvgfMode::Temporal, 6, 0, 1), temporal(true));
-        assert_eq!(s.decide(SvgfMode::EveryFrame, 7, 0, 1), Apply::Spatial);
-        assert_eq!(s.decide(SvgfMode::Temporal, 8, 0, 1), temporal(false));
+        assert_eq!(s.decide(SvgfMode::Temporal, 5, 0, ONE), temporal(false));
+        assert_eq!(s.decide(SvgfMode::Temporal, 6, 0, ONE), temporal(true));
+        assert_eq!(s.decide(SvgfMode::EveryFrame, 7, 0, ONE), Apply::Spatial);
+        assert_eq!(s.decide(SvgfMode::Temporal, 8, 0, ONE), temporal(false));
     }
 }

@@ -22,6 +22,7 @@ pub use params::{Params, LIGHT_VERTEX_BYTES};
 
 use crate::light_transport::{Images, Outputs};
 use crate::plumbing::scene_buffers::SceneHandles;
+use crate::samples_per_pixel::SamplesPerPixel;
 use crate::shaders::bdpt::{CAMERA, LIGHT};
 use lucid_engine::graph::{Access, BufferHandle, PassContext, RenderGraph};
 use lucid_engine::shader::Specialization;
@@ -70,7 +71,7 @@ pub struct Frame {
     /// Height in pixels.
     pub height: u32,
     /// Camera samples per pixel.
-    pub samples_per_pixel: u32,
+    pub samples_per_pixel: SamplesPerPixel,
     /// Longest path in segments (Mitsuba's convention).
     pub max_depth: u32,
     /// Write the denoiser's images too ([`crate::light_transport::SurfaceImages`]).

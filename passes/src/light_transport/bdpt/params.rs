@@ -2,6 +2,7 @@
 //! constants both BDPT passes share (`Params` in `shaders/bdpt/bdpt.glsl`).
 
 use super::Config;
+use crate::samples_per_pixel::SamplesPerPixel;
 use bytemuck::{Pod, Zeroable};
 
 /// Bytes of one cached light vertex (`LightVertex` in `shaders/bdpt/bdpt.glsl`).
@@ -35,8 +36,8 @@ impl Params {
     /// `max_depth` segments. A light subpath stores at most `max_depth - 2` vertices (the last
     /// one is only connected to the camera), so the light subpaths are as many as `config` asks
     /// for but no more than the cache can hold in the worst case: the cache never overflows.
-    pub fn new(config: &Config, pixels: u32, spp: u32, max_depth: u32) -> Self {
-        let samples = u64::from(pixels) * u64::from(spp.max(1));
+    pub fn new(config: &Config, pixels: u32, spp: SamplesPerPixel, max_depth: u32) -> Self {
+        let samples = u64::from(pixels) * u64::from(spp.get());
         let wanted = samples * u64::from(config.light_paths_per_sample);
         let per_path = u64::from(max_depth.saturating_sub(2));
         let budget = config.cache_bytes / LIGHT_VERTEX_BYTES;
@@ -87,9 +88,13 @@ impl Params {
 mod tests {
     use super::*;
 
+    fn spp(count: u32) -> SamplesPerPixel {
+        SamplesPerPixel::new(count).unwrap()
+    }
+
     #[test]
     fn one_light_path_per_sample_when_it_fits() {
-        let p = Params::new(&Config::default(), 64 * 64, 4, 8);
+        let p = Params::new(&Config::default(), 64 * 64, spp(4), 8);
         assert_eq!(p.light_paths, 64 * 64 * 4);
         assert_eq!(p.path_vertices, 6);
         assert_eq!(p.cache_bytes(), 64 * 64 * 4 * 6 * LIGHT_VERTEX_BYTES);
@@ -105,14 +110,14 @@ mod tests {
             cache_bytes: 6 * 64 * 1000,
             ..Config::default()
         };
-        let p = Params::new(&config, 1920 * 1080, 1, 8);
+        let p = Params::new(&config, 1920 * 1080, SamplesPerPixel::ONE, 8);
         assert_eq!(p.light_paths, 1000);
         assert!(p.cache_bytes() <= config.cache_bytes);
     }
 
     #[test]
     fn no_light_paths_below_two_segments() {
-        let p = Params::new(&Config::default(), 16, 1, 1);
+        let p = Params::new(&Config::default(), 16, SamplesPerPixel::ONE, 1);
         assert_eq!((p.light_paths, p.splat_scale), (0, 0.0));
         assert_eq!(p.cache_bytes(), LIGHT_VERTEX_BYTES);
     }

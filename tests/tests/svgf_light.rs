@@ -1,12 +1,10 @@
 //! A light switched off: SVGF's output darkens within 4 frames because the temporal gradients
 //! reject the history; without them the moving average lags for many frames.
 
-#[allow(dead_code)]
-#[path = "svgf_common.rs"]
-mod common;
-
-use common::{everywhere, frame, light_switched_off, mean_luminance, renderer, settings, Method};
 use lucid_tests::render::scene;
+use lucid_tests::svgf::{
+    everywhere, frame, light_switched_off, mean_luminance, renderer, settings, Method,
+};
 use lucid_tests::{assert_no_validation_messages, context};
 
 /// Frames rendered before the switch (the history fills) and after it.

@@ -1,12 +1,12 @@
-//! Shared by the SVGF tests (`#[path]`-included): one renderer per method, frames read back,
-//! luminance statistics over pixel masks.
+//! Shared by the SVGF tests: one renderer per method, frames read back, luminance statistics over
+//! pixel masks.
 
+use crate::render::frame_images;
 use lucid_engine::capture::{rec709_luminance, ImageData};
 use lucid_engine::scene::{Camera, Material, Scene};
 use lucid_engine::Context;
 use lucid_passes::denoise::svgf::{SvgfMode, SvgfParams};
-use lucid_passes::renderer::{Denoiser, Renderer, Settings};
-use lucid_tests::render::frame_images;
+use lucid_passes::renderer::{Denoiser, Renderer, SamplesPerPixel, Settings};
 
 /// Side of the square test images.
 pub const SIZE: u32 = 64;
@@ -31,14 +31,14 @@ pub fn settings(method: Method, max_depth: u32) -> Settings {
         gradients,
         ..SvgfParams::default()
     };
-    let (spp, denoiser, svgf) = match method {
-        Method::Noisy => (1, Denoiser::None, SvgfParams::default()),
-        Method::PerFrame => (1, Denoiser::Svgf, svgf(SvgfMode::EveryFrame, true)),
-        Method::Svgf => (1, Denoiser::Svgf, svgf(SvgfMode::Temporal, true)),
-        Method::SvgfWithoutGradients => (1, Denoiser::Svgf, svgf(SvgfMode::Temporal, false)),
+    let (denoiser, svgf) = match method {
+        Method::Noisy => (Denoiser::None, SvgfParams::default()),
+        Method::PerFrame => (Denoiser::Svgf, svgf(SvgfMode::EveryFrame, true)),
+        Method::Svgf => (Denoiser::Svgf, svgf(SvgfMode::Temporal, true)),
+        Method::SvgfWithoutGradients => (Denoiser::Svgf, svgf(SvgfMode::Temporal, false)),
     };
     Settings {
-        samples_per_pixel: spp,
+        samples_per_pixel: SamplesPerPixel::ONE,
         max_depth,
         accumulate: false,
         denoiser,
@@ -66,7 +66,7 @@ pub fn reference(
     max_depth: u32,
 ) -> ImageData {
     let settings = Settings {
-        samples_per_pixel: spp,
+        samples_per_pixel: SamplesPerPixel::new(spp).expect("at least one sample per pixel"),
         max_depth,
         accumulate: true,
         ..Settings::default()

@@ -1,16 +1,12 @@
 //! SVGF under camera motion: a pan and dolly across `classroom` flickers far less than the
 //! a-trous filter applied per frame.
 
-#[allow(dead_code)]
-#[path = "svgf_common.rs"]
-mod common;
-
-use common::{frame, reference, renderer, settings, Method};
 use glam::Vec3;
 use lucid_engine::capture::{ImageData, PngEncoding};
 use lucid_engine::metrics::evaluate_sequence;
 use lucid_engine::scene::builtin::{build_with, BuildOptions};
 use lucid_engine::scene::{Camera, CameraKey, CameraPath, PathInterpolation, Scene};
+use lucid_tests::svgf::{frame, reference, renderer, settings, Method};
 use lucid_tests::{assert_no_validation_messages, context};
 
 /// Frames the camera holds still first (the histories fill), then frames of motion measured.

@@ -1,7 +1,7 @@
 //! White furnace: a diffuse sphere of albedo a inside a uniform environment L must render as a·L,
 //! the background as L (within 1%), for path tracing at every path depth that reaches the sky.
 
-use lucid_passes::renderer::Settings;
+use lucid_passes::renderer::{SamplesPerPixel, Settings};
 use lucid_tests::render::{render_accumulated, scene};
 
 #[test]
@@ -15,7 +15,7 @@ fn furnace_matches_the_analytic_radiance() {
         furnace,
         (size, size),
         Settings {
-            samples_per_pixel: 8,
+            samples_per_pixel: SamplesPerPixel::new(8).unwrap(),
             ..Settings::default()
         },
         4,

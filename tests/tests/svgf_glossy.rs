@@ -3,15 +3,11 @@
 //! sways stays within a bound of the error with the camera still (measured: 0.22 moving, 0.23
 //! still, 0.24 for the per-frame filter), so no smeared trail builds up.
 
-#[allow(dead_code)]
-#[path = "svgf_common.rs"]
-mod common;
-
-use common::{frame, object_ids, reference, relative_error, renderer, settings, Method};
 use lucid_engine::capture::ImageData;
 use lucid_engine::scene::{Camera, Material, Scene};
 use lucid_engine::Context;
 use lucid_tests::render::scene;
+use lucid_tests::svgf::{frame, object_ids, reference, relative_error, renderer, settings, Method};
 use lucid_tests::{assert_no_validation_messages, context};
 
 /// The Cornell box's floor.

@@ -3,15 +3,13 @@
 //! caught only by the temporal gradients) are back near the reference within 4 frames, with no
 //! ghost trail.
 
-#[allow(dead_code)]
-#[path = "svgf_common.rs"]
-mod common;
-
-use common::{frame, object_ids, reference, relative_error, renderer, settings, Method, SIZE};
 use glam::{Affine3A, Vec3};
 use lucid_engine::capture::{rec709_luminance, ImageData};
 use lucid_engine::scene::Scene;
 use lucid_tests::render::scene;
+use lucid_tests::svgf::{
+    frame, object_ids, reference, relative_error, renderer, settings, Method, SIZE,
+};
 use lucid_tests::{assert_no_validation_messages, context};
 
 /// Frames before the move (the history fills) and after it.

@@ -3,13 +3,9 @@
 //! do not spread into blotches: the worst 8x8 block's excess brightness over a 256-spp reference
 //! stays bounded, and below the per-frame filter's.
 
-#[allow(dead_code)]
-#[path = "svgf_common.rs"]
-mod common;
-
-use common::{frame, reference, renderer, settings, Method, SIZE};
 use lucid_engine::capture::{rec709_luminance, ImageData};
 use lucid_engine::scene::builtin::{build_with, BuildOptions};
+use lucid_tests::svgf::{frame, reference, renderer, settings, Method, SIZE};
 use lucid_tests::{assert_no_validation_messages, context};
 
 const FRAMES: usize = 8;

@@ -3,14 +3,12 @@
 //! zero then, and not when a light goes off; and a resize or a history reset starts the histories
 //! afresh without a stale frame showing.
 
-#[allow(dead_code)]
-#[path = "svgf_common.rs"]
-mod common;
-
-use common::{frame, light_switched_off, mean_luminance, renderer, settings, Method, SIZE};
 use lucid_engine::capture::ImageData;
 use lucid_passes::renderer::Renderer;
 use lucid_tests::render::{frame_images, scene};
+use lucid_tests::svgf::{
+    frame, light_switched_off, mean_luminance, renderer, settings, Method, SIZE,
+};
 use lucid_tests::{assert_no_validation_messages, context};
 
 /// Renders the next frame; returns its noisy radiance and its motion vectors.

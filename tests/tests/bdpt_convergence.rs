@@ -9,18 +9,15 @@
 //! every loop of an invocation once their iterations add up to 65535, which silently drops
 //! samples of long per-pixel sample loops.
 
-#[path = "bdpt_stats.rs"]
-mod bdpt_stats;
-
-use bdpt_stats::Comparison;
 use glam::Vec2;
 use lucid_engine::capture::ImageData;
-use lucid_passes::renderer::{Algorithm, Settings};
+use lucid_passes::renderer::{Algorithm, SamplesPerPixel, Settings};
+use lucid_tests::bdpt_stats::Comparison;
 use lucid_tests::render::{render_accumulated, scene};
 use std::time::Instant;
 
 const SIZE: u32 = 32;
-const SPP_PER_FRAME: u32 = 4;
+const SPP_PER_FRAME: SamplesPerPixel = SamplesPerPixel::new(4).unwrap();
 
 fn render(name: &str, algorithm: Algorithm, frames: u32, seed: u32) -> ImageData {
     let start = Instant::now();
@@ -34,7 +31,7 @@ fn render(name: &str, algorithm: Algorithm, frames: u32, seed: u32) -> ImageData
     eprintln!(
         "{name} {} {} spp seed {seed}: {:.1} s",
         algorithm.short_name(),
-        frames * SPP_PER_FRAME,
+        frames * SPP_PER_FRAME.get(),
         start.elapsed().as_secs_f64()
     );
     image

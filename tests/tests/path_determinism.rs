@@ -4,7 +4,7 @@
 //! them leaves the radiance unchanged.
 
 use lucid_engine::capture::ImageData;
-use lucid_passes::renderer::{Algorithm, Denoiser, Renderer, Settings};
+use lucid_passes::renderer::{Algorithm, Denoiser, Renderer, SamplesPerPixel, Settings};
 use lucid_tests::render::{frame_images, scene};
 use lucid_tests::{assert_no_validation_messages, context};
 
@@ -35,7 +35,7 @@ fn frames_repeat_bit_for_bit_and_depend_on_the_seed() {
     for algorithm in Algorithm::ALL {
         let base = Settings {
             algorithm,
-            samples_per_pixel: 2,
+            samples_per_pixel: SamplesPerPixel::new(2).unwrap(),
             accumulate: false,
             ..Settings::default()
         };

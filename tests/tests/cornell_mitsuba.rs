@@ -5,7 +5,7 @@
 
 use lucid_engine::capture::{self, ImageData};
 use lucid_engine::metrics;
-use lucid_passes::renderer::{Algorithm, Settings};
+use lucid_passes::renderer::{Algorithm, SamplesPerPixel, Settings};
 use lucid_tests::render::{render_accumulated, scene};
 use std::path::PathBuf;
 
@@ -24,7 +24,7 @@ fn reference() -> (ImageData, serde_json::Value) {
 fn render(algorithm: Algorithm, max_depth: u32, seed: u32, (spp, frames): (u32, u32)) -> ImageData {
     let settings = Settings {
         algorithm,
-        samples_per_pixel: spp,
+        samples_per_pixel: SamplesPerPixel::new(spp).expect("at least one sample per pixel"),
         max_depth,
         seed,
         ..Settings::default()

@@ -7,7 +7,7 @@
 //! that process's exit status, output and screenshot.
 
 #[allow(dead_code)]
-#[path = "../sandbox/tests/support/xvfb.rs"]
+#[path = "../../sandbox/tests/support/xvfb.rs"]
 mod xvfb;
 
 use lucid_engine::capture::{load_png, ImageData};

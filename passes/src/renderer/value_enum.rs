@@ -1,0 +1,57 @@
+//! `clap::ValueEnum` for [`Algorithm`] and [`Denoiser`] (the `clap` feature): the command line
+//! accepts their short names, case-insensitively where a caller asks.
+
+use super::{Algorithm, Denoiser};
+use clap::builder::PossibleValue;
+use clap::ValueEnum;
+
+impl ValueEnum for Algorithm {
+    fn value_variants<'a>() -> &'a [Self] {
+        &Self::ALL
+    }
+
+    fn to_possible_value(&self) -> Option<PossibleValue> {
+        let help = match self {
+            Algorithm::PathTracing => "Path tracing (NEE, MIS, Russian roulette)",
+            Algorithm::Bidirectional => "Bidirectional path tracing (light vertex cache, MIS)",
+        };
+        Some(PossibleValue::new(self.short_name()).help(help))
+    }
+}
+
+impl ValueEnum for Denoiser {
+    fn value_variants<'a>() -> &'a [Self] {
+        &Self::ALL
+    }
+
+    fn to_possible_value(&self) -> Option<PossibleValue> {
+        let help = match self {
+            Denoiser::None => "No denoiser",
+            Denoiser::Svgf => "SVGF (temporal, with A-SVGF gradients)",
+            Denoiser::Neural => "The learned recurrent denoiser",
+        };
+        Some(PossibleValue::new(self.short_name()).help(help))
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn the_command_line_accepts_the_short_names() {
+        for algorithm in Algorithm::ALL {
+            assert_eq!(
+                Algorithm::from_str(algorithm.short_name(), false),
+                Ok(algorithm)
+            );
+        }
+        assert_eq!(
+            Algorithm::from_str("BDPT", true),
+            Ok(Algorithm::Bidirectional)
+        );
+        assert_eq!(Denoiser::from_str("svgf", false), Ok(Denoiser::Svgf));
+        assert_eq!(Denoiser::from_str("none", false), Ok(Denoiser::None));
+        assert!(Denoiser::from_str("oidn", true).is_err());
+    }
+}
