@@ -2,9 +2,10 @@
 `lucid sequence` folder's noisy 1-sample frames (`none/`) with their first-hit `albedo/` and
 `normal/` images, writes `oidn/NNNN.exr`; `lucid evaluate DIR` then scores it beside the others.
 
-    python3 oidn_baseline.py DIR [--device cpu|cuda]
+    python3 oidn_baseline.py DIR [--device cuda|cpu]
 
-Needs `pyoidn` (with `cffi`) and `OpenEXR`.
+Needs `pyoidn` (with `cffi`) and `OpenEXR`; on `cuda`, PyTorch (the images go to the GPU as
+tensors, on the stream OIDN's CUDA device is bound to).
 """
 
 import argparse
@@ -13,6 +14,7 @@ from pathlib import Path
 import numpy as np
 import OpenEXR
 import pyoidn
+import torch
 
 
 def read(path):
@@ -33,22 +35,20 @@ def write(path, rgb):
 def main():
     ap = argparse.ArgumentParser()
     ap.add_argument("dir")
-    ap.add_argument("--device", choices=["cpu", "cuda"], default="cpu")
+    ap.add_argument("--device", choices=["cuda", "cpu"], default="cuda")
     args = ap.parse_args()
     root = Path(args.dir)
     out = root / "oidn"
     out.mkdir(exist_ok=True)
-    kinds = {"cpu": pyoidn.OIDN_DEVICE_TYPE_CPU, "cuda": pyoidn.OIDN_DEVICE_TYPE_CUDA}
-    device = pyoidn.Device(kinds[args.device])
+    device = pyoidn.Device.from_torch(args.device)
     device.commit()
     frames = sorted((root / "none").glob("*.exr"))
     if not frames:
         raise SystemExit(f"no frames in {root / 'none'}")
     for frame in frames:
-        color = read(frame)
-        albedo = read(root / "albedo" / frame.name)
-        normal = read(root / "normal" / frame.name)
-        result = np.zeros_like(color)
+        images = [read(frame), read(root / "albedo" / frame.name), read(root / "normal" / frame.name)]
+        color, albedo, normal = (torch.from_numpy(i).to(args.device).contiguous() for i in images)
+        result = torch.zeros_like(color)
         filt = pyoidn.Filter(device, "RT")
         filt.set_image(pyoidn.OIDN_IMAGE_COLOR, color, pyoidn.OIDN_FORMAT_FLOAT3)
         filt.set_image(pyoidn.OIDN_IMAGE_ALBEDO, albedo, pyoidn.OIDN_FORMAT_FLOAT3)
@@ -57,8 +57,9 @@ def main():
         filt.set_bool("hdr", True)
         filt.commit()
         filt.execute()
+        device.wait()
         filt.release()
-        write(out / frame.name, result)
+        write(out / frame.name, result.cpu().numpy())
     device.release()
     print(f"{len(frames)} frames -> {out}")
 

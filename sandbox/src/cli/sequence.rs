@@ -34,6 +34,9 @@ pub struct SequenceArgs {
     /// `metrics.csv` and `metrics.svg`.
     #[arg(long, default_value = "sequence")]
     out: PathBuf,
+    /// Only render; evaluate later with `lucid evaluate` (e.g. after adding an `oidn/` folder).
+    #[arg(long)]
+    no_evaluate: bool,
 }
 
 /// The sequences rendered besides the reference: the noisy input and each denoiser, at `--spp`
@@ -132,6 +135,9 @@ pub fn run(args: &SequenceArgs) -> anyhow::Result<()> {
         render(&ctx, &scene, args, &cameras, method.name(), settings, 1)?;
     }
     render_aux(&ctx, &scene, args, &cameras, base)?;
+    if args.no_evaluate {
+        return Ok(());
+    }
     evaluate::evaluate_folder(&args.out, &args.options.display())
 }
 
