@@ -2,6 +2,9 @@
 //! denoiser, and the G-buffer they read.
 
 pub mod accumulate;
+mod frame_denoiser;
 pub mod gbuffer;
 pub mod neural;
 pub mod svgf;
+
+pub use frame_denoiser::{DenoiseInputs, Denoised, FrameDenoiser, FrameInfo, TransportRequest};

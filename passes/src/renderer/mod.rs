@@ -24,6 +24,7 @@ pub use settings::{Algorithm, Denoiser, Settings};
 
 use crate::denoise::gbuffer::{self, GBuffer};
 use crate::denoise::{accumulate, neural, svgf};
+use crate::denoise::{DenoiseInputs, Denoised, FrameDenoiser, FrameInfo};
 use crate::light_transport::{self, Replay, ReplayParams};
 use crate::light_transport::{bdpt, path_trace};
 use crate::plumbing::frame_constants::{self, FrameConstants};
@@ -44,7 +45,7 @@ pub struct FrameImages {
     /// Radiance without the first hit's emission, divided by its albedo (see
     /// [`crate::light_transport::SurfaceImages::demodulated`]); traced only when a denoiser runs.
     pub demodulated: Option<ImageHandle>,
-    /// SVGF's temporal gradients ([`svgf::Denoised::gradient`]); `None` unless temporal SVGF ran.
+    /// SVGF's temporal gradients ([`svgf::add_svgf`]); `None` unless temporal SVGF ran.
     pub gradient: Option<ImageHandle>,
     /// The learned denoiser's per-pixel inputs ([`neural::add_record`]); `None` unless it ran.
     pub neural_record: Option<BufferHandle>,
@@ -93,12 +94,46 @@ pub struct Renderer {
     frame_index: u32,
     pending_stats: Option<(FrameId, ReadbackId)>,
     stats: FrameStats,
-    svgf_schedule: svgf::Schedule,
     network: neural::Network,
+    /// This renderer's number: its denoisers' history keys carry it, so no two renderers'
+    /// histories share a key.
+    instance: u32,
+    denoiser: Option<ActiveDenoiser>,
 }
 
-/// The history prefix of the renderer's learned denoiser.
-const NEURAL_KEY: &str = "neural";
+/// The denoiser of [`Settings::denoiser`], built when the denoiser changes (the one place that
+/// maps the settings' choice to an implementation of [`FrameDenoiser`]).
+#[derive(Clone)]
+enum ActiveDenoiser {
+    Svgf(svgf::SvgfDenoiser),
+    Neural(neural::NeuralDenoiser),
+}
+
+impl ActiveDenoiser {
+    fn new(settings: &Settings, network: &neural::Network, instance: u32) -> Option<Self> {
+        match settings.denoiser {
+            Denoiser::None => None,
+            Denoiser::Svgf => Some(Self::Svgf(svgf::SvgfDenoiser::new(
+                settings.svgf,
+                &format!("svgf.{instance}"),
+            ))),
+            Denoiser::Neural => Some(Self::Neural(neural::NeuralDenoiser::new(
+                network.clone(),
+                &format!("neural.{instance}"),
+            ))),
+        }
+    }
+
+    fn get(&mut self) -> &mut dyn FrameDenoiser {
+        match self {
+            Self::Svgf(d) => d,
+            Self::Neural(d) => d,
+        }
+    }
+}
+
+/// Numbers the renderers of this process.
+static INSTANCES: std::sync::atomic::AtomicU32 = std::sync::atomic::AtomicU32::new(0);
 
 impl Renderer {
     /// Validates `scene`, builds its BVH, uploads it and prepares rendering at `width`×`height`.
@@ -121,6 +156,7 @@ impl Renderer {
         let spec = specialization(&gpu);
         let library = ShaderLibrary::new(ctx, None)?;
         let network = neural::Network::new(ctx, &neural::NetworkWeights::builtin())?;
+        let instance = INSTANCES.fetch_add(1, std::sync::atomic::Ordering::Relaxed);
         let camera = scene.camera;
         Ok(Self {
             ctx: ctx.clone(),
@@ -144,8 +180,9 @@ impl Renderer {
             frame_index: 0,
             pending_stats: None,
             stats: FrameStats::default(),
-            svgf_schedule: svgf::Schedule::default(),
+            denoiser: ActiveDenoiser::new(&settings, &network, instance),
             network,
+            instance,
         })
     }
 
@@ -191,6 +228,15 @@ impl Renderer {
         if self.settings.restarts_accumulation(&settings) {
             self.accumulated = 0;
             self.scene_changed = true;
+        }
+        match &mut self.denoiser {
+            Some(ActiveDenoiser::Svgf(svgf)) if settings.denoiser == Denoiser::Svgf => {
+                svgf.set_params(settings.svgf);
+            }
+            _ if settings.denoiser != self.settings.denoiser => {
+                self.denoiser = ActiveDenoiser::new(&settings, &self.network, self.instance);
+            }
+            _ => {}
         }
         self.settings = settings;
     }
@@ -323,6 +369,9 @@ impl Renderer {
     /// `training/train.py` wrote); its history restarts.
     pub fn set_neural_weights(&mut self, weights: &neural::NetworkWeights) -> Result<()> {
         self.network = neural::Network::new(&self.ctx, weights)?;
+        if self.settings.denoiser == Denoiser::Neural {
+            self.denoiser = ActiveDenoiser::new(&self.settings, &self.network, self.instance);
+        }
         self.scene_changed = true;
         Ok(())
     }
@@ -388,35 +437,29 @@ impl Renderer {
         let scene = self.buffers.import(g);
         let prev_transforms = add_prev_transforms(g, &self.prev_transforms);
         let gbuffer = gbuffer::add_gbuffer(g, &scene, frame, prev_transforms, &self.spec, w, h);
-        let spp = self.settings.samples_per_pixel;
-        let svgf_params = self.settings.svgf;
-        let svgf_apply = match self.settings.denoiser {
-            Denoiser::None => None,
-            Denoiser::Svgf => Some(self.svgf_schedule.decide(
-                svgf_params.mode,
-                self.frame_index,
-                accumulated,
-                spp,
-            )),
-            Denoiser::Neural => None,
+        let info = FrameInfo {
+            frame_index: self.frame_index,
+            accumulated_frames: accumulated,
+            samples_per_pixel: self.settings.samples_per_pixel,
+            scene_changed,
+            replays_paths: self.settings.algorithm.replays_paths(),
         };
-        let neural = self.settings.denoiser == Denoiser::Neural;
-        if neural && scene_changed {
-            // The recurrent state describes the old scene: start afresh.
-            self.executor
-                .reset_history_key(&format!("{NEURAL_KEY}.output"));
-        }
-        // The denoiser's images are traced only for a denoiser.
-        let surface = svgf_apply.is_some() || neural;
-        let replay = ReplayParams {
-            stratum: match svgf_apply {
-                Some(apply) if self.settings.algorithm.replays_paths() => {
-                    svgf::replay(&svgf_params, apply, scene_changed)
+        let planned = self.denoiser.as_mut().and_then(|d| {
+            let denoiser = d.get();
+            let request = denoiser.plan(&info)?;
+            if scene_changed {
+                for key in denoiser.reset_on_scene_change() {
+                    self.executor.reset_history_key(&key);
                 }
-                _ => 0,
-            },
+            }
+            Some(request)
+        });
+        let replay = ReplayParams {
+            stratum: planned.map_or(0, |r| r.replay_stratum),
             prev_stratum: self.prev_replay_stratum,
         };
+        // The denoiser's images are traced only for a denoiser.
+        let surface = planned.is_some();
         let traced = self.add_transport(g, &scene, frame, (&gbuffer, replay), surface);
         // Without accumulation the frame's radiance is its HDR image: no pass copies it.
         let hdr = if self.settings.accumulate {
@@ -424,13 +467,9 @@ impl Renderer {
         } else {
             traced.radiance
         };
-        let neural_record = match traced.surface {
-            Some(surface) if neural => Some(neural::add_record(g, &surface, &gbuffer, (w, h))),
-            _ => None,
-        };
-        let (hdr, gradient) = match (svgf_apply, traced.surface) {
-            (Some(apply), Some(surface)) => {
-                let inputs = svgf::FrameInputs {
+        let denoised = match (self.denoiser.as_mut(), traced.surface) {
+            (Some(denoiser), Some(surface)) if planned.is_some() => {
+                let inputs = DenoiseInputs {
                     radiance: traced.radiance,
                     surface,
                     accumulated: hdr,
@@ -441,17 +480,11 @@ impl Renderer {
                     width: w,
                     height: h,
                 };
-                let denoised = svgf::add_svgf(g, &inputs, &svgf_params, apply);
-                (denoised.image, denoised.gradient)
+                denoiser.get().add(g, &inputs)
             }
-            _ => match neural_record {
-                Some(record) => (
-                    neural::add_neural(g, &self.network, record, (w, h), NEURAL_KEY),
-                    None,
-                ),
-                None => (hdr, None),
-            },
+            _ => Denoised::image(hdr),
         };
+        let hdr = denoised.image;
         let ldr = tonemap::add_tonemap(g, hdr, w, h, self.settings.display);
         let stats = g.readback(traced.stats);
         self.prev_camera = camera;
@@ -467,8 +500,8 @@ impl Renderer {
             FrameImages {
                 radiance: traced.radiance,
                 demodulated: traced.surface.map(|s| s.demodulated),
-                gradient,
-                neural_record,
+                gradient: denoised.gradient,
+                neural_record: denoised.record,
                 hdr,
                 ldr,
                 gbuffer,
@@ -543,6 +576,7 @@ impl Renderer {
             self.accumulated,
             self.scene_changed,
             self.prev_replay_stratum,
+            self.denoiser.clone(),
         );
         let mut g = RenderGraph::new();
         self.add_frame(&mut g);
@@ -553,6 +587,7 @@ impl Renderer {
             self.accumulated,
             self.scene_changed,
             self.prev_replay_stratum,
+            self.denoiser,
         ) = saved;
         Ok(g.compile()?.plan)
     }

@@ -26,6 +26,7 @@ mod weights;
 pub use weights::{Layer, NetworkWeights, WeightsError, BUILTIN, FEATURES, FORMAT, LAYERS};
 
 use crate::denoise::gbuffer::GBuffer;
+use crate::denoise::{DenoiseInputs, Denoised, FrameDenoiser, FrameInfo, TransportRequest};
 use crate::light_transport::SurfaceImages;
 use crate::shaders::neural::{CONV, FEATURES as FEATURES_SHADER, OUTPUT, POOL, RECORD};
 use lucid_engine::capture::ImageData;
@@ -99,6 +100,46 @@ impl Network {
             buffer: Arc::new(buffer),
             offsets: std::array::from_fn(|i| weights.offset(i)),
         })
+    }
+}
+
+/// The learned denoiser as the renderer's denoiser: the network and its history prefix. It runs
+/// every frame on the frame's own radiance, and starts afresh when the scene changes (its history
+/// describes the old scene).
+#[derive(Clone)]
+pub struct NeuralDenoiser {
+    network: Network,
+    prefix: String,
+}
+
+impl NeuralDenoiser {
+    /// The denoiser running `network`, its history under `prefix`.
+    pub fn new(network: Network, prefix: &str) -> Self {
+        Self {
+            network,
+            prefix: prefix.to_owned(),
+        }
+    }
+}
+
+impl FrameDenoiser for NeuralDenoiser {
+    fn plan(&mut self, _frame: &FrameInfo) -> Option<TransportRequest> {
+        Some(TransportRequest::default())
+    }
+
+    fn add(&mut self, g: &mut RenderGraph, inputs: &DenoiseInputs) -> Denoised {
+        let size = (inputs.width, inputs.height);
+        let record = add_record(g, &inputs.surface, &inputs.gbuffer, size);
+        Denoised {
+            image: add_neural(g, &self.network, record, size, &self.prefix),
+            gradient: None,
+            record: Some(record),
+        }
+    }
+
+    fn reset_on_scene_change(&self) -> Vec<String> {
+        let (output, surface) = history_keys(&self.prefix);
+        vec![output, surface]
     }
 }
 

@@ -1,16 +1,12 @@
 //! The demodulated input of the spatial filter and what it re-modulates with
 //! (`shaders/svgf/demodulate.comp`).
 
-use super::FrameInputs;
+use super::HistoryKeys;
 use crate::denoise::accumulate;
+use crate::denoise::DenoiseInputs;
 use crate::shaders::svgf::DEMODULATE;
 use lucid_engine::graph::{ImageHandle, RenderGraph};
 use lucid_engine::memory::ImageDesc;
-
-/// History key of the accumulated first-hit albedo (spatial modes).
-pub const ALBEDO_ACCUMULATED_KEY: &str = "svgf.albedo.accumulated";
-/// History key of the accumulated first-hit emission (spatial modes).
-pub const EMISSION_ACCUMULATED_KEY: &str = "svgf.emission.accumulated";
 
 /// What the filter works on and re-modulates with.
 #[derive(Clone, Copy, Debug)]
@@ -28,19 +24,20 @@ pub(super) struct Demodulated {
 /// the filter starts).
 pub(super) fn accumulate_surface(
     g: &mut RenderGraph,
-    inputs: &FrameInputs,
+    inputs: &DenoiseInputs,
+    keys: &HistoryKeys,
 ) -> (ImageHandle, ImageHandle) {
     let (w, h, n) = (inputs.width, inputs.height, inputs.accumulated_frames);
     let albedo = accumulate::add_accumulate_keyed(
         g,
-        ALBEDO_ACCUMULATED_KEY,
+        &keys.albedo_accumulated,
         inputs.surface.albedo,
         (w, h),
         n,
     );
     let emission = accumulate::add_accumulate_keyed(
         g,
-        EMISSION_ACCUMULATED_KEY,
+        &keys.emission_accumulated,
         inputs.surface.emission,
         (w, h),
         n,
@@ -53,7 +50,7 @@ pub(super) fn accumulate_surface(
 /// (albedo, emission).
 pub(super) fn add(
     g: &mut RenderGraph,
-    inputs: &FrameInputs,
+    inputs: &DenoiseInputs,
     (albedo, emission): (ImageHandle, ImageHandle),
 ) -> Demodulated {
     if inputs.accumulated_frames == 0 {

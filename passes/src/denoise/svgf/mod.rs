@@ -23,8 +23,8 @@
 //!    luminance-variance edge stopping; the first iteration's output is the next frame's colour
 //!    history; re-modulation by albedo plus emission.
 //!
-//! The histories are the render graph's keyed temporal images ([`COLOR_KEY`], [`MOMENTS_KEY`],
-//! [`SURFACE_KEY`], [`ALBEDO_KEY`], [`EMISSION_KEY`]): a resize or
+//! The histories are the render graph's keyed temporal images, named under each instance's
+//! prefix ([`HistoryKeys`]): a resize or
 //! [`Executor::reset_history`](lucid_engine::graph::Executor::reset_history) starts them afresh.
 //! The spatial modes filter the (accumulated) output, demodulated by the first hits' albedo and
 //! emission accumulated over the same frames (`demodulate`).
@@ -36,24 +36,47 @@ mod params;
 mod schedule;
 mod temporal;
 
-pub use demodulate::{ALBEDO_ACCUMULATED_KEY, EMISSION_ACCUMULATED_KEY};
 pub use params::{SvgfMode, SvgfParams};
 pub use schedule::{Apply, Schedule};
 
-use crate::denoise::gbuffer::GBuffer;
-use crate::light_transport::{self, ReplayParams};
+use crate::denoise::{DenoiseInputs, Denoised, FrameDenoiser, FrameInfo, TransportRequest};
+use crate::light_transport::ReplayParams;
 use lucid_engine::graph::{ImageHandle, RenderGraph, TemporalImage};
 
-/// History key of the filtered illumination (output of the first a-trous iteration).
-pub const COLOR_KEY: &str = "svgf.color";
-/// History key of the luminance moments and history length.
-pub const MOMENTS_KEY: &str = "svgf.moments";
-/// History key of the surface records (depth, normal, object id, raw radiance luminance).
-pub const SURFACE_KEY: &str = "svgf.surface";
-/// History key of the averaged first-hit albedo.
-pub const ALBEDO_KEY: &str = "svgf.albedo";
-/// History key of the averaged first-hit emission.
-pub const EMISSION_KEY: &str = "svgf.emission";
+/// The history keys of one SVGF instance, all under its prefix (`<prefix>.color`, ...).
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct HistoryKeys {
+    /// The filtered illumination (output of the first a-trous iteration).
+    pub color: String,
+    /// The luminance moments and history length.
+    pub moments: String,
+    /// The surface records (depth, normal, object id, raw radiance luminance).
+    pub surface: String,
+    /// The averaged first-hit albedo.
+    pub albedo: String,
+    /// The averaged first-hit emission.
+    pub emission: String,
+    /// The first-hit albedo accumulated with the radiance (spatial modes).
+    pub albedo_accumulated: String,
+    /// The first-hit emission accumulated with the radiance (spatial modes).
+    pub emission_accumulated: String,
+}
+
+impl HistoryKeys {
+    /// The keys under `prefix`.
+    pub fn new(prefix: &str) -> Self {
+        let key = |name: &str| format!("{prefix}.{name}");
+        Self {
+            color: key("color"),
+            moments: key("moments"),
+            surface: key("surface"),
+            albedo: key("albedo"),
+            emission: key("emission"),
+            albedo_accumulated: key("albedo.accumulated"),
+            emission_accumulated: key("emission.accumulated"),
+        }
+    }
+}
 
 /// The keyed histories of one frame.
 struct Histories {
@@ -64,27 +87,56 @@ struct Histories {
     emission: TemporalImage,
 }
 
-/// What the denoiser reads of a frame.
-pub struct FrameInputs {
-    /// This frame's noisy radiance.
-    pub radiance: ImageHandle,
-    /// The light transport's images for denoisers (the temporal filter's input).
-    pub surface: light_transport::SurfaceImages,
-    /// The (accumulated) output the spatial modes filter.
-    pub accumulated: ImageHandle,
-    /// Frames averaged into `accumulated` before this one (0: it is this frame's radiance).
-    pub accumulated_frames: u32,
-    /// What the light transport replayed this frame for the temporal gradients (see [`replay`];
-    /// stratum 0 when nothing, e.g. an algorithm that cannot replay paths).
-    pub replay: ReplayParams,
-    /// This frame's index (the replayed pixels depend on it).
-    pub frame_index: u32,
-    /// Primary visibility.
-    pub gbuffer: GBuffer,
-    /// Output width.
-    pub width: u32,
-    /// Output height.
-    pub height: u32,
+/// SVGF as the renderer's denoiser: its parameters, its schedule (when the spatial modes start)
+/// and its histories.
+#[derive(Clone, Debug)]
+pub struct SvgfDenoiser {
+    params: SvgfParams,
+    schedule: Schedule,
+    keys: HistoryKeys,
+    apply: Apply,
+}
+
+impl SvgfDenoiser {
+    /// SVGF with `params`, its histories under `prefix`.
+    pub fn new(params: SvgfParams, prefix: &str) -> Self {
+        Self {
+            params,
+            schedule: Schedule::default(),
+            keys: HistoryKeys::new(prefix),
+            apply: Apply::Nothing,
+        }
+    }
+
+    /// Changes the parameters from the next frame on (the schedule and histories carry on).
+    pub fn set_params(&mut self, params: SvgfParams) {
+        self.params = params;
+    }
+}
+
+impl FrameDenoiser for SvgfDenoiser {
+    fn plan(&mut self, frame: &FrameInfo) -> Option<TransportRequest> {
+        self.apply = self.schedule.decide(
+            self.params.mode,
+            frame.frame_index,
+            frame.accumulated_frames,
+            frame.samples_per_pixel,
+        );
+        let replay_stratum = if frame.replays_paths {
+            replay(&self.params, self.apply, frame.scene_changed)
+        } else {
+            0
+        };
+        Some(TransportRequest { replay_stratum })
+    }
+
+    fn add(&mut self, g: &mut RenderGraph, inputs: &DenoiseInputs) -> Denoised {
+        add_svgf(g, inputs, &self.params, self.apply, &self.keys)
+    }
+
+    fn reset_on_scene_change(&self) -> Vec<String> {
+        Vec::new()
+    }
 }
 
 /// The stratum side at which the light transport should replay last frame's paths this frame for
@@ -101,42 +153,30 @@ pub fn replay(params: &SvgfParams, apply: Apply, scene_changed: bool) -> u32 {
     }
 }
 
-/// What the denoiser adds to a frame.
-#[derive(Clone, Copy, Debug)]
-pub struct Denoised {
-    /// The denoised radiance (`inputs.accumulated` when nothing was applied).
-    pub image: ImageHandle,
-    /// The temporal filter's gradients, one texel per stratum of
-    /// [`SvgfParams::gradient_stratum`] pixels, spread over their neighbourhood: x the luminance
-    /// change since last frame, y its normaliser (x / y is the share of history dropped). `None`
-    /// unless the temporal filter ran.
-    pub gradient: Option<ImageHandle>,
-}
-
-/// Adds what `apply` asks for. The spatial modes average the first hits' albedo and emission
-/// every frame, filtered or not, so that they match the accumulated radiance once the filter
-/// starts.
+/// Adds what `apply` asks for, with the histories under `keys`. The spatial modes average the
+/// first hits' albedo and emission every frame, filtered or not, so that they match the
+/// accumulated radiance once the filter starts. The result's gradient (temporal mode only) holds
+/// one texel per stratum of [`SvgfParams::gradient_stratum`] pixels, spread over their
+/// neighbourhood: x the luminance change since last frame, y its normaliser (x / y is the share
+/// of history dropped).
 pub fn add_svgf(
     g: &mut RenderGraph,
-    inputs: &FrameInputs,
+    inputs: &DenoiseInputs,
     params: &SvgfParams,
     apply: Apply,
+    keys: &HistoryKeys,
 ) -> Denoised {
-    let spatial = |image| Denoised {
-        image,
-        gradient: None,
-    };
     match apply {
-        Apply::Temporal { continues } => add_svgf_temporal(g, inputs, params, continues),
+        Apply::Temporal { continues } => add_svgf_temporal(g, inputs, params, continues, keys),
         Apply::Spatial => {
-            let surface = demodulate::accumulate_surface(g, inputs);
-            spatial(add_spatial(g, inputs, params, surface))
+            let surface = demodulate::accumulate_surface(g, inputs, keys);
+            Denoised::image(add_spatial(g, inputs, params, surface))
         }
         Apply::Nothing => {
             if params.mode != SvgfMode::Temporal {
-                demodulate::accumulate_surface(g, inputs);
+                demodulate::accumulate_surface(g, inputs, keys);
             }
-            spatial(inputs.accumulated)
+            Denoised::image(inputs.accumulated)
         }
     }
 }
@@ -145,9 +185,10 @@ pub fn add_svgf(
 /// ignored, as after a reset).
 pub fn add_svgf_temporal(
     g: &mut RenderGraph,
-    inputs: &FrameInputs,
+    inputs: &DenoiseInputs,
     params: &SvgfParams,
     continues: bool,
+    keys: &HistoryKeys,
 ) -> Denoised {
     let params = SvgfParams {
         iterations: params.iterations.max(1),
@@ -157,11 +198,11 @@ pub fn add_svgf_temporal(
     let size = (inputs.width, inputs.height);
     let (color_desc, surface_desc) = temporal::history_descs(inputs.width, inputs.height);
     let history = Histories {
-        color: g.temporal_image(COLOR_KEY, color_desc),
-        moments: g.temporal_image(MOMENTS_KEY, color_desc),
-        surface: g.temporal_image(SURFACE_KEY, surface_desc),
-        albedo: g.temporal_image(ALBEDO_KEY, color_desc),
-        emission: g.temporal_image(EMISSION_KEY, color_desc),
+        color: g.temporal_image(&keys.color, color_desc),
+        moments: g.temporal_image(&keys.moments, color_desc),
+        surface: g.temporal_image(&keys.surface, surface_desc),
+        albedo: g.temporal_image(&keys.albedo, color_desc),
+        emission: g.temporal_image(&keys.emission, color_desc),
     };
     let gradient = gradient::add(
         g,
@@ -200,6 +241,7 @@ pub fn add_svgf_temporal(
     Denoised {
         image,
         gradient: Some(gradient),
+        record: None,
     }
 }
 
@@ -208,7 +250,7 @@ pub fn add_svgf_temporal(
 /// (see [`demodulate::accumulate_surface`]).
 fn add_spatial(
     g: &mut RenderGraph,
-    inputs: &FrameInputs,
+    inputs: &DenoiseInputs,
     params: &SvgfParams,
     surface: (ImageHandle, ImageHandle),
 ) -> ImageHandle {
