@@ -1,6 +1,6 @@
 """Trains the recurrent denoiser on `lucid dataset` output and exports its weights.
 
-    python3 train.py --data DIR --minutes 6 --out weights.safetensors --log train.json
+    python3 train.py --data DIR --minutes 6 --out weights.safetensors --log train.json [--init W]
 """
 
 import argparse
@@ -9,7 +9,7 @@ import math
 import time
 
 import torch
-from safetensors.torch import save_file
+from safetensors.torch import load_file, save_file
 
 from data import load_split, sample_batch
 from model import FORMAT, LAYERS, RecurrentDenoiser, export_tensors
@@ -60,6 +60,7 @@ def main():
     ap.add_argument("--lr", type=float, default=2e-3)
     ap.add_argument("--weights", default="0.8,0.1,0.1", help="spatial,gradient,temporal loss weights")
     ap.add_argument("--seed", type=int, default=0)
+    ap.add_argument("--init", help="start from these weights (a file train.py wrote)")
     ap.add_argument("--out", required=True)
     ap.add_argument("--log", required=True)
     args = ap.parse_args()
@@ -68,6 +69,12 @@ def main():
     train = load_split(args.data, "train", dev)
     val = load_split(args.data, "validation", dev)
     model = RecurrentDenoiser().to(dev)
+    if args.init:
+        tensors = load_file(args.init)
+        with torch.no_grad():
+            for name, _, _ in LAYERS:
+                model.convs[name].weight.copy_(tensors[f"{name}.weight"])
+                model.convs[name].bias.copy_(tensors[f"{name}.bias"])
     opt = torch.optim.Adam(model.parameters(), lr=args.lr)
     ws = [float(v) for v in args.weights.split(",")]
     gen = torch.Generator().manual_seed(args.seed)
@@ -100,6 +107,7 @@ def main():
         "layers": json.dumps(LAYERS),
         "steps": str(step),
         "data": args.data,
+        "init": args.init or "",
         "validation_relmse": f"{final['relmse']:.5f}",
         "validation_temporal": f"{final['temporal']:.5f}",
     }

@@ -1,4 +1,4 @@
-//! Shared by the SVGF tests: one renderer per method, frames read back, luminance statistics over
+//! Shared by the denoiser tests (SVGF and the learned denoiser): one renderer per method, frames read back, luminance statistics over
 //! pixel masks.
 
 use crate::render::frame_images;
@@ -22,6 +22,8 @@ pub enum Method {
     Svgf,
     /// SVGF at 1 spp without temporal gradients (history rejected by geometry only).
     SvgfWithoutGradients,
+    /// The learned recurrent denoiser at 1 spp.
+    Neural,
 }
 
 /// The settings of `method`, without accumulation, paths up to `max_depth`.
@@ -36,6 +38,7 @@ pub fn settings(method: Method, max_depth: u32) -> Settings {
         Method::PerFrame => (Denoiser::Svgf, svgf(SvgfMode::EveryFrame, true)),
         Method::Svgf => (Denoiser::Svgf, svgf(SvgfMode::Temporal, true)),
         Method::SvgfWithoutGradients => (Denoiser::Svgf, svgf(SvgfMode::Temporal, false)),
+        Method::Neural => (Denoiser::Neural, SvgfParams::default()),
     };
     Settings {
         samples_per_pixel: SamplesPerPixel::ONE,

@@ -1,5 +1,5 @@
-//! SVGF under camera motion: a pan and dolly across `classroom` flickers far less than the
-//! a-trous filter applied per frame.
+//! Temporal denoisers under camera motion: a pan and dolly across `classroom` flickers far less
+//! than the a-trous filter applied per frame.
 
 use glam::Vec3;
 use lucid_engine::capture::{ImageData, PngEncoding};
@@ -97,5 +97,35 @@ fn temporal_filter_flickers_far_less_than_the_per_frame_filter() {
     assert!(
         svgf.rel_mse < per_frame.rel_mse,
         "temporal filtering also lowers the error"
+    );
+}
+
+/// The same bound for the learned denoiser. Not met yet (issue #12): measured 0.931 at this size,
+/// where the network blurs across whole objects; run with `cargo test -- --ignored`.
+#[test]
+#[ignore = "the learned denoiser does not meet SVGF's bound yet (measured ratio 0.931)"]
+fn learned_denoiser_flickers_far_less_than_the_per_frame_filter() {
+    let ctx = context(false);
+    let scene = classroom();
+    let measured = WARMUP - 1..WARMUP + MOVING;
+    let references: Vec<ImageData> = cameras(&scene)[measured.clone()]
+        .iter()
+        .map(|&c| reference(&ctx, &scene, c, (16, 8), MAX_DEPTH))
+        .collect();
+    assert_no_validation_messages(&ctx);
+    let display = PngEncoding::default();
+    let evaluate = |method| {
+        let frames = sequence(method);
+        evaluate_sequence(&frames[measured.clone()], &references, &display)
+            .unwrap()
+            .mean
+    };
+    let per_frame = evaluate(Method::PerFrame);
+    let learned = evaluate(Method::Neural);
+    let ratio = learned.temporal_instability / per_frame.temporal_instability;
+    eprintln!("learned denoiser instability ratio {ratio:.3}");
+    assert!(
+        ratio <= MAX_RATIO,
+        "instability ratio {ratio:.3} > {MAX_RATIO}"
     );
 }

@@ -117,3 +117,32 @@ fn revealed_region_recovers_without_a_trail() {
         "the gradients are what removes the trail"
     );
 }
+
+/// The learned denoiser's errors after the move (it drops its history when the scene changes).
+fn learned_errors() -> Vec<(f64, f64)> {
+    let cornell = scene("cornell-box");
+    let mut moved = cornell.clone();
+    moved.instances[SMALL_BOX].transform = moved_far(&cornell);
+    let regions = regions(&cornell, &moved);
+    let errors = errors_after_move(Method::Neural, &cornell, &regions);
+    eprintln!("learned denoiser (revealed, trail): {errors:.3?}");
+    errors
+}
+
+#[test]
+fn learned_denoiser_recovers_the_revealed_region() {
+    let revealed = learned_errors()[AFTER - 1].0;
+    assert!(
+        revealed <= MAX_REVEALED_ERROR,
+        "revealed region error {revealed:.3}"
+    );
+}
+
+/// Not met yet (issue #12): measured 0.217, where the network at this size blurs the wall with the
+/// box's surroundings; run with `cargo test -- --ignored`.
+#[test]
+#[ignore = "the learned denoiser does not meet SVGF's bound yet (measured trail error 0.217)"]
+fn learned_denoiser_leaves_no_trail() {
+    let trail = learned_errors().iter().map(|&(_, t)| t).fold(0.0, f64::max);
+    assert!(trail <= MAX_TRAIL_ERROR, "ghost trail: error {trail:.3}");
+}

@@ -39,8 +39,9 @@ fn worst_block_excess(test: &ImageData, reference: &ImageData) -> f64 {
         .fold(0.0, f64::max)
 }
 
-/// (SVGF, per-frame filter) worst block excesses of the last frame of a still sequence.
-fn worst_errors(name: &str) -> (f64, f64) {
+/// (SVGF, per-frame filter, learned denoiser) worst block excesses of the last frame of a still
+/// sequence.
+fn worst_errors(name: &str) -> (f64, f64, f64) {
     let ctx = context(false);
     let scene = build_with(name, &BuildOptions { detail: 0.05 }).expect("scene");
     let reference = reference(&ctx, &scene, scene.camera, (16, 16), 8);
@@ -52,23 +53,47 @@ fn worst_errors(name: &str) -> (f64, f64) {
         }
         worst_block_excess(&last, &reference)
     };
-    let errors = (run(Method::Svgf), run(Method::PerFrame));
+    let errors = (
+        run(Method::Svgf),
+        run(Method::PerFrame),
+        run(Method::Neural),
+    );
     assert_no_validation_messages(&ctx);
     errors
 }
 
 #[test]
 fn covered_light_has_no_blotches() {
-    let (svgf, per_frame) = worst_errors("covered-light");
-    eprintln!("covered-light worst block excess: svgf {svgf:.3}, per-frame {per_frame:.3}");
+    let (svgf, per_frame, learned) = worst_errors("covered-light");
+    eprintln!(
+        "covered-light worst block excess: svgf {svgf:.3}, per-frame {per_frame:.3}, learned {learned:.3}"
+    );
     assert!(svgf <= MAX_EXCESS_COVERED_LIGHT, "a blotch: {svgf:.3}");
     assert!(svgf <= per_frame, "no worse than the per-frame filter");
+    assert!(
+        learned <= MAX_EXCESS_COVERED_LIGHT,
+        "learned denoiser: a blotch: {learned:.3}"
+    );
+    assert!(
+        learned <= per_frame,
+        "learned denoiser: no worse than the per-frame filter"
+    );
 }
 
 #[test]
 fn caustics_have_no_blotches() {
-    let (svgf, per_frame) = worst_errors("caustics");
-    eprintln!("caustics worst block excess: svgf {svgf:.3}, per-frame {per_frame:.3}");
+    let (svgf, per_frame, learned) = worst_errors("caustics");
+    eprintln!(
+        "caustics worst block excess: svgf {svgf:.3}, per-frame {per_frame:.3}, learned {learned:.3}"
+    );
     assert!(svgf <= MAX_EXCESS_CAUSTICS, "a blotch: {svgf:.3}");
     assert!(svgf <= per_frame, "no worse than the per-frame filter");
+    assert!(
+        learned <= MAX_EXCESS_CAUSTICS,
+        "learned denoiser: a blotch: {learned:.3}"
+    );
+    assert!(
+        learned <= per_frame,
+        "learned denoiser: no worse than the per-frame filter"
+    );
 }

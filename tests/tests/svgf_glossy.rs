@@ -105,4 +105,16 @@ fn glossy_reflection_does_not_smear() {
         mean(&svgf) <= mean(&per_frame),
         "no worse than the per-frame filter"
     );
+    let learned = errors(Method::Neural, &s, &cams, &references, &masks);
+    let learned_still = errors(Method::Neural, &s, &still, &still_references, &still_masks);
+    eprintln!("learned floor error: {learned:.3?}, camera still: {learned_still:.3?}");
+    let learned_penalty = mean(&learned) / mean(&learned_still);
+    assert!(
+        learned_penalty <= MAX_MOTION_PENALTY,
+        "learned denoiser: motion raises the floor's error {learned_penalty:.3}x"
+    );
+    assert!(
+        mean(&learned) <= mean(&per_frame),
+        "learned denoiser: no worse than the per-frame filter"
+    );
 }

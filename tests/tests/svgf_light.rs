@@ -55,3 +55,14 @@ fn without_gradients_the_history_lags() {
         remaining[AFTER - 1]
     );
 }
+
+#[test]
+fn the_learned_denoiser_darkens_within_four_frames() {
+    let remaining = remaining_brightness(Method::Neural);
+    eprintln!("learned denoiser: {remaining:.3?}");
+    assert!(
+        remaining[AFTER - 1] <= MAX_REMAINING,
+        "{:.3} of the brightness remains 4 frames after the switch",
+        remaining[AFTER - 1]
+    );
+}

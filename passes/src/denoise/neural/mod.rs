@@ -30,7 +30,7 @@ use crate::denoise::{DenoiseInputs, Denoised, FrameDenoiser, FrameInfo, Transpor
 use crate::light_transport::SurfaceImages;
 use crate::shaders::neural::{CONV, FEATURES as FEATURES_SHADER, OUTPUT, POOL, RECORD};
 use lucid_engine::capture::ImageData;
-use lucid_engine::graph::{Access, BufferHandle, ImageHandle, RenderGraph};
+use lucid_engine::graph::{BufferHandle, ImageHandle, RenderGraph};
 use lucid_engine::memory::{Buffer, ImageDesc};
 use lucid_engine::{Context, EngineError, Result};
 use std::sync::Arc;
@@ -138,8 +138,8 @@ impl FrameDenoiser for NeuralDenoiser {
     }
 
     fn reset_on_scene_change(&self) -> Vec<String> {
-        let (output, surface) = history_keys(&self.prefix);
-        vec![output, surface]
+        let keys = HistoryKeys::new(&self.prefix);
+        vec![keys.output, keys.surface]
     }
 }
 
@@ -151,32 +151,32 @@ pub fn add_record(
     gbuffer: &GBuffer,
     (width, height): (u32, u32),
 ) -> BufferHandle {
-    let mut p = g.add_pass("neural.record");
-    let demodulated = p.read(surface.demodulated, Access::ComputeRead);
-    let albedo = p.read(surface.albedo, Access::ComputeRead);
-    let emission = p.read(surface.emission, Access::ComputeRead);
-    let normal = p.read(gbuffer.normal_roughness, Access::ComputeRead);
-    let depth = p.read(gbuffer.depth, Access::ComputeRead);
-    let motion = p.read(gbuffer.motion, Access::ComputeRead);
-    let record = p.create_buffer("neural.record", record_bytes(width, height));
-    let record = p.write(record, Access::ComputeWrite);
-    p.execute(move |ctx| {
-        ctx.compute(&RECORD)
-            .image("u_demodulated", demodulated)
-            .image("u_albedo", albedo)
-            .image("u_emission", emission)
-            .image("u_normal_roughness", normal)
-            .image("u_depth", depth)
-            .image("u_motion", motion)
-            .buffer("b_record", record)
-            .dispatch_threads([width, height, 1])
-    });
+    let mut p = g.compute_pass("neural.record", &RECORD);
+    p.read("u_demodulated", surface.demodulated)
+        .read("u_albedo", surface.albedo)
+        .read("u_emission", surface.emission)
+        .read("u_normal_roughness", gbuffer.normal_roughness)
+        .read("u_depth", gbuffer.depth)
+        .read("u_motion", gbuffer.motion);
+    let record = p.create_buffer("b_record", "neural.record", record_bytes(width, height));
+    p.dispatch([width, height, 1]);
     record
 }
 
 /// The history keys of a denoiser instance named `prefix`.
-fn history_keys(prefix: &str) -> (String, String) {
-    (format!("{prefix}.output"), format!("{prefix}.surface"))
+struct HistoryKeys {
+    output: String,
+    surface: String,
+}
+
+impl HistoryKeys {
+    fn new(prefix: &str) -> Self {
+        let key = |name: &str| format!("{prefix}.{name}");
+        Self {
+            output: key("output"),
+            surface: key("surface"),
+        }
+    }
 }
 
 /// A half-precision activation tensor of the network.
@@ -198,30 +198,30 @@ pub fn add_neural(
     prefix: &str,
 ) -> ImageHandle {
     let weights = g.import_buffer("neural.weights", network.buffer.clone());
-    let (output_key, surface_key) = history_keys(prefix);
-    let output_history = g.temporal_image(&output_key, ImageDesc::rgba16f(width, height));
-    let surface_history = g.temporal_image(&surface_key, ImageDesc::rgba32f(width, height));
+    let keys = HistoryKeys::new(prefix);
+    let output_history = g.temporal_image(&keys.output, ImageDesc::rgba16f(width, height));
+    let surface_history = g.temporal_image(&keys.surface, ImageDesc::rgba32f(width, height));
     let full = (width, height);
     let half = (width.div_ceil(2), height.div_ceil(2));
     let quarter = (half.0.div_ceil(2), half.1.div_ceil(2));
 
-    let mut p = g.add_pass(&format!("{prefix}.features"));
-    let record_in = p.read(record, Access::ComputeRead);
-    let prev_output = p.read(output_history.prev, Access::ComputeRead);
-    let prev_surface = p.read(surface_history.prev, Access::ComputeRead);
-    let surface = p.write(surface_history.cur, Access::ComputeWrite);
-    let features = create_tensor(&mut p, "neural.features", FEATURES, full);
-    p.execute(move |ctx| {
-        let valid = u32::from(ctx.history_valid(prev_output) && ctx.history_valid(prev_surface));
-        ctx.compute(&FEATURES_SHADER)
-            .buffer("b_record", record_in)
-            .image("u_prev_output", prev_output)
-            .image("u_prev_surface", prev_surface)
-            .image("u_surface", surface)
-            .buffer("b_features", features.buffer)
-            .push(&[width, height, valid])
-            .dispatch_threads([width, height, 1])
-    });
+    let mut p = g.compute_pass(&format!("{prefix}.features"), &FEATURES_SHADER);
+    let prev_output = output_history.prev;
+    p.read("b_record", record)
+        .read("u_prev_output", prev_output)
+        .push_with(move |ctx| [width, height, u32::from(ctx.history_valid(prev_output))]);
+    p.history("u_prev_surface", "u_surface", surface_history);
+    let features = Tensor {
+        buffer: p.create_buffer(
+            "b_features",
+            "neural.features",
+            tensor_bytes(FEATURES, full),
+        ),
+        channels: FEATURES,
+        size: full,
+    };
+    p.dispatch([width, height, 1]);
+
     let conv = |g: &mut RenderGraph, layer: usize, in0: Tensor, in1: Option<Tensor>, size| {
         add_conv(
             g,
@@ -242,43 +242,24 @@ pub fn add_neural(
     let d0 = conv(g, 5, d1, Some(e0), full);
     let net = conv(g, 6, d0, None, full);
 
-    let mut p = g.add_pass(&format!("{prefix}.output"));
-    let record_in = p.read(record, Access::ComputeRead);
-    let features_in = p.read(features.buffer, Access::ComputeRead);
-    let net_in = p.read(net.buffer, Access::ComputeRead);
-    let history = p.write(output_history.cur, Access::ComputeWrite);
+    let mut p = g.compute_pass(&format!("{prefix}.output"), &OUTPUT);
+    p.read("b_record", record)
+        .read("b_features", features.buffer)
+        .read("b_net", net.buffer)
+        .push(&[width, height]);
+    p.write("u_output", output_history.cur);
     let radiance = p.create_image(
+        "u_radiance",
         &format!("{prefix}.radiance"),
         ImageDesc::rgba32f(width, height),
     );
-    let radiance = p.write(radiance, Access::ComputeWrite);
-    p.execute(move |ctx| {
-        ctx.compute(&OUTPUT)
-            .buffer("b_record", record_in)
-            .buffer("b_features", features_in)
-            .buffer("b_net", net_in)
-            .image("u_output", history)
-            .image("u_radiance", radiance)
-            .push(&[width, height])
-            .dispatch_threads([width, height, 1])
-    });
+    p.dispatch([width, height, 1]);
     radiance
 }
 
-/// Creates and declares written a tensor of `channels` at `size` in pass `p`.
-fn create_tensor(
-    p: &mut lucid_engine::graph::PassBuilder<'_>,
-    name: &str,
-    channels: u32,
-    size: (u32, u32),
-) -> Tensor {
-    let bytes = u64::from(channels) * u64::from(size.0) * u64::from(size.1) * 2;
-    let buffer = p.create_buffer(name, bytes);
-    Tensor {
-        buffer: p.write(buffer, Access::ComputeWrite),
-        channels,
-        size,
-    }
+/// Bytes of a half-precision tensor of `channels` at `size`.
+fn tensor_bytes(channels: u32, (width, height): (u32, u32)) -> u64 {
+    u64::from(channels) * u64::from(width) * u64::from(height) * 2
 }
 
 /// Adds one convolution layer at `size`: `in0` (upsampled when smaller than `size`), then `in1`.
@@ -292,47 +273,41 @@ fn add_conv(
 ) -> Tensor {
     debug_assert_eq!(in0.channels, layer.in0);
     debug_assert_eq!(in1.map_or(0, |t| t.channels), layer.in1);
-    let mut p = g.add_pass(&format!("neural.{}", layer.name));
-    let weights = p.read(weights, Access::ComputeRead);
-    let a = p.read(in0.buffer, Access::ComputeRead);
-    // Without a second input the first is bound in its place (the shader does not read it).
-    let b = match in1 {
-        Some(t) => p.read(t.buffer, Access::ComputeRead),
-        None => a,
-    };
-    let out = create_tensor(&mut p, &format!("neural.{}", layer.name), layer.out, size);
-    let (layer, upsampled) = (*layer, in0.size != size);
     let per_thread = layer.out.min(16);
-    p.execute(move |ctx| {
-        ctx.compute(&CONV)
-            .specialize("IN0_CHANNELS", layer.in0)
-            .specialize("IN1_CHANNELS", layer.in1)
-            .specialize("OUT_CHANNELS", layer.out)
-            .specialize("OUT_PER_THREAD", per_thread)
-            .specialize("IN0_UPSAMPLED", upsampled)
-            .specialize("RELU", layer.name != "out")
-            .buffer("b_in0", a)
-            .buffer("b_in1", b)
-            .buffer("b_weights", weights)
-            .buffer("b_out", out.buffer)
-            .push(&[size.0, size.1, in0.size.0, in0.size.1, offset])
-            .dispatch_threads([size.0, size.1, layer.out / per_thread])
-    });
-    out
+    let mut p = g.compute_pass(&format!("neural.{}", layer.name), &CONV);
+    p.read("b_weights", weights)
+        .read("b_in0", in0.buffer)
+        // Without a second input the first is bound in its place (the shader does not read it).
+        .read("b_in1", in1.unwrap_or(in0).buffer)
+        .specialize("IN0_CHANNELS", layer.in0)
+        .specialize("IN1_CHANNELS", layer.in1)
+        .specialize("OUT_CHANNELS", layer.out)
+        .specialize("OUT_PER_THREAD", per_thread)
+        .specialize("IN0_UPSAMPLED", in0.size != size)
+        .specialize("RELU", layer.name != "out")
+        .push(&[size.0, size.1, in0.size.0, in0.size.1, offset]);
+    let name = format!("neural.{}", layer.name);
+    let buffer = p.create_buffer("b_out", &name, tensor_bytes(layer.out, size));
+    p.dispatch([size.0, size.1, layer.out / per_thread]);
+    Tensor {
+        buffer,
+        channels: layer.out,
+        size,
+    }
 }
 
 /// Adds 2x2 average pooling of `input` down to `size`.
 fn add_pool(g: &mut RenderGraph, input: Tensor, size: (u32, u32)) -> Tensor {
-    let mut p = g.add_pass("neural.pool");
-    let a = p.read(input.buffer, Access::ComputeRead);
-    let out = create_tensor(&mut p, "neural.pooled", input.channels, size);
-    p.execute(move |ctx| {
-        ctx.compute(&POOL)
-            .specialize("CHANNELS", input.channels)
-            .buffer("b_in", a)
-            .buffer("b_out", out.buffer)
-            .push(&[size.0, size.1, input.size.0, input.size.1])
-            .dispatch_threads([size.0, size.1, input.channels / 4])
-    });
-    out
+    let mut p = g.compute_pass("neural.pool", &POOL);
+    p.read("b_in", input.buffer)
+        .specialize("CHANNELS", input.channels)
+        .push(&[size.0, size.1, input.size.0, input.size.1]);
+    let bytes = tensor_bytes(input.channels, size);
+    let buffer = p.create_buffer("b_out", "neural.pooled", bytes);
+    p.dispatch([size.0, size.1, input.channels / 4]);
+    Tensor {
+        buffer,
+        channels: input.channels,
+        size,
+    }
 }
