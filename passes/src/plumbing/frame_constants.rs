@@ -34,7 +34,7 @@ pub struct FrameConstants {
 }
 
 /// Adds the pass that writes `constants`; shaders read the result as `b_frame`.
-pub fn add(g: &mut RenderGraph, constants: &FrameConstants) -> BufferHandle {
+pub fn add_frame_constants(g: &mut RenderGraph, constants: &FrameConstants) -> BufferHandle {
     let data = *constants;
     let mut p = g.add_pass("frame_constants");
     let buffer = p.create_buffer(

@@ -433,7 +433,7 @@ impl Renderer {
             rr_depth: self.settings.rr_depth,
             padding: [0; 4],
         };
-        let frame = frame_constants::add(g, &constants);
+        let frame = frame_constants::add_frame_constants(g, &constants);
         let scene = self.buffers.import(g);
         let prev_transforms = add_prev_transforms(g, &self.prev_transforms);
         let gbuffer = gbuffer::add_gbuffer(g, &scene, frame, prev_transforms, &self.spec, w, h);
