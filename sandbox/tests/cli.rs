@@ -45,7 +45,12 @@ fn scenes_lists_every_builtin_scene() {
 
 #[test]
 fn renders_each_algorithm_and_denoiser_at_64x64() {
-    for (algo, denoise) in [("pt", "none"), ("bdpt", "none"), ("pt", "svgf")] {
+    for (algo, denoise) in [
+        ("pt", "none"),
+        ("bdpt", "none"),
+        ("pt", "svgf"),
+        ("pt", "neural"),
+    ] {
         let file = temp(&format!("{algo}-{denoise}.png"));
         let out = lucid(&[
             "render",
@@ -196,4 +201,41 @@ fn bench_reports_pipeline_statistics_or_says_they_are_unavailable() {
         }
         other => panic!("\"pipelines\" must be null or an object, got {other}"),
     }
+}
+
+#[test]
+fn a_short_soak_keeps_memory_flat_without_validation_messages() {
+    // 200 frames through every algorithm and denoiser, the camera and an object moving.
+    let out = lucid(&[
+        "soak",
+        "--frames",
+        "200",
+        "--size",
+        "32x32",
+        "--switch-every",
+        "10",
+        "--sample-every",
+        "10",
+    ]);
+    assert!(out.status.success(), "{}", stderr(&out));
+    assert!(String::from_utf8_lossy(&out.stdout).contains("flat:"));
+}
+
+#[test]
+fn a_soak_too_short_to_compare_memory_is_an_error() {
+    let out = lucid(&[
+        "soak",
+        "--frames",
+        "20",
+        "--size",
+        "16x16",
+        "--switch-every",
+        "5",
+    ]);
+    assert!(!out.status.success());
+    assert!(
+        stderr(&out).contains("no two memory samples"),
+        "{}",
+        stderr(&out)
+    );
 }

@@ -12,6 +12,7 @@ mod scene_source;
 mod scenes;
 mod sequence;
 mod size;
+mod soak;
 mod split;
 mod view;
 
@@ -48,6 +49,8 @@ enum Command {
     Evaluate(evaluate::EvaluateArgs),
     /// Render the learned denoiser's training data (inputs and references along camera paths).
     Dataset(dataset::DatasetArgs),
+    /// Render many frames with everything changing and check that memory stays flat.
+    Soak(soak::SoakArgs),
 }
 
 /// Runs the parsed command.
@@ -64,6 +67,7 @@ pub fn run(cli: Cli) -> anyhow::Result<()> {
         Command::Sequence(args) => sequence::run(&args),
         Command::Evaluate(args) => evaluate::run(&args),
         Command::Dataset(args) => dataset::run(&args),
+        Command::Soak(args) => soak::run(&args),
     }
 }
 
