@@ -239,3 +239,85 @@ fn a_soak_too_short_to_compare_memory_is_an_error() {
         stderr(&out)
     );
 }
+
+#[test]
+fn the_learned_denoiser_takes_weights_from_a_file_and_names_a_bad_one() {
+    let out_file = temp("weights.png");
+    let out_path = out_file.to_str().unwrap();
+    let weights = concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/../passes/src/denoise/neural/lucid-rae-v1.safetensors"
+    );
+    let bad = temp("bad.safetensors");
+    std::fs::write(&bad, b"not weights").unwrap();
+    let render = |weights: &str| {
+        lucid(&[
+            "render",
+            "--denoise",
+            "neural",
+            "--neural-weights",
+            weights,
+            "--size",
+            "16x16",
+            "--frames",
+            "1",
+            "--out",
+            out_path,
+        ])
+    };
+    let good = render(weights);
+    assert!(good.status.success(), "{}", stderr(&good));
+    for (file, says) in [
+        ("/nonexistent/w.safetensors", "cannot be read"),
+        (bad.to_str().unwrap(), "not a valid safetensors file"),
+    ] {
+        let out = render(file);
+        assert!(!out.status.success());
+        let err = stderr(&out);
+        assert!(err.contains(file) && err.contains(says), "{err}");
+        assert!(!err.contains("panicked"), "{err}");
+    }
+}
+
+#[test]
+fn dataset_writes_records_and_references_with_an_index() {
+    let dir = temp("dataset");
+    let out = lucid(&[
+        "dataset",
+        "--out",
+        dir.to_str().unwrap(),
+        "--size",
+        "16x12",
+        "--frames",
+        "2",
+        "--rooms",
+        "1",
+        "--validation-rooms",
+        "1",
+        "--sequences",
+        "1",
+        "--reference-spp",
+        "4",
+        "--no-builtin",
+    ]);
+    assert!(out.status.success(), "{}", stderr(&out));
+    let index: serde_json::Value =
+        serde_json::from_slice(&std::fs::read(dir.join("index.json")).unwrap()).unwrap();
+    let sequences = index["sequences"].as_array().unwrap();
+    let splits: Vec<&str> = sequences
+        .iter()
+        .map(|s| s["split"].as_str().unwrap())
+        .collect();
+    assert_eq!(splits, ["train", "validation"]);
+    for entry in sequences {
+        assert!(entry["scene"].as_str().unwrap().starts_with("random-room-"));
+        let bytes = std::fs::read(dir.join(entry["file"].as_str().unwrap())).unwrap();
+        let tensors = safetensors::SafeTensors::deserialize(&bytes).unwrap();
+        let record = tensors.tensor("record").unwrap();
+        assert_eq!(record.shape(), [2, 17, 12, 16]);
+        assert_eq!(record.dtype(), safetensors::Dtype::F16);
+        assert_eq!(tensors.tensor("reference").unwrap().shape(), [2, 3, 12, 16]);
+    }
+    let odd = lucid(&["dataset", "--out", dir.to_str().unwrap(), "--size", "18x12"]);
+    assert!(stderr(&odd).contains("multiples of 4"), "{}", stderr(&odd));
+}

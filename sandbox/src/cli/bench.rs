@@ -8,7 +8,6 @@ use super::scene_source;
 use anyhow::Context as _;
 use clap::Args;
 use lucid_engine::{Context, ContextDesc};
-use lucid_passes::renderer::Renderer;
 use std::collections::BTreeMap;
 use std::path::PathBuf;
 
@@ -77,7 +76,7 @@ pub fn run(args: &BenchArgs) -> anyhow::Result<()> {
     let (w, h) = (args.options.size.width, args.options.size.height);
     let mut settings = args.options.settings(false);
     settings.svgf.gradients_every_frame = args.dynamic;
-    let mut renderer = Renderer::new(&ctx, scene, w, h, settings)?;
+    let mut renderer = args.options.renderer(&ctx, scene, (w, h), settings)?;
     for _ in 0..args.warmup {
         renderer.render()?;
     }

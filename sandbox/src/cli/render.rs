@@ -7,7 +7,6 @@ use anyhow::{bail, Context as _};
 use clap::Args;
 use lucid_engine::capture::{self, ExrPrecision};
 use lucid_engine::{Context, ContextDesc};
-use lucid_passes::renderer::Renderer;
 use std::path::PathBuf;
 
 /// Options of `lucid render`.
@@ -39,7 +38,9 @@ pub fn run(args: &RenderArgs) -> anyhow::Result<()> {
     let scene = scene_source::load(&args.options.scene)?;
     let ctx = Context::new(&ContextDesc::from_env())?;
     let (w, h) = (args.options.size.width, args.options.size.height);
-    let mut renderer = Renderer::new(&ctx, scene, w, h, args.options.settings(true))?;
+    let mut renderer = args
+        .options
+        .renderer(&ctx, scene, (w, h), args.options.settings(true))?;
     if args.dump_graph {
         print!("{}", renderer.frame_plan()?.dump());
     }

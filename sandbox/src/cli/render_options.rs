@@ -4,7 +4,11 @@ use super::size::Size;
 use clap::builder::TypedValueParser;
 use clap::Args;
 use lucid_engine::capture::{PngEncoding, ToneCurve};
-use lucid_passes::renderer::{Algorithm, Denoiser, SamplesPerPixel, Settings};
+use lucid_engine::scene::Scene;
+use lucid_engine::Context;
+use lucid_passes::denoise::neural::NetworkWeights;
+use lucid_passes::renderer::{Algorithm, Denoiser, Renderer, SamplesPerPixel, Settings};
+use std::path::PathBuf;
 
 /// What to render and how.
 #[derive(Debug, Args)]
@@ -36,6 +40,10 @@ pub struct RenderOptions {
     /// Denoiser applied after tracing.
     #[arg(long, value_enum, default_value_t = Denoiser::None)]
     pub denoise: Denoiser,
+    /// Weights of the learned denoiser (a file `training/train.py` wrote) instead of the
+    /// committed ones.
+    #[arg(long)]
+    pub neural_weights: Option<PathBuf>,
 }
 
 impl RenderOptions {
@@ -51,6 +59,22 @@ impl RenderOptions {
             denoiser: self.denoise,
             ..Settings::default()
         }
+    }
+
+    /// A renderer of `scene` at `width` x `height` with `settings` and, when given, the learned
+    /// denoiser's weights (a missing or malformed file is an error before anything renders).
+    pub fn renderer(
+        &self,
+        ctx: &Context,
+        scene: Scene,
+        (width, height): (u32, u32),
+        settings: Settings,
+    ) -> anyhow::Result<Renderer> {
+        let mut renderer = Renderer::new(ctx, scene, width, height, settings)?;
+        if let Some(path) = &self.neural_weights {
+            renderer.set_neural_weights(&NetworkWeights::load(path)?)?;
+        }
+        Ok(renderer)
     }
 
     /// Exposure and tone curve.

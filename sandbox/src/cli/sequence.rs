@@ -13,7 +13,7 @@ use lucid_engine::scene::{Camera, Scene};
 use lucid_engine::{Context, ContextDesc};
 use lucid_passes::denoise::neural::{record_image, RECORD_ALBEDO, RECORD_NORMAL};
 use lucid_passes::denoise::svgf::{SvgfMode, SvgfParams};
-use lucid_passes::renderer::{Denoiser, Renderer, SamplesPerPixel, Settings};
+use lucid_passes::renderer::{Denoiser, SamplesPerPixel, Settings};
 use std::path::{Path, PathBuf};
 
 /// Options of `lucid sequence`.
@@ -155,7 +155,9 @@ fn render(
     let (w, h) = (args.options.size.width, args.options.size.height);
     let folder = args.out.join(name);
     std::fs::create_dir_all(&folder).with_context(|| format!("creating {}", folder.display()))?;
-    let mut renderer = Renderer::new(ctx, scene.clone(), w, h, settings)?;
+    let mut renderer = args
+        .options
+        .renderer(ctx, scene.clone(), (w, h), settings)?;
     eprintln!("{name}: {} frames", cameras.len());
     let progress = Progress::new(cameras.len() as u64, "frames");
     for (i, &camera) in cameras.iter().enumerate() {
@@ -186,7 +188,7 @@ fn render_aux(
         denoiser: Denoiser::Neural,
         ..base
     };
-    let mut renderer = Renderer::new(ctx, scene.clone(), size.0, size.1, settings)?;
+    let mut renderer = args.options.renderer(ctx, scene.clone(), size, settings)?;
     let folders = [("albedo", RECORD_ALBEDO), ("normal", RECORD_NORMAL)];
     for (name, _) in folders {
         let folder = args.out.join(name);

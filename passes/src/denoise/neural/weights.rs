@@ -65,7 +65,7 @@ pub const BUILTIN: &[u8] = include_bytes!("lucid-rae-v1.safetensors");
 #[derive(Debug, thiserror::Error)]
 pub enum WeightsError {
     /// The file could not be read.
-    #[error("denoiser weights {file}: {source}")]
+    #[error("denoiser weights {file} cannot be read")]
     Read {
         /// The file.
         file: String,
@@ -210,4 +210,91 @@ fn read_tensor(
         return Err(problem(format!("value {i} is {}", values[i])));
     }
     Ok(values)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use safetensors::tensor::TensorView;
+    use std::collections::HashMap;
+
+    /// A weights file with `format`, every layer's tensors, `edit` applied to (name, shape, values).
+    fn file(format: &str, edit: impl Fn(&str, &mut Vec<usize>, &mut Vec<f32>) -> bool) -> Vec<u8> {
+        let mut tensors = Vec::new();
+        for layer in LAYERS {
+            let (cin, cout) = (layer.inputs() as usize, layer.out as usize);
+            for (kind, shape) in [("weight", vec![cout, cin, 3, 3]), ("bias", vec![cout])] {
+                let name = format!("{}.{kind}", layer.name);
+                let mut shape = shape;
+                let mut values = vec![0.5f32; shape.iter().product()];
+                if edit(&name, &mut shape, &mut values) {
+                    tensors.push((name, shape, values));
+                }
+            }
+        }
+        let bytes: Vec<Vec<u8>> = tensors
+            .iter()
+            .map(|(_, _, v)| bytemuck::cast_slice(v).to_vec())
+            .collect();
+        let views: HashMap<String, TensorView<'_>> = tensors
+            .iter()
+            .zip(&bytes)
+            .map(|((name, shape, _), b)| {
+                let view = TensorView::new(Dtype::F32, shape.clone(), b).expect("view");
+                (name.clone(), view)
+            })
+            .collect();
+        let metadata = HashMap::from([("format".to_string(), format.to_string())]);
+        safetensors::serialize(&views, &Some(metadata)).expect("serialize")
+    }
+
+    fn error(bytes: &[u8]) -> String {
+        NetworkWeights::from_bytes(bytes, "w.safetensors")
+            .expect_err("must be refused")
+            .to_string()
+    }
+
+    #[test]
+    fn committed_weights_load_and_pack_every_layer() {
+        let weights = NetworkWeights::builtin();
+        let floats: usize = LAYERS.iter().map(Layer::packed_len).sum();
+        assert_eq!(weights.packed().len(), floats);
+        assert_eq!(weights.offset(0), 0);
+        let good = file(FORMAT, |_, _, _| true);
+        assert!(NetworkWeights::from_bytes(&good, "w").is_ok());
+    }
+
+    #[test]
+    fn bad_files_name_the_file_and_the_tensor() {
+        let good = file(FORMAT, |_, _, _| true);
+        let truncated = error(&good[..good.len() / 2]);
+        assert!(
+            truncated.contains("w.safetensors") && truncated.contains("not a valid safetensors")
+        );
+        assert!(error(b"not a weights file").contains("not a valid safetensors"));
+        assert!(error(&file("lucid-rae-v0", |_, _, _| true)).contains("format \"lucid-rae-v0\""));
+        let missing = error(&file(FORMAT, |name, _, _| name != "dec1.bias"));
+        assert!(
+            missing.contains("dec1.bias") && missing.contains("missing"),
+            "{missing}"
+        );
+        let shape = error(&file(FORMAT, |name, shape, values| {
+            if name == "enc0.weight" {
+                shape[1] = 8;
+                values.truncate(shape.iter().product());
+            }
+            true
+        }));
+        assert!(
+            shape.contains("enc0.weight") && shape.contains("shape"),
+            "{shape}"
+        );
+        let nan = error(&file(FORMAT, |name, _, values| {
+            if name == "out.bias" {
+                values[2] = f32::NAN;
+            }
+            true
+        }));
+        assert!(nan.contains("out.bias") && nan.contains("NaN"), "{nan}");
+    }
 }
