@@ -264,6 +264,23 @@ impl Renderer {
         self.camera = camera;
     }
 
+    /// Starts a new shot: the next frame is not a continuation of the last (a camera cut, a
+    /// teleport), so accumulation and every temporal history (SVGF's, the learned denoiser's
+    /// recurrent state) start afresh instead of reprojecting what no longer applies.
+    ///
+    /// ```no_run
+    /// # fn demo() -> lucid_engine::Result<()> {
+    /// # let mut renderer: lucid_passes::renderer::Renderer = unimplemented!();
+    /// # let next_shot = renderer.camera();
+    /// renderer.set_camera(next_shot);
+    /// renderer.cut();
+    /// # Ok(()) }
+    /// ```
+    pub fn cut(&mut self) {
+        self.executor.reset_history();
+        self.accumulated = 0;
+    }
+
     /// Output size.
     pub fn size(&self) -> (u32, u32) {
         (self.width, self.height)
