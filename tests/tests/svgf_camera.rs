@@ -3,7 +3,7 @@
 
 use glam::Vec3;
 use lucid_engine::capture::{ImageData, PngEncoding};
-use lucid_engine::metrics::evaluate_sequence;
+use lucid_engine::metrics::{evaluate_sequence, FrameMetrics};
 use lucid_engine::scene::builtin::{build_with, BuildOptions};
 use lucid_engine::scene::{Camera, CameraKey, CameraPath, PathInterpolation, Scene};
 use lucid_tests::svgf::{frame, reference, renderer, settings, Method};
@@ -69,8 +69,8 @@ fn sequence(method: Method) -> Vec<ImageData> {
     frames
 }
 
-#[test]
-fn temporal_filter_flickers_far_less_than_the_per_frame_filter() {
+/// The mean metrics of each of `methods` over the moving frames, against references.
+fn measure<const N: usize>(methods: [Method; N]) -> [FrameMetrics; N] {
     let ctx = context(false);
     let scene = classroom();
     let measured = WARMUP - 1..WARMUP + MOVING;
@@ -80,14 +80,17 @@ fn temporal_filter_flickers_far_less_than_the_per_frame_filter() {
         .collect();
     assert_no_validation_messages(&ctx);
     let display = PngEncoding::default();
-    let evaluate = |method| {
+    methods.map(|method| {
         let frames = sequence(method);
         let m = evaluate_sequence(&frames[measured.clone()], &references, &display).unwrap();
         eprintln!("{method:?}: {:?}", m.mean);
         m.mean
-    };
-    let per_frame = evaluate(Method::PerFrame);
-    let svgf = evaluate(Method::Svgf);
+    })
+}
+
+#[test]
+fn temporal_filter_flickers_far_less_than_the_per_frame_filter() {
+    let [per_frame, svgf] = measure([Method::PerFrame, Method::Svgf]);
     let ratio = svgf.temporal_instability / per_frame.temporal_instability;
     eprintln!("instability ratio {ratio:.3}");
     assert!(
@@ -105,23 +108,7 @@ fn temporal_filter_flickers_far_less_than_the_per_frame_filter() {
 #[test]
 #[ignore = "the learned denoiser does not meet SVGF's bound yet (measured ratio 0.931)"]
 fn learned_denoiser_flickers_far_less_than_the_per_frame_filter() {
-    let ctx = context(false);
-    let scene = classroom();
-    let measured = WARMUP - 1..WARMUP + MOVING;
-    let references: Vec<ImageData> = cameras(&scene)[measured.clone()]
-        .iter()
-        .map(|&c| reference(&ctx, &scene, c, (16, 8), MAX_DEPTH))
-        .collect();
-    assert_no_validation_messages(&ctx);
-    let display = PngEncoding::default();
-    let evaluate = |method| {
-        let frames = sequence(method);
-        evaluate_sequence(&frames[measured.clone()], &references, &display)
-            .unwrap()
-            .mean
-    };
-    let per_frame = evaluate(Method::PerFrame);
-    let learned = evaluate(Method::Neural);
+    let [per_frame, learned] = measure([Method::PerFrame, Method::Neural]);
     let ratio = learned.temporal_instability / per_frame.temporal_instability;
     eprintln!("learned denoiser instability ratio {ratio:.3}");
     assert!(

@@ -674,6 +674,28 @@ impl Renderer {
         outputs.image(hdr)
     }
 
+    /// Renders one frame, waits for it and returns the learned denoiser's per-pixel record of it
+    /// (planar float channels, see [`neural::add_record`]): what `lucid dataset` stores and image
+    /// denoisers take as albedo and normal. An error unless the learned denoiser runs.
+    pub fn render_and_read_record(&mut self) -> Result<Vec<u8>> {
+        let mut g = RenderGraph::new();
+        let (images, stats) = self.add_frame(&mut g);
+        let record = images.neural_record.ok_or_else(|| {
+            EngineError::InvalidArgument(
+                "the frame has no record: the learned denoiser does not run".into(),
+            )
+        })?;
+        let readback = g.readback(record);
+        let frame = self.executor.execute(g.compile()?)?;
+        if let Some((old, old_stats)) = self.pending_stats.take() {
+            let outputs = self.executor.wait(old)?;
+            self.collect_stats(&outputs, old_stats)?;
+        }
+        let outputs = self.executor.wait(frame)?;
+        self.collect_stats(&outputs, stats)?;
+        Ok(outputs.bytes(readback)?.to_vec())
+    }
+
     /// Waits for every frame in flight.
     pub fn finish(&mut self) -> Result<()> {
         if let Some((old, old_stats)) = self.pending_stats.take() {

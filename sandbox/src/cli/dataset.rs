@@ -15,7 +15,6 @@ use anyhow::{bail, Context as _};
 use clap::Args;
 use glam::Quat;
 use half::f16;
-use lucid_engine::graph::RenderGraph;
 use lucid_engine::scene::{builtin, Camera, Scene};
 use lucid_engine::{Context, ContextDesc};
 use lucid_passes::denoise::neural::RECORD_CHANNELS;
@@ -238,18 +237,12 @@ fn render_sequence(
     let mut references: Vec<u16> = Vec::with_capacity(cameras.len() * pixels * 3);
     for &camera in cameras {
         noisy.set_camera(camera);
-        let mut g = RenderGraph::new();
-        let (images, stats) = noisy.add_frame(&mut g);
-        let record = images
-            .neural_record
-            .context("the learned denoiser's record was not traced")?;
-        let readback = g.readback(record);
-        let frame = noisy.executor_mut().execute(g.compile()?)?;
-        let outputs = noisy.executor_mut().wait(frame)?;
-        noisy.collect_stats(&outputs, stats)?;
-        let floats: &[f32] = bytemuck::try_cast_slice(outputs.bytes(readback)?)
-            .map_err(|e| anyhow::anyhow!("record readback: {e}"))?;
-        records.extend(floats.iter().map(|&v| f16::from_f32(v).to_bits()));
+        let record = noisy.render_and_read_record()?;
+        records.extend(
+            record
+                .chunks_exact(4)
+                .map(|b| f16::from_f32(f32::from_le_bytes([b[0], b[1], b[2], b[3]])).to_bits()),
+        );
 
         reference.set_camera(camera);
         for _ in 1..reference_frames {

@@ -8,7 +8,6 @@ use super::scene_source;
 use anyhow::Context as _;
 use clap::Args;
 use lucid_engine::capture::{self, ExrPrecision, ImageData};
-use lucid_engine::graph::RenderGraph;
 use lucid_engine::scene::{Camera, Scene};
 use lucid_engine::{Context, ContextDesc};
 use lucid_passes::denoise::neural::{record_image, RECORD_ALBEDO, RECORD_NORMAL};
@@ -197,17 +196,9 @@ fn render_aux(
     }
     for (i, &camera) in cameras.iter().enumerate() {
         renderer.set_camera(camera);
-        let mut g = RenderGraph::new();
-        let (images, stats) = renderer.add_frame(&mut g);
-        let record = images
-            .neural_record
-            .context("the first-hit record was not traced")?;
-        let readback = g.readback(record);
-        let frame = renderer.executor_mut().execute(g.compile()?)?;
-        let outputs = renderer.executor_mut().wait(frame)?;
-        renderer.collect_stats(&outputs, stats)?;
+        let record = renderer.render_and_read_record()?;
         for (name, channel) in folders {
-            let image = record_image(outputs.bytes(readback)?, size, channel)?;
+            let image = record_image(&record, size, channel)?;
             save(&frame_path(&args.out.join(name), i), &image)?;
         }
     }
