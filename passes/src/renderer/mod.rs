@@ -665,10 +665,7 @@ impl Renderer {
         let (images, stats) = self.add_frame(&mut g);
         let hdr = g.readback(images.hdr);
         let frame = self.executor.execute(g.compile()?)?;
-        if let Some((old, old_stats)) = self.pending_stats.take() {
-            let outputs = self.executor.wait(old)?;
-            self.collect_stats(&outputs, old_stats)?;
-        }
+        self.collect_pending_stats()?;
         let outputs = self.executor.wait(frame)?;
         self.collect_stats(&outputs, stats)?;
         outputs.image(hdr)
@@ -687,21 +684,24 @@ impl Renderer {
         })?;
         let readback = g.readback(record);
         let frame = self.executor.execute(g.compile()?)?;
-        if let Some((old, old_stats)) = self.pending_stats.take() {
-            let outputs = self.executor.wait(old)?;
-            self.collect_stats(&outputs, old_stats)?;
-        }
+        self.collect_pending_stats()?;
         let outputs = self.executor.wait(frame)?;
         self.collect_stats(&outputs, stats)?;
         Ok(outputs.bytes(readback)?.to_vec())
     }
 
-    /// Waits for every frame in flight.
-    pub fn finish(&mut self) -> Result<()> {
+    /// Waits for the frame whose stats are pending, if any, and records them.
+    fn collect_pending_stats(&mut self) -> Result<()> {
         if let Some((old, old_stats)) = self.pending_stats.take() {
             let outputs = self.executor.wait(old)?;
             self.collect_stats(&outputs, old_stats)?;
         }
+        Ok(())
+    }
+
+    /// Waits for every frame in flight.
+    pub fn finish(&mut self) -> Result<()> {
+        self.collect_pending_stats()?;
         self.executor.wait_all()
     }
 }
