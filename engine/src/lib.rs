@@ -4,6 +4,7 @@
 //! Everything runs headless by default; a window is optional (see [`context::Context::with_surface`]).
 
 mod access;
+pub mod atomic_write;
 pub mod bvh;
 pub mod capture;
 pub mod context;

@@ -4,7 +4,7 @@
 use std::path::{Path, PathBuf};
 use std::sync::atomic::{AtomicU32, Ordering};
 
-use glam::Vec3;
+use glam::{UVec3, Vec3};
 use lucid_engine::scene::{
     load_gltf, load_gltf_slice, MaterialKind, PunctualLight, SceneError, TexelData,
 };
@@ -459,4 +459,63 @@ fn corpus_files_import() {
     let tex = load_gltf(&dir.join("textured_quad.gltf")).unwrap();
     assert_eq!(tex.textures.len(), 1);
     assert_eq!((tex.textures[0].width, tex.textures[0].height), (2, 2));
+}
+
+#[test]
+fn huge_geometry_is_reported_with_the_mesh_or_node_that_holds_it() {
+    let base = quad_doc("quad.bin", &[EMISSIVE], "");
+    let mut bin = quad_bin();
+    bin[0..4].copy_from_slice(&3e38f32.to_le_bytes());
+    let file = write_case("hugecoord", &base, false);
+    std::fs::write(file.with_file_name("quad.bin"), &bin).unwrap();
+    let (_, msg) = gltf_error(load_gltf(&file));
+    assert!(
+        msg.contains("mesh `mesh 0/0`")
+            && msg.contains("POSITION 0")
+            && msg.contains("out of range"),
+        "{msg}"
+    );
+    let scaled = base.replace(
+        r#"{"mesh": 0, "translation": [0, 0, 0]}"#,
+        r#"{"mesh": 0, "name": "giant", "scale": [1e30, 1e30, 1e30]}"#,
+    );
+    assert_ne!(scaled, base);
+    let (_, msg) = gltf_error(load_gltf(&write_case("hugescale", &scaled, true)));
+    assert!(
+        msg.contains("node 0 (`giant`)")
+            && msg.contains("mesh `mesh 0/0`")
+            && msg.contains("scale"),
+        "{msg}"
+    );
+}
+
+#[test]
+fn strips_and_fans_are_triangulated() {
+    let base = quad_doc("quad.bin", &[EMISSIVE], "");
+    for (mode, expected) in [
+        (5, [UVec3::new(0, 1, 2), UVec3::new(1, 3, 2)]),
+        (6, [UVec3::new(1, 2, 0), UVec3::new(2, 3, 0)]),
+    ] {
+        let doc = base.replace(r#""indices": 3,"#, &format!(r#""mode": {mode},"#));
+        let s = load_gltf(&write_case("strip", &doc, true)).unwrap();
+        assert_eq!(s.meshes[0].indices, expected, "mode {mode}");
+    }
+    let lines = base.replace(r#""indices": 3,"#, r#""mode": 1,"#);
+    let (_, msg) = gltf_error(load_gltf(&write_case("lines", &lines, true)));
+    assert!(
+        msg.contains("Lines primitives are not supported") && msg.contains("only triangles"),
+        "{msg}"
+    );
+}
+
+#[test]
+fn a_glb_that_is_not_binary_says_bad_magic() {
+    let dir = temp_dir("notglb");
+    let file = dir.join("scene.glb");
+    std::fs::write(&file, quad_doc("quad.bin", &[EMISSIVE], "")).unwrap();
+    let (_, msg) = gltf_error(load_gltf(&file));
+    assert!(
+        msg.contains("not a binary glTF") && msg.contains("bad magic"),
+        "{msg}"
+    );
 }

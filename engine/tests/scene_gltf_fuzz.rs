@@ -1,7 +1,10 @@
-//! Property: importing mutated glTF / GLB files never panics (errors are
-//! fine). Seeds come from the committed corpus in `tests/corpus/gltf/`.
+//! Property: importing mutated glTF / GLB files (bytes, and JSON number and
+//! string fields) never panics and never hangs (errors are fine). Seeds come
+//! from the committed corpus in `tests/corpus/gltf/`.
 
 use std::path::PathBuf;
+use std::sync::mpsc::{self, RecvTimeoutError};
+use std::time::Duration;
 
 use lucid_engine::scene::load_gltf_slice;
 use proptest::prelude::*;
@@ -69,17 +72,21 @@ enum Mutation {
     Splice(f64, f64, u8),
 }
 
-const NUMBERS: [&str; 14] = [
+const NUMBERS: [&str; 18] = [
     "0",
     "-1",
     "1",
     "2",
     "3",
+    "5",
+    "6",
     "7",
     "65535",
     "4294967295",
     "18446744073709551616",
     "1e39",
+    "3e38",
+    "1e30",
     "-1e39",
     "0.5",
     "1e-45",
@@ -181,28 +188,46 @@ fn apply(mut data: Vec<u8>, mutations: &[Mutation]) -> Vec<u8> {
     data
 }
 
+/// The longest an import of a small file may take before it counts as a hang.
+const DEADLINE: Duration = Duration::from_secs(10);
+
+/// Imports `data` on its own thread: a panic or a hang past [`DEADLINE`]
+/// fails the test (a hang does not stall the run).
+fn import_checked(data: Vec<u8>, base: Option<PathBuf>, label: &'static str) {
+    let (done, finished) = mpsc::channel();
+    std::thread::spawn(move || {
+        let _ = load_gltf_slice(&data, base.as_deref(), label);
+        let _ = done.send(());
+    });
+    match finished.recv_timeout(DEADLINE) {
+        Ok(()) => {}
+        Err(RecvTimeoutError::Timeout) => panic!("import hung for more than {DEADLINE:?}"),
+        Err(RecvTimeoutError::Disconnected) => panic!("import panicked"),
+    }
+}
+
 proptest! {
-    #![proptest_config(ProptestConfig { cases: 400, failure_persistence: None, ..ProptestConfig::default() })]
+    #![proptest_config(ProptestConfig { cases: 2000, failure_persistence: None, ..ProptestConfig::default() })]
 
     #[test]
     fn mutated_gltf_never_panics(file in 0..3usize, mutations in proptest::collection::vec(mutation(), 1..5)) {
         let seeds = corpus();
         let data = apply(seeds[file % seeds.len()].clone(), &mutations);
-        let _ = load_gltf_slice(&data, Some(&corpus_dir()), "fuzz.gltf");
+        import_checked(data, Some(corpus_dir()), "fuzz.gltf");
     }
 
     #[test]
     fn mutated_glb_never_panics(file in 0..3usize, mutations in proptest::collection::vec(mutation(), 1..5)) {
         let seeds = glb_corpus();
         let data = apply(seeds[file % seeds.len()].clone(), &mutations);
-        let _ = load_gltf_slice(&data, Some(&corpus_dir()), "fuzz.glb");
+        import_checked(data, Some(corpus_dir()), "fuzz.glb");
     }
 
     #[test]
     fn arbitrary_bytes_never_panic(data in proptest::collection::vec(any::<u8>(), 0..256), glb_header in any::<bool>()) {
         let mut bytes = if glb_header { b"glTF\x02\0\0\0".to_vec() } else { Vec::new() };
         bytes.extend(data);
-        let _ = load_gltf_slice(&bytes, None, "noise");
+        import_checked(bytes, None, "noise");
     }
 }
 

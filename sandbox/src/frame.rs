@@ -139,7 +139,7 @@ impl Session {
         let memory = self.ctx.memory_report();
         let pass_timings = self.source.executor().pass_timings().to_vec();
         let readouts = ui::Readouts {
-            fps: self.stats.fps(now),
+            frame_rate: self.stats.frame_rate(now),
             frame_times_ms: self.stats.frame_times_ms().collect(),
             pass_timings: &pass_timings,
             samples: self.source.samples_accumulated(),

@@ -321,3 +321,107 @@ fn dataset_writes_records_and_references_with_an_index() {
     let odd = lucid(&["dataset", "--out", dir.to_str().unwrap(), "--size", "18x12"]);
     assert!(stderr(&odd).contains("multiples of 4"), "{}", stderr(&odd));
 }
+
+/// Fails before any rendering (no device is even opened), with one line naming the problem.
+fn assert_fails_at_once(args: &[&str], expect: &str) {
+    let started = std::time::Instant::now();
+    let out = lucid(args);
+    let seconds = started.elapsed().as_secs_f64();
+    let err = stderr(&out);
+    assert!(!out.status.success(), "{args:?} must fail");
+    assert_eq!(err.lines().count(), 1, "{args:?}: one line, got {err:?}");
+    assert!(
+        err.contains(expect),
+        "{args:?}: expected {expect:?} in {err:?}"
+    );
+    assert!(!err.contains("rendering"), "{args:?} rendered first: {err}");
+    assert!(seconds < 5.0, "{args:?} took {seconds:.1} s to fail");
+}
+
+#[test]
+fn output_paths_are_checked_before_rendering() {
+    assert_fails_at_once(
+        &[
+            "render",
+            "--size",
+            "8x8",
+            "--frames",
+            "1",
+            "--out",
+            "/nonexistent/x.png",
+        ],
+        "--out /nonexistent/x.png: the folder /nonexistent does not exist",
+    );
+    assert_fails_at_once(
+        &["render", "--size", "8x8", "--out", "x.tiff"],
+        "--out x.tiff must end in .png or .exr",
+    );
+    assert_fails_at_once(
+        &[
+            "bench",
+            "--size",
+            "8x8",
+            "--frames",
+            "1",
+            "--json",
+            "/nonexistent/b.json",
+        ],
+        "the folder /nonexistent does not exist",
+    );
+    assert_fails_at_once(
+        &["bench", "--size", "8x8", "--frames", "1", "--json", "b.txt"],
+        "--json b.txt must end in .json",
+    );
+    let plain = temp("plain-file");
+    std::fs::write(&plain, b"not a folder").unwrap();
+    let under_file = plain.join("out");
+    for command in ["sequence", "dataset"] {
+        assert_fails_at_once(
+            &[
+                command,
+                "--size",
+                "8x8",
+                "--out",
+                under_file.to_str().unwrap(),
+            ],
+            "cannot create the folder",
+        );
+    }
+    std::fs::remove_file(&plain).unwrap();
+}
+
+#[test]
+fn non_finite_float_options_are_refused_with_their_range() {
+    for value in ["NaN", "inf", "-inf"] {
+        let exposure = format!("--exposure={value}");
+        assert_clear_failure(
+            &["render", "--size", "8x8", &exposure],
+            "'--exposure <EXPOSURE>': must be a finite number from -64 to 64",
+        );
+        assert_clear_failure(
+            &["evaluate", "somewhere", &exposure],
+            "must be a finite number from -64 to 64",
+        );
+        let fps = format!("--fps={value}");
+        assert_clear_failure(
+            &["sequence", "--size", "8x8", &fps],
+            "'--fps <FPS>': must be a finite number from 0.01 to 1000",
+        );
+    }
+}
+
+#[test]
+fn evaluate_without_method_folders_names_the_expected_ones() {
+    let dir = temp("evaluate-reference-only");
+    let reference = dir.join("reference");
+    std::fs::create_dir_all(&reference).unwrap();
+    let image = lucid_engine::capture::ImageData::from_pixels(2, 2, vec![[0.5; 4]; 4]).unwrap();
+    lucid_engine::capture::save(reference.join("0000.exr"), &image).unwrap();
+    assert_fails_at_once(
+        &["evaluate", dir.to_str().unwrap()],
+        "no method folders to evaluate against reference/ (expected one or more of none/, \
+         spatial/, svgf/, neural/, oidn/)",
+    );
+    assert!(!dir.join("metrics.csv").exists());
+    std::fs::remove_dir_all(&dir).unwrap();
+}

@@ -56,9 +56,10 @@ pub(super) fn read_file(path: &Path) -> Result<Vec<u8>, CaptureError> {
     })
 }
 
-/// Writes a whole file, naming `path` in the error.
+/// Writes a whole file atomically (the old file stays if writing fails), naming `path` in the
+/// error.
 pub(super) fn write_file(path: &Path, bytes: &[u8]) -> Result<(), CaptureError> {
-    std::fs::write(path, bytes).map_err(|source| CaptureError::Io {
+    crate::atomic_write::write_atomic(path, bytes).map_err(|source| CaptureError::Io {
         path: path.to_path_buf(),
         source,
     })

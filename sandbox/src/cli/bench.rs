@@ -1,12 +1,14 @@
 //! `lucid bench`: GPU frame times (timestamps per pass), paths/s and rays/s for one scene and
 //! algorithm, printed and written as JSON.
 
+use super::output_path;
 use super::pipeline_stats;
 use super::progress::Progress;
 use super::render_options::RenderOptions;
 use super::scene_source;
 use anyhow::Context as _;
 use clap::Args;
+use lucid_engine::atomic_write::write_atomic;
 use lucid_engine::{Context, ContextDesc};
 use std::collections::BTreeMap;
 use std::path::PathBuf;
@@ -62,6 +64,9 @@ fn summary(values: &[f64]) -> serde_json::Value {
 
 /// Runs the benchmark.
 pub fn run(args: &BenchArgs) -> anyhow::Result<()> {
+    if let Some(path) = &args.json {
+        output_path::check_file("--json", path, &["json"])?;
+    }
     let scene = scene_source::load(&args.options.scene)?;
     let mut desc = ContextDesc::from_env();
     desc.pipeline_statistics |= args.pipeline_statistics;
@@ -147,7 +152,7 @@ pub fn run(args: &BenchArgs) -> anyhow::Result<()> {
     }
     println!("{}", serde_json::to_string_pretty(&report)?);
     if let Some(path) = &args.json {
-        std::fs::write(path, serde_json::to_string_pretty(&report)?)
+        write_atomic(path, serde_json::to_string_pretty(&report)?.as_bytes())
             .with_context(|| format!("writing {}", path.display()))?;
     }
     Ok(())

@@ -8,6 +8,7 @@
 //! from a random start at a random speed, with a random extra turn (slow pans to fast turns); a
 //! new sequence is a camera cut.
 
+use super::output_path;
 use super::progress::Progress;
 use super::render_options::samples_per_pixel;
 use super::size::Size;
@@ -15,6 +16,7 @@ use anyhow::{bail, Context as _};
 use clap::Args;
 use glam::Quat;
 use half::f16;
+use lucid_engine::atomic_write::write_atomic;
 use lucid_engine::scene::{builtin, Camera, Scene};
 use lucid_engine::{Context, ContextDesc};
 use lucid_passes::denoise::neural::RECORD_CHANNELS;
@@ -79,8 +81,7 @@ pub fn run(args: &DatasetArgs) -> anyhow::Result<()> {
     if w % 4 != 0 || h % 4 != 0 {
         bail!("--size {w}x{h}: width and height must be multiples of 4");
     }
-    std::fs::create_dir_all(&args.out)
-        .with_context(|| format!("creating {}", args.out.display()))?;
+    output_path::create_folder("--out", &args.out)?;
     let jobs = plan(args);
     let ctx = Context::new(&ContextDesc::from_env())?;
     let progress = Progress::new(jobs.len() as u64 * u64::from(args.frames), "frames");
@@ -124,7 +125,7 @@ pub fn run(args: &DatasetArgs) -> anyhow::Result<()> {
         "sequences": index,
     });
     let path = args.out.join("index.json");
-    std::fs::write(&path, serde_json::to_string_pretty(&index)?)
+    write_atomic(&path, serde_json::to_string_pretty(&index)?.as_bytes())
         .with_context(|| format!("writing {}", path.display()))?;
     eprintln!("{} sequences in {}", jobs.len(), args.out.display());
     Ok(())
@@ -278,6 +279,6 @@ fn render_sequence(
         ),
     ]);
     let metadata = HashMap::from([("scene".to_string(), scene.name.clone())]);
-    safetensors::serialize_to_file(&tensors, &Some(metadata), path)
-        .with_context(|| format!("writing {}", path.display()))
+    let bytes = safetensors::serialize(&tensors, &Some(metadata))?;
+    write_atomic(path, &bytes).with_context(|| format!("writing {}", path.display()))
 }

@@ -1,9 +1,11 @@
 //! `lucid evaluate`: metrics of rendered sequences against their reference, per frame, as CSV and
 //! an SVG plot.
 
+use super::render_options::exposure;
 use super::sequence::{frame_path, Method};
 use anyhow::Context as _;
 use clap::Args;
+use lucid_engine::atomic_write::write_atomic;
 use lucid_engine::capture::{self, ImageData, PngEncoding};
 use lucid_engine::metrics::{evaluate_sequence, FrameMetrics, SequenceMetrics};
 use std::fmt::Write as _;
@@ -16,7 +18,7 @@ pub struct EvaluateArgs {
     #[arg(default_value = "sequence")]
     dir: PathBuf,
     /// Exposure in stops of the display mapping SSIM and FLIP compare.
-    #[arg(long, default_value_t = 0.0, allow_negative_numbers = true)]
+    #[arg(long, default_value_t = 0.0, allow_negative_numbers = true, value_parser = exposure())]
     exposure: f32,
 }
 
@@ -48,25 +50,21 @@ const COLUMNS: [(&str, Metric); 5] = [
 /// Evaluates every method folder of `dir` against `dir/reference`, writing `metrics.csv` and
 /// `metrics.svg` there and printing the means.
 pub fn evaluate_folder(dir: &Path, display: &PngEncoding) -> anyhow::Result<()> {
+    let methods = method_folders(dir)?;
     let reference = load_frames(&dir.join("reference"))?;
     let mut results = Vec::new();
-    for &method in Method::ALL
-        .map(Method::name)
-        .iter()
-        .chain(&EXTERNAL_METHODS)
-    {
-        let folder = dir.join(method);
-        if folder.is_dir() {
-            let frames = load_frames(&folder)?;
-            let metrics = evaluate_sequence(&frames, &reference, display)
-                .with_context(|| format!("evaluating {method}"))?;
-            results.push((method, metrics));
-        }
+    for method in methods {
+        let frames = load_frames(&dir.join(method))?;
+        let metrics = evaluate_sequence(&frames, &reference, display)
+            .with_context(|| format!("evaluating {method}"))?;
+        results.push((method, metrics));
     }
     let csv = dir.join("metrics.csv");
-    std::fs::write(&csv, to_csv(&results)).with_context(|| format!("writing {}", csv.display()))?;
+    write_atomic(&csv, to_csv(&results).as_bytes())
+        .with_context(|| format!("writing {}", csv.display()))?;
     let svg = dir.join("metrics.svg");
-    std::fs::write(&svg, to_svg(&results)).with_context(|| format!("writing {}", svg.display()))?;
+    write_atomic(&svg, to_svg(&results).as_bytes())
+        .with_context(|| format!("writing {}", svg.display()))?;
     for (method, m) in &results {
         let means: Vec<String> = COLUMNS
             .iter()
@@ -76,6 +74,33 @@ pub fn evaluate_folder(dir: &Path, display: &PngEncoding) -> anyhow::Result<()> 
     }
     println!("-> {} and {}", csv.display(), svg.display());
     Ok(())
+}
+
+/// The method folders of `dir` (the sequence's methods, then [`EXTERNAL_METHODS`]) that exist; an
+/// error naming the expected folders when there is none.
+fn method_folders(dir: &Path) -> anyhow::Result<Vec<&'static str>> {
+    anyhow::ensure!(dir.is_dir(), "{}: no such folder", dir.display());
+    let expected: Vec<&'static str> = Method::ALL
+        .map(Method::name)
+        .into_iter()
+        .chain(EXTERNAL_METHODS)
+        .collect();
+    let present: Vec<&'static str> = expected
+        .iter()
+        .copied()
+        .filter(|method| dir.join(method).is_dir())
+        .collect();
+    anyhow::ensure!(
+        !present.is_empty(),
+        "{}: no method folders to evaluate against reference/ (expected one or more of {})",
+        dir.display(),
+        expected
+            .iter()
+            .map(|m| format!("{m}/"))
+            .collect::<Vec<_>>()
+            .join(", ")
+    );
+    Ok(present)
 }
 
 /// Frames `0000.exr`, `0001.exr`, ... of a folder, until the first missing one.

@@ -3,7 +3,9 @@
 mod bench;
 mod dataset;
 mod evaluate;
+mod float_range;
 mod info;
+mod output_path;
 mod pipeline_stats;
 mod progress;
 mod render;

@@ -1,9 +1,9 @@
 //! `lucid render`: a headless render written to an image.
 
+use super::output_path;
 use super::progress::Progress;
 use super::render_options::RenderOptions;
 use super::scene_source;
-use anyhow::{bail, Context as _};
 use clap::Args;
 use lucid_engine::capture::{self, ExrPrecision};
 use lucid_engine::{Context, ContextDesc};
@@ -27,14 +27,7 @@ pub struct RenderArgs {
 
 /// Renders and writes the image.
 pub fn run(args: &RenderArgs) -> anyhow::Result<()> {
-    let extension = args
-        .out
-        .extension()
-        .map(|e| e.to_string_lossy().to_lowercase())
-        .unwrap_or_default();
-    if extension != "png" && extension != "exr" {
-        bail!("--out {} must end in .png or .exr", args.out.display());
-    }
+    let extension = output_path::check_file("--out", &args.out, &["png", "exr"])?;
     let scene = scene_source::load(&args.options.scene)?;
     let ctx = Context::new(&ContextDesc::from_env())?;
     let (w, h) = (args.options.size.width, args.options.size.height);
@@ -66,8 +59,7 @@ pub fn run(args: &RenderArgs) -> anyhow::Result<()> {
         capture::save_exr(&args.out, &image, ExrPrecision::F32)
     } else {
         capture::save_png(&args.out, &image, &args.options.display())
-    }
-    .with_context(|| format!("writing {}", args.out.display()))?;
+    }?;
     println!(
         "{}: {} frames x {} spp in {seconds:.2} s, {} non-finite samples dropped -> {}",
         renderer.scene().name,

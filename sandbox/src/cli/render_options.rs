@@ -1,5 +1,6 @@
 //! Options shared by `render` and `bench`: scene, algorithm, samples, depth, size, seed, display.
 
+use super::float_range::finite_f32;
 use super::size::Size;
 use clap::builder::TypedValueParser;
 use clap::Args;
@@ -32,7 +33,7 @@ pub struct RenderOptions {
     #[arg(long, default_value_t = 0)]
     pub seed: u32,
     /// Exposure in stops.
-    #[arg(long, default_value_t = 0.0, allow_negative_numbers = true)]
+    #[arg(long, default_value_t = 0.0, allow_negative_numbers = true, value_parser = exposure())]
     pub exposure: f32,
     /// Tone curve for PNG output and display.
     #[arg(long, value_enum, default_value_t = ToneCurve::Aces)]
@@ -91,4 +92,9 @@ pub fn samples_per_pixel(max: i64) -> impl TypedValueParser<Value = SamplesPerPi
     clap::value_parser!(u32)
         .range(1..=max)
         .try_map(SamplesPerPixel::try_from)
+}
+
+/// Parses `--exposure`: stops from -64 to 64.
+pub fn exposure() -> impl Fn(&str) -> Result<f32, String> + Clone + Send + Sync + 'static {
+    finite_f32(-64.0, 64.0)
 }

@@ -2,6 +2,8 @@
 //! evaluates them (`lucid evaluate`).
 
 use super::evaluate;
+use super::float_range::finite_f32;
+use super::output_path;
 use super::progress::Progress;
 use super::render_options::{samples_per_pixel, RenderOptions};
 use super::scene_source;
@@ -24,7 +26,7 @@ pub struct SequenceArgs {
     #[arg(long, default_value_t = 60, value_parser = clap::value_parser!(u32).range(2..))]
     frames: u32,
     /// Frames per second along the camera path.
-    #[arg(long, default_value_t = 30.0)]
+    #[arg(long, default_value_t = 30.0, value_parser = finite_f32(0.01, 1000.0))]
     fps: f32,
     /// Samples per pixel of each reference frame.
     #[arg(long, default_value = "1024", value_parser = samples_per_pixel(u32::MAX.into()))]
@@ -100,6 +102,7 @@ const REFERENCE_SPP_PER_FRAME: SamplesPerPixel = SamplesPerPixel::new(16).unwrap
 
 /// Renders every sequence and writes the evaluation.
 pub fn run(args: &SequenceArgs) -> anyhow::Result<()> {
+    output_path::create_folder("--out", &args.out)?;
     let scene = scene_source::load(&args.options.scene)?;
     let path = scene
         .camera_path

@@ -9,14 +9,14 @@ mod svgf_panel;
 
 use super::frame_source::SideStats;
 use super::state::AppState;
-use super::stats::Fps;
+use super::stats::FrameRate;
 use lucid_engine::graph::PassTiming;
 use lucid_engine::memory::MemoryReport;
 
 /// Numbers the panels show but do not edit.
 pub struct Readouts<'a> {
-    /// Frames per second.
-    pub fps: Fps,
+    /// Frame time and frames per second.
+    pub frame_rate: FrameRate,
     /// Recent frame times in milliseconds, oldest first.
     pub frame_times_ms: Vec<f64>,
     /// GPU time per pass of the last completed frame.

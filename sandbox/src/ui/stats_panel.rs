@@ -1,4 +1,4 @@
-//! The live numbers: FPS, frame-time graph, GPU time per pass, samples and memory.
+//! The live numbers: frame time and FPS, frame-time graph, GPU time per pass, samples and memory.
 
 use super::charts;
 use super::Readouts;
@@ -10,7 +10,7 @@ pub fn show(ui: &mut egui::Ui, r: &Readouts<'_>) {
         .show(ui, |ui| {
             ui.label(format!("{} on {}", r.source, r.device));
             ui.label(format!("{} x {}", r.extent[0], r.extent[1]));
-            ui.label(format!("FPS {:.1} ± {:.1}", r.fps.mean, r.fps.std_dev));
+            ui.label(r.frame_rate.label());
             ui.label(format!("samples accumulated: {}", r.samples));
             ui.label("frame time (ms)");
             charts::line_graph(ui, &r.frame_times_ms);

@@ -13,10 +13,13 @@ fn u32_at(b: &[u8], at: usize) -> Option<u32> {
     Some(u32::from_le_bytes([s[0], s[1], s[2], s[3]]))
 }
 
+/// The first four bytes of every GLB file.
+pub const GLB_MAGIC: [u8; 4] = *b"glTF";
+
 /// Parses a file: GLB if it starts with the `glTF` magic, JSON otherwise.
 /// Every length is bounds checked.
 pub fn split(bytes: &[u8]) -> Result<Container<'_>, String> {
-    if !bytes.starts_with(b"glTF") {
+    if !bytes.starts_with(&GLB_MAGIC) {
         return Ok(Container {
             json: bytes,
             bin: None,

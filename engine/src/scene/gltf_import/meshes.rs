@@ -7,8 +7,13 @@ use gltf::{Primitive, Semantic};
 use super::accessor::{read_floats, read_indices};
 use crate::scene::{Mesh, Scene};
 
-/// Converts one triangle primitive into a scene mesh and returns its id,
-/// or `None` (with a warning) for non-triangle primitives.
+/// The largest coordinate magnitude of world-space geometry: squared distances (the bounds'
+/// diagonal, the automatic camera's distance) stay within `f32`.
+pub const MAX_COORDINATE: f32 = 1e18;
+
+/// Converts one triangle, triangle-strip or triangle-fan primitive into a
+/// scene mesh and returns its id, or `None` (with a warning) for points and
+/// lines.
 pub fn primitive(
     scene: &mut Scene,
     mesh: &gltf::Mesh,
@@ -22,9 +27,13 @@ pub fn primitive(
             .map_or_else(|| format!("mesh {}", mesh.index()), str::to_owned),
         prim.index()
     );
-    if prim.mode() != Mode::Triangles {
+    if !matches!(
+        prim.mode(),
+        Mode::Triangles | Mode::TriangleStrip | Mode::TriangleFan
+    ) {
         scene.warnings.push(format!(
-            "mesh `{name}`: {:?} primitives are not supported; skipped",
+            "mesh `{name}`: {:?} primitives are not supported (only triangles, triangle strips \
+             and triangle fans); skipped",
             prim.mode()
         ));
         return Ok(None);
@@ -38,6 +47,15 @@ pub fn primitive(
         .into_iter()
         .map(Vec3::from)
         .collect();
+    if let Some((k, p)) = positions
+        .iter()
+        .enumerate()
+        .find(|(_, p)| p.abs().max_element() > MAX_COORDINATE)
+    {
+        return Err(ctx(format!(
+            "POSITION {k} {p} is out of range (coordinates up to ±{MAX_COORDINATE:e} are supported)"
+        )));
+    }
     let nv = positions.len();
     let normals = match prim.get(&Semantic::Normals) {
         Some(a) => read_floats::<3>(&a, buffers, false).map_err(ctx)?,
@@ -54,12 +72,7 @@ pub fn primitive(
         Some(a) => read_indices(&a, buffers).map_err(ctx)?,
         None => (0..nv as u32).collect(),
     };
-    if flat.len() % 3 != 0 {
-        return Err(ctx(format!(
-            "{} indices do not form whole triangles",
-            flat.len()
-        )));
-    }
+    let indices = triangles(prim.mode(), &flat).map_err(ctx)?;
     if let Some(bad) = flat.iter().find(|&&i| i as usize >= nv) {
         return Err(ctx(format!(
             "index {bad} is out of range for {nv} vertices"
@@ -73,14 +86,40 @@ pub fn primitive(
             .map(|n| Vec3::from(n).try_normalize().unwrap_or(Vec3::Y))
             .collect(),
         uvs: uvs.into_iter().map(Vec2::from).collect(),
-        indices: flat
-            .chunks_exact(3)
-            .map(|t| UVec3::new(t[0], t[1], t[2]))
-            .collect(),
+        indices,
         material,
     };
     if m.normals.is_empty() {
         m.compute_normals();
     }
     Ok(Some(scene.add_mesh(m)))
+}
+
+/// The triangles of a triangle list, strip or fan (glTF 2.0, primitive topology: strip triangle `i` is
+/// `(i, i + 1, i + 2)`, its odd ones reversed to keep the winding; fan triangle `i` is
+/// `(i + 1, i + 2, 0)`).
+fn triangles(mode: Mode, flat: &[u32]) -> Result<Vec<UVec3>, String> {
+    match mode {
+        Mode::Triangles if flat.len() % 3 != 0 => Err(format!(
+            "{} indices do not form whole triangles",
+            flat.len()
+        )),
+        Mode::Triangles => Ok(flat
+            .chunks_exact(3)
+            .map(|t| UVec3::new(t[0], t[1], t[2]))
+            .collect()),
+        _ if flat.len() < 3 => Err(format!(
+            "a {mode:?} of {} vertices forms no triangle",
+            flat.len()
+        )),
+        Mode::TriangleStrip => Ok((0..flat.len() - 2)
+            .map(|i| {
+                let (b, c) = if i % 2 == 0 { (1, 2) } else { (2, 1) };
+                UVec3::new(flat[i], flat[i + b], flat[i + c])
+            })
+            .collect()),
+        _ => Ok((0..flat.len() - 2)
+            .map(|i| UVec3::new(flat[i + 1], flat[i + 2], flat[0]))
+            .collect()),
+    }
 }

@@ -9,7 +9,7 @@
 //! scene without any light is accepted with a warning in
 //! `Scene::warnings`.
 //!
-//! What is imported: triangle primitives (positions, normals, `TEXCOORD_0`,
+//! What is imported: triangle, strip and fan primitives (positions, normals, `TEXCOORD_0`,
 //! indices) as meshes, the default scene's node hierarchy as instances
 //! with world transforms, the first perspective camera, materials (see
 //! [`materials`]) with base-colour textures, and `KHR_lights_punctual`
@@ -50,6 +50,18 @@ pub fn load_gltf(path: &Path) -> Result<Scene, SceneError> {
         file: label.clone(),
         message: format!("cannot read file: {e}"),
     })?;
+    let glb = path
+        .extension()
+        .is_some_and(|e| e.eq_ignore_ascii_case("glb"));
+    if glb && !bytes.starts_with(&container::GLB_MAGIC) {
+        return Err(SceneError::Gltf {
+            file: label,
+            message: format!(
+                "not a binary glTF: bad magic {:?} (a .glb file starts with \"glTF\")",
+                String::from_utf8_lossy(&bytes[..bytes.len().min(4)])
+            ),
+        });
+    }
     load_gltf_slice(&bytes, path.parent(), &label)
 }
 
@@ -144,8 +156,13 @@ fn import(bytes: &[u8], base: Option<&Path>, label: &str) -> Result<Scene, Strin
     };
     importer.walk(&mut scene, gscene.nodes().collect())?;
     if scene.instances.is_empty() {
+        let skipped = if scene.warnings.is_empty() {
+            String::new()
+        } else {
+            format!(" ({})", scene.warnings.join("; "))
+        };
         return Err(format!(
-            "scene {} is empty: it places no triangle mesh",
+            "scene {} is empty: it places no triangle mesh{skipped}",
             gscene.index()
         ));
     }

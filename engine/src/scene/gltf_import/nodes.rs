@@ -10,7 +10,7 @@ use gltf::json::validation::Checked;
 use gltf::{Document, Node};
 
 use super::materials::MaterialImporter;
-use super::meshes;
+use super::meshes::{self, MAX_COORDINATE};
 use crate::scene::{Camera, PunctualLight, Scene, Sun};
 
 /// Walks one glTF scene into a Lucid scene.
@@ -82,6 +82,7 @@ impl NodeImporter<'_> {
                     }
                 };
                 if let Some(id) = id {
+                    check_world_extent(scene, node, id, &affine)?;
                     scene.add_instance(id, affine, None);
                 }
             }
@@ -196,4 +197,32 @@ impl NodeImporter<'_> {
         }
         Ok(())
     }
+}
+
+/// Checks that mesh `id` placed by `node` with `transform` stays within [`MAX_COORDINATE`]
+/// (a huge scale or translation), naming the node and the mesh.
+fn check_world_extent(
+    scene: &Scene,
+    node: &Node,
+    id: u32,
+    transform: &Affine3A,
+) -> Result<(), String> {
+    let mesh = &scene.meshes[id as usize];
+    let bounds = mesh.bounds().transformed(transform);
+    if bounds.is_empty() {
+        return Ok(());
+    }
+    let reach = bounds.min.abs().max(bounds.max.abs()).max_element();
+    if reach <= MAX_COORDINATE {
+        return Ok(());
+    }
+    let node_name = node
+        .name()
+        .map_or_else(String::new, |n| format!(" (`{n}`)"));
+    Err(format!(
+        "node {}{node_name}: mesh `{}` reaches {reach:e} in world space, beyond the supported \
+         ±{MAX_COORDINATE:e} (check the node's scale and translation)",
+        node.index(),
+        mesh.name
+    ))
 }
