@@ -10,6 +10,8 @@
 #ifndef LUCID_BDPT_GLSL
 #define LUCID_BDPT_GLSL
 
+#include "common/sample_batch.glsl"
+
 // Power heuristic (exponent 2) when true, balance heuristic otherwise.
 layout(constant_id = 120) const bool MIS_POWER = true;
 
@@ -20,6 +22,7 @@ layout(push_constant) uniform Params {
     uint stride;       // light-pass invocations per dispatch row
     float light_ratio; // light subpaths per camera sample
     float splat_scale; // pixels / light subpaths
+    SampleBatch batch; // the camera pass's samples this dispatch
 } pc;
 
 // A light subpath vertex on a non-delta surface, 64 bytes.

@@ -8,7 +8,10 @@
 // environment are found by this pass alone and weighted between BSDF sampling and NEE as the path
 // tracer does. Adds the light pass's splats and writes radiance, radiance demodulated by the
 // first hit (its emission removed, divided by its albedo) and that hit's albedo and emission.
-// Non-finite samples are dropped and counted in b_stats.
+// Non-finite samples are dropped and counted in b_stats, as are the pixels whose loops the device
+// cut short. The samples come in batches (common/sample_batch.glsl): the images hold the running
+// sums until the last batch writes the averages, and b_rng_state each pixel's generator between
+// batches.
 #include "common/math.glsl"
 #include "common/rng.glsl"
 #include "common/scene.glsl"
@@ -24,11 +27,12 @@
 
 layout(local_size_x = 8, local_size_y = 8) in;
 
-layout(set = 0, binding = 16, rgba32f) uniform writeonly image2D u_radiance;
+layout(set = 0, binding = 16, rgba32f) uniform image2D u_radiance;
 layout(set = 0, binding = 17, rgba32f) uniform writeonly image2D u_demodulated;
-layout(set = 0, binding = 23, rgba32f) uniform writeonly image2D u_albedo;
-layout(set = 0, binding = 24, rgba32f) uniform writeonly image2D u_emission;
-layout(set = 0, binding = 18, std430) buffer Stats { uint non_finite; uint rays; uint pad0; uint pad1; } b_stats;
+layout(set = 0, binding = 23, rgba32f) uniform image2D u_albedo;
+layout(set = 0, binding = 24, rgba32f) uniform image2D u_emission;
+layout(set = 0, binding = 18, std430) buffer Stats { uint non_finite; uint rays; uint cut_short; uint pad1; } b_stats;
+layout(set = 0, binding = 25, std430) buffer RngState { uint s[]; } b_rng_state;
 layout(set = 0, binding = 20, std430) readonly buffer Lvc { LightVertex v[]; } b_lvc;
 layout(set = 0, binding = 21, std430) readonly buffer LvcLengths { uint n[]; } b_lvc_lengths;
 layout(set = 0, binding = 22, std430) readonly buffer Splat { uint64_t v[]; } b_splat;
@@ -258,16 +262,24 @@ void main() {
     if (any(greaterThanEqual(uvec2(pixel), size))) {
         return;
     }
-    uint rng = rng_init(uvec2(pixel), b_frame.f.frame_index, b_frame.f.seed);
+    SampleBatch batch = pc.batch;
+    uint state_index = uint(pixel.y) * size.x + uint(pixel.x);
+    bool first = batch_is_first(batch);
+    uint rng = first ? rng_init(uvec2(pixel), b_frame.f.frame_index, b_frame.f.seed)
+                     : b_rng_state.s[state_index];
     uint spp = b_frame.f.samples_per_pixel;
     uint max_depth = b_frame.f.max_depth;
     uint rr_depth = b_frame.f.rr_depth;
     float aspect = float(size.x) / float(size.y);
-    vec3 sum = vec3(0.0);
+    vec3 sum = first ? vec3(0.0) : imageLoad(u_radiance, pixel).rgb;
     vec3 albedo_sum = vec3(0.0);
     vec3 emission_sum = vec3(0.0);
+    if (SURFACE_OUTPUTS && !first) {
+        albedo_sum = imageLoad(u_albedo, pixel).rgb;
+        emission_sum = imageLoad(u_emission, pixel).rgb;
+    }
     uint dropped = 0u;
-    for (uint i = 0u; i < spp; ++i) {
+    for (uint i = 0u; i < batch.count; ++i) {
         vec2 ndc = film_ndc(vec2(pixel), rng_next2(rng), vec2(size));
         vec3 origin;
         vec3 dir;
@@ -290,6 +302,18 @@ void main() {
     uint rays = subgroupAdd(rays_traced);
     if (subgroupElect()) {
         atomicAdd(b_stats.rays, rays);
+    }
+    if (loop_limit_reached(batch.count + 1u)) {
+        atomicAdd(b_stats.cut_short, 1u);
+    }
+    if (!batch_is_last(batch, spp)) {
+        b_rng_state.s[state_index] = rng;
+        imageStore(u_radiance, pixel, vec4(sum, 1.0));
+        if (SURFACE_OUTPUTS) {
+            imageStore(u_albedo, pixel, vec4(albedo_sum, 1.0));
+            imageStore(u_emission, pixel, vec4(emission_sum, 1.0));
+        }
+        return;
     }
     uint i = 3u * (uint(pixel.y) * size.x + uint(pixel.x));
     vec3 splat = vec3(float(b_splat.v[i]), float(b_splat.v[i + 1u]), float(b_splat.v[i + 2u]))

@@ -1,12 +1,15 @@
 #version 460
 #extension GL_KHR_shader_subgroup_arithmetic : require
 #extension GL_KHR_shader_subgroup_basic : require
-// Unidirectional path tracing (common/path.glsl), `spp` samples per pixel, one thread per pixel;
+// Unidirectional path tracing (common/path.glsl), `spp` samples per pixel, one thread per pixel,
+// in batches of samples (common/sample_batch.glsl): the images hold the running sums until the
+// last batch writes the averages, and b_rng_state each pixel's generator between batches;
 // on frames with replay on, a pixel per stratum replays last frame's paths instead
 // (common/replay.glsl) so that the denoiser gets noise-free temporal gradients at no extra paths.
 // Writes the noisy radiance, the radiance demodulated by the first hit (emission removed, divided
 // by albedo) and that hit's albedo and emission. Non-finite samples are dropped and counted in
-// b_stats, as are the rays traced (for rays/s figures).
+// b_stats, as are the rays traced (for rays/s figures) and the pixels whose loops the device cut
+// short.
 #include "common/math.glsl"
 #include "common/rng.glsl"
 #include "common/scene.glsl"
@@ -19,17 +22,19 @@
 #include "common/path.glsl"
 #include "common/replay.glsl"
 #include "common/transport_outputs.glsl"
+#include "common/sample_batch.glsl"
 
 layout(local_size_x = 8, local_size_y = 8) in;
 
-layout(set = 0, binding = 16, rgba32f) uniform writeonly image2D u_radiance;
-layout(set = 0, binding = 17, rgba32f) uniform writeonly image2D u_demodulated;
-layout(set = 0, binding = 18, rgba32f) uniform writeonly image2D u_albedo;
-layout(set = 0, binding = 19, rgba32f) uniform writeonly image2D u_emission;
-layout(set = 0, binding = 20, std430) buffer Stats { uint non_finite; uint rays; uint pad0; uint pad1; } b_stats;
+layout(set = 0, binding = 16, rgba32f) uniform image2D u_radiance;
+layout(set = 0, binding = 17, rgba32f) uniform image2D u_demodulated;
+layout(set = 0, binding = 18, rgba32f) uniform image2D u_albedo;
+layout(set = 0, binding = 19, rgba32f) uniform image2D u_emission;
+layout(set = 0, binding = 20, std430) buffer Stats { uint non_finite; uint rays; uint cut_short; uint pad1; } b_stats;
 layout(set = 0, binding = 21, rgba16f) uniform readonly image2D u_motion;
+layout(set = 0, binding = 22, std430) buffer RngState { uint s[]; } b_rng_state;
 
-layout(push_constant) uniform Push { ReplayParams replay; } push;
+layout(push_constant) uniform Push { ReplayParams replay; SampleBatch batch; } push;
 
 void main() {
     ivec2 pixel = ivec2(gl_GlobalInvocationID.xy);
@@ -50,18 +55,26 @@ void main() {
             camera = b_frame.f.prev_camera;
         }
     }
-    uint rng = rng_init(uvec2(source), frame, b_frame.f.seed);
+    SampleBatch batch = push.batch;
+    uint state_index = uint(pixel.y) * size.x + uint(pixel.x);
+    bool first = batch_is_first(batch);
+    uint rng = first ? rng_init(uvec2(source), frame, b_frame.f.seed) : b_rng_state.s[state_index];
     uint spp = b_frame.f.samples_per_pixel;
     uint max_depth = b_frame.f.max_depth;
     uint rr_depth = b_frame.f.rr_depth;
     float aspect = float(size.x) / float(size.y);
     uint rays = 0u;
     uint dropped = 0u;
-    vec3 sum = vec3(0.0);
+    vec3 sum = first ? vec3(0.0) : imageLoad(u_radiance, pixel).rgb;
     vec3 demodulated_sum = vec3(0.0);
     vec3 albedo_sum = vec3(0.0);
     vec3 emission_sum = vec3(0.0);
-    for (uint i = 0u; i < spp; ++i) {
+    if (SURFACE_OUTPUTS && !first) {
+        demodulated_sum = imageLoad(u_demodulated, pixel).rgb;
+        albedo_sum = imageLoad(u_albedo, pixel).rgb;
+        emission_sum = imageLoad(u_emission, pixel).rgb;
+    }
+    for (uint i = 0u; i < batch.count; ++i) {
         vec2 ndc = film_ndc(vec2(source), rng_next2(rng), vec2(size));
         vec3 origin;
         vec3 dir;
@@ -83,11 +96,18 @@ void main() {
     if (subgroupElect()) {
         atomicAdd(b_stats.rays, total_rays);
     }
-    float inv_spp = 1.0 / float(spp);
-    imageStore(u_radiance, pixel, vec4(sum * inv_spp, 1.0));
+    if (loop_limit_reached(batch.count + 1u)) {
+        atomicAdd(b_stats.cut_short, 1u);
+    }
+    bool last = batch_is_last(batch, spp);
+    if (!last) {
+        b_rng_state.s[state_index] = rng;
+    }
+    float scale = last ? 1.0 / float(spp) : 1.0;
+    imageStore(u_radiance, pixel, vec4(sum * scale, 1.0));
     if (SURFACE_OUTPUTS) {
-        imageStore(u_demodulated, pixel, vec4(demodulated_sum * inv_spp, 1.0));
-        imageStore(u_albedo, pixel, vec4(albedo_sum * inv_spp, 1.0));
-        imageStore(u_emission, pixel, vec4(emission_sum * inv_spp, 1.0));
+        imageStore(u_demodulated, pixel, vec4(demodulated_sum * scale, 1.0));
+        imageStore(u_albedo, pixel, vec4(albedo_sum * scale, 1.0));
+        imageStore(u_emission, pixel, vec4(emission_sum * scale, 1.0));
     }
 }

@@ -1,4 +1,4 @@
-//! A single-dispatch compute pass declared and bound in one place: each call names a shader
+//! A compute pass (one dispatch, or several of one shader) declared and bound in one place: each call names a shader
 //! binding and a resource once, and both declares the access in the graph and binds the resource
 //! by that name, so what a pass declares and what its shader is given cannot differ.
 //!
@@ -187,6 +187,24 @@ impl ComputePass<'_> {
     /// Gives the pass its work: one dispatch of enough workgroups to cover `threads` invocations
     /// (the workgroup size comes from the shader, which must bounds-check).
     pub fn dispatch(self, threads: [u32; 3]) {
+        self.record(threads, Vec::new());
+    }
+
+    /// Gives the pass its work in several dispatches of `threads` invocations, one per element of
+    /// `pushes` and in their order, each with that element as its push constants (replacing
+    /// [`ComputePass::push`]) and each seeing what the ones before it wrote. For work that one
+    /// dispatch cannot do safely on every device (e.g. many samples per pixel, cut in batches).
+    pub fn dispatch_each<T: bytemuck::Pod>(self, threads: [u32; 3], pushes: Vec<T>) {
+        let pushes = pushes
+            .into_iter()
+            .map(|data| Box::new(data) as Box<dyn PushConstants>)
+            .collect();
+        self.record(threads, pushes);
+    }
+
+    /// Records the dispatches: one per element of `pushes`, or one with the pass's push constants
+    /// when `pushes` is empty.
+    fn record(self, threads: [u32; 3], pushes: Vec<Box<dyn PushConstants>>) {
         let Self {
             pass,
             shader,
@@ -199,18 +217,28 @@ impl ComputePass<'_> {
             for condition in require {
                 condition(ctx)?;
             }
-            let push = push.map(|data| data(ctx));
-            let mut dispatch = ctx.compute(&shader).specialization(&spec);
-            for (name, bound) in &bindings {
-                dispatch = match *bound {
-                    Bound::Image(image) => dispatch.image(name, image),
-                    Bound::Buffer(buffer) => dispatch.buffer(name, buffer),
-                };
+            let pushes: Vec<Option<Box<dyn PushConstants>>> = if pushes.is_empty() {
+                vec![push.map(|data| data(ctx))]
+            } else {
+                pushes.into_iter().map(Some).collect()
+            };
+            for (i, push) in pushes.into_iter().enumerate() {
+                if i > 0 {
+                    ctx.compute_barrier();
+                }
+                let mut dispatch = ctx.compute(&shader).specialization(&spec);
+                for (name, bound) in &bindings {
+                    dispatch = match *bound {
+                        Bound::Image(image) => dispatch.image(name, image),
+                        Bound::Buffer(buffer) => dispatch.buffer(name, buffer),
+                    };
+                }
+                if let Some(push) = push {
+                    dispatch = push.apply(dispatch);
+                }
+                dispatch.dispatch_threads(threads)?;
             }
-            if let Some(push) = push {
-                dispatch = push.apply(dispatch);
-            }
-            dispatch.dispatch_threads(threads)
+            Ok(())
         });
     }
 }

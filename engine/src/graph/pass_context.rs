@@ -55,6 +55,23 @@ impl<'a> PassContext<'a> {
         self.cmd
     }
 
+    /// Makes every compute shader write recorded so far visible to the compute shaders recorded
+    /// after it: between the dispatches of one pass that reads what its previous dispatch wrote.
+    pub fn compute_barrier(&self) {
+        let stage = vk::PipelineStageFlags2::COMPUTE_SHADER;
+        let barrier = vk::MemoryBarrier2::default()
+            .src_stage_mask(stage)
+            .src_access_mask(vk::AccessFlags2::SHADER_STORAGE_WRITE)
+            .dst_stage_mask(stage)
+            .dst_access_mask(
+                vk::AccessFlags2::SHADER_STORAGE_READ | vk::AccessFlags2::SHADER_STORAGE_WRITE,
+            );
+        let barriers = [barrier];
+        let info = vk::DependencyInfo::default().memory_barriers(&barriers);
+        // SAFETY: cmd is recording.
+        unsafe { self.ctx.device().cmd_pipeline_barrier2(self.cmd, &info) };
+    }
+
     /// The Vulkan context.
     pub fn context(&self) -> &Context {
         self.ctx

@@ -10,7 +10,11 @@
 //! [`crate::renderer::Algorithm`].
 
 pub mod bdpt;
+mod frame;
 mod outputs;
 pub mod path_trace;
+mod sample_batches;
 
+pub use frame::Frame;
 pub use outputs::{Images, Outputs, Replay, ReplayParams, SurfaceImages};
+pub use sample_batches::{sample_batches, SampleBatch, SAMPLES_PER_DISPATCH};

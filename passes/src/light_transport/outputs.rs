@@ -50,7 +50,8 @@ pub struct Outputs {
     pub radiance: ImageHandle,
     /// The denoiser's images, when they were asked for.
     pub surface: Option<SurfaceImages>,
-    /// `[non-finite samples dropped, rays traced, 0, 0]` as u32.
+    /// `[non-finite samples dropped, rays traced, pixels whose loops the device cut short, 0]` as
+    /// u32 ([`crate::light_transport::sample_batches`]).
     pub stats: BufferHandle,
 }
 

@@ -537,7 +537,13 @@ impl Renderer {
         (gbuffer, replay): (&GBuffer, ReplayParams),
         surface: bool,
     ) -> light_transport::Outputs {
-        let (w, h) = (self.width, self.height);
+        let sampling = light_transport::Frame {
+            width: self.width,
+            height: self.height,
+            samples_per_pixel: self.settings.samples_per_pixel,
+            max_depth: self.settings.max_depth,
+            surface,
+        };
         match self.settings.algorithm {
             Algorithm::PathTracing => {
                 // Replay serves the denoiser; without one the pass needs no G-buffer.
@@ -545,33 +551,16 @@ impl Renderer {
                     params: replay,
                     motion: gbuffer.motion,
                 });
-                path_trace::add_path_trace(
-                    g,
-                    scene,
-                    frame,
-                    &self.spec,
-                    replay.as_ref(),
-                    (w, h),
-                    surface,
-                )
+                path_trace::add_path_trace(g, scene, frame, &self.spec, replay.as_ref(), sampling)
             }
-            Algorithm::Bidirectional => {
-                let sampling = bdpt::Frame {
-                    width: w,
-                    height: h,
-                    samples_per_pixel: self.settings.samples_per_pixel,
-                    max_depth: self.settings.max_depth,
-                    surface,
-                };
-                bdpt::add_bdpt(
-                    g,
-                    scene,
-                    frame,
-                    &self.spec,
-                    sampling,
-                    &bdpt::Config::default(),
-                )
-            }
+            Algorithm::Bidirectional => bdpt::add_bdpt(
+                g,
+                scene,
+                frame,
+                &self.spec,
+                sampling,
+                &bdpt::Config::default(),
+            ),
         }
     }
 
@@ -609,14 +598,25 @@ impl Renderer {
         Ok(g.compile()?.plan)
     }
 
-    /// Records the stats of a finished frame.
+    /// Records the stats of a finished frame; fails when the device cut the loops of any pixel
+    /// short (its image would be wrong).
     pub fn collect_stats(
         &mut self,
         outputs: &lucid_engine::graph::FrameOutputs,
         stats: ReadbackId,
     ) -> Result<()> {
         let words: Vec<u32> = bytemuck::pod_collect_to_vec(outputs.bytes(stats)?);
-        let (dropped, rays) = (words[0], words[1]);
+        let (dropped, rays, cut_short) = (words[0], words[1], words[2]);
+        if cut_short > 0 {
+            return Err(EngineError::Shader {
+                shader: format!("{:?} light transport", self.settings.algorithm),
+                message: format!(
+                    "the device ended the loops of {cut_short} pixels early (llvmpipe stops a \
+                     shader invocation after 65535 loop iterations), so the frame would be wrong: \
+                     lower --max-depth, or use a GPU"
+                ),
+            });
+        }
         if dropped > 0 {
             tracing::warn!("{dropped} non-finite samples dropped this frame");
         }

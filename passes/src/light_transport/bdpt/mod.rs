@@ -7,7 +7,8 @@
 //! - **camera** (`shaders/bdpt/camera.comp`): camera subpaths with emission hits, next-event
 //!   estimation and connections to cached light vertices (a light subpath drawn uniformly, then
 //!   one of its vertices), all combined with SmallVCM's recursive MIS weights; adds the splats and
-//!   writes the frame's radiance.
+//!   writes the frame's radiance; one dispatch per batch of camera samples
+//!   ([`crate::light_transport::sample_batches`]).
 //!
 //! Neither the cache's layout nor the splat sums depend on thread timing, so a frame repeats bit
 //! for bit, as the path tracer's does.
@@ -20,9 +21,8 @@ mod params;
 
 pub use params::{Params, LIGHT_VERTEX_BYTES};
 
-use crate::light_transport::{Images, Outputs};
+use crate::light_transport::{sample_batches, Frame, Images, Outputs};
 use crate::plumbing::scene_buffers::SceneHandles;
-use crate::samples_per_pixel::SamplesPerPixel;
 use crate::shaders::bdpt::{CAMERA, LIGHT};
 use lucid_engine::graph::{Access, BufferHandle, PassContext, RenderGraph};
 use lucid_engine::shader::Specialization;
@@ -61,21 +61,6 @@ impl Default for Config {
             cache_bytes: 128 << 20,
         }
     }
-}
-
-/// The image and sampling of a frame.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub struct Frame {
-    /// Width in pixels.
-    pub width: u32,
-    /// Height in pixels.
-    pub height: u32,
-    /// Camera samples per pixel.
-    pub samples_per_pixel: SamplesPerPixel,
-    /// Longest path in segments (Mitsuba's convention).
-    pub max_depth: u32,
-    /// Write the denoiser's images too ([`crate::light_transport::SurfaceImages`]).
-    pub surface: bool,
 }
 
 /// Adds the light and camera passes, reading the scene and the frame constants; the outputs are
@@ -125,8 +110,17 @@ pub fn add_bdpt(
         .read("b_splat", splat);
     let stats = pass.read_write("b_stats", stats);
     let images = Images::create(&mut pass, "bdpt", (width, height), surface);
-    pass.specialization(&spec).push(&params);
-    pass.dispatch([width, height, 1]);
+    pass.create_buffer(
+        "b_rng_state",
+        "bdpt.rng_state",
+        u64::from(width * height) * 4,
+    );
+    pass.specialization(&spec);
+    let pushes = sample_batches(frame.samples_per_pixel)
+        .into_iter()
+        .map(|batch| Params { batch, ..params })
+        .collect();
+    pass.dispatch_each([width, height, 1], pushes);
     images.with_stats(stats)
 }
 

@@ -2,6 +2,7 @@
 //! constants both BDPT passes share (`Params` in `shaders/bdpt/bdpt.glsl`).
 
 use super::Config;
+use crate::light_transport::SampleBatch;
 use crate::samples_per_pixel::SamplesPerPixel;
 use bytemuck::{Pod, Zeroable};
 
@@ -11,7 +12,7 @@ pub const LIGHT_VERTEX_BYTES: u64 = 64;
 /// Light-pass invocations per dispatch row (the light pass is one-dimensional).
 pub const STRIDE: u32 = 4096;
 
-/// Mirrors `Params` in `shaders/bdpt/bdpt.glsl` (push constants, 24 bytes). Light subpath `i`
+/// Mirrors `Params` in `shaders/bdpt/bdpt.glsl` (push constants, 32 bytes). Light subpath `i`
 /// stores its vertices in cache slots `i * path_vertices ..`, and how many it stored at index `i`
 /// of the lengths buffer, so the cache's layout does not depend on thread timing.
 #[repr(C)]
@@ -29,6 +30,8 @@ pub struct Params {
     pub light_ratio: f32,
     /// Pixels per light subpath (scales the light-tracing splats).
     pub splat_scale: f32,
+    /// The camera pass's samples in this dispatch (all of them unless set per batch).
+    pub batch: SampleBatch,
 }
 
 impl Params {
@@ -60,6 +63,7 @@ impl Params {
             } else {
                 (f64::from(pixels) / f64::from(light_paths)) as f32
             },
+            batch: SampleBatch::whole(spp),
         }
     }
 

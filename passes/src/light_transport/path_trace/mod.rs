@@ -1,8 +1,11 @@
 //! Path tracing: next-event estimation with multiple importance sampling, Russian roulette,
 //! N samples per pixel (`shaders/path_trace/path_trace.comp`, `shaders/common/path.glsl`); replays
-//! last frame's paths where asked ([`Replay`]).
+//! last frame's paths where asked ([`Replay`]); one dispatch per batch of samples
+//! ([`sample_batches`]).
 
-use crate::light_transport::{Images, Outputs, Replay, ReplayParams};
+use crate::light_transport::{
+    sample_batches, Frame, Images, Outputs, Replay, ReplayParams, SampleBatch,
+};
 use crate::plumbing::placeholder::add_zero_image;
 use crate::plumbing::scene_buffers::SceneHandles;
 use crate::shaders::path_trace::PATH_TRACE;
@@ -10,18 +13,26 @@ use lucid_engine::graph::{BufferHandle, RenderGraph};
 use lucid_engine::memory::ImageDesc;
 use lucid_engine::shader::Specialization;
 
-/// Adds the path tracer at `width`×`height`, reading the scene and the frame constants; the pixels
-/// `replay` picks replay last frame's paths (without it the pass does not depend on the G-buffer);
-/// the denoiser's images are written when `surface`.
+/// The path tracer's push constants (`Push` in `shaders/path_trace/path_trace.comp`).
+#[repr(C)]
+#[derive(Clone, Copy, Debug, bytemuck::Pod, bytemuck::Zeroable)]
+struct Push {
+    replay: ReplayParams,
+    batch: SampleBatch,
+}
+
+/// Adds the path tracer at `sampling`'s size and samples per pixel, reading the scene and the
+/// frame constants; the pixels `replay` picks replay last frame's paths (without it the pass does
+/// not depend on the G-buffer); the denoiser's images are written when `sampling.surface`.
 pub fn add_path_trace(
     g: &mut RenderGraph,
     scene: &SceneHandles,
     frame: BufferHandle,
     spec: &Specialization,
     replay: Option<&Replay>,
-    (width, height): (u32, u32),
-    surface: bool,
+    sampling: Frame,
 ) -> Outputs {
+    let (width, height, surface) = (sampling.width, sampling.height, sampling.surface);
     let stats = crate::plumbing::stats::add_counter(g, "path_trace.stats");
     let motion = match replay {
         Some(r) => r.motion,
@@ -35,7 +46,15 @@ pub fn add_path_trace(
     pass.read("u_motion", motion);
     let replay = replay.map_or(ReplayParams::default(), |r| r.params);
     let images = Images::create(&mut pass, "path_trace", (width, height), surface);
-    pass.push(&replay);
-    pass.dispatch([width, height, 1]);
+    pass.create_buffer(
+        "b_rng_state",
+        "path_trace.rng_state",
+        u64::from(width * height) * 4,
+    );
+    let pushes = sample_batches(sampling.samples_per_pixel)
+        .into_iter()
+        .map(|batch| Push { replay, batch })
+        .collect();
+    pass.dispatch_each([width, height, 1], pushes);
     images.with_stats(stats)
 }
