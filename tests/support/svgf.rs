@@ -58,9 +58,7 @@ pub fn renderer(ctx: &Context, scene: Scene, settings: Settings) -> Renderer {
 /// A reference image of `scene` seen by `camera`: `frames` accumulated frames of `spp` samples
 /// (paths up to `max_depth`) by a fresh renderer. Every reference frame thus draws the same random
 /// numbers per pixel, so that its residual noise changes little from frame to frame: a reference
-/// that flickered would add its own flicker to every method's temporal instability. (Several
-/// frames of 16 spp rather than one frame of many: frames of 64 spp or more came out darker on
-/// lavapipe.)
+/// that flickered would add its own flicker to every method's temporal instability.
 pub fn reference(
     ctx: &Context,
     scene: &Scene,

@@ -4,10 +4,6 @@
 //! are compared with a high-sample path-traced reference away from the pixels that see the glass
 //! sphere: the caustic seen through the glass and the lamp seen in it are specular chains only the
 //! camera's BSDF sampling finds, with heavy-tailed noise in both estimators.
-//!
-//! Renders stay at 4 samples per pixel per frame and accumulate frames: llvmpipe (lavapipe) ends
-//! every loop of an invocation once their iterations add up to 65535, which silently drops
-//! samples of long per-pixel sample loops.
 
 use glam::Vec2;
 use lucid_engine::capture::ImageData;
