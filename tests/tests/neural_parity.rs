@@ -12,11 +12,7 @@ const TOLERANCE: f32 = 5e-3;
 
 fn floats(tensors: &SafeTensors<'_>, name: &str) -> (Vec<usize>, Vec<f32>) {
     let view = tensors.tensor(name).expect("fixture tensor");
-    let values = view
-        .data()
-        .chunks_exact(4)
-        .map(|b| f32::from_le_bytes([b[0], b[1], b[2], b[3]]))
-        .collect();
+    let values = bytemuck::pod_collect_to_vec(view.data());
     (view.shape().to_vec(), values)
 }
 

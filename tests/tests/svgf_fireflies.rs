@@ -62,16 +62,17 @@ fn worst_errors(name: &str) -> (f64, f64, f64) {
     errors
 }
 
-#[test]
-fn covered_light_has_no_blotches() {
-    let (svgf, per_frame, learned) = worst_errors("covered-light");
+/// Neither SVGF nor the learned denoiser leaves a blotch above `max_excess` on scene `name`, nor
+/// one worse than the per-frame filter's.
+fn assert_no_blotches(name: &str, max_excess: f64) {
+    let (svgf, per_frame, learned) = worst_errors(name);
     eprintln!(
-        "covered-light worst block excess: svgf {svgf:.3}, per-frame {per_frame:.3}, learned {learned:.3}"
+        "{name} worst block excess: svgf {svgf:.3}, per-frame {per_frame:.3}, learned {learned:.3}"
     );
-    assert!(svgf <= MAX_EXCESS_COVERED_LIGHT, "a blotch: {svgf:.3}");
+    assert!(svgf <= max_excess, "a blotch: {svgf:.3}");
     assert!(svgf <= per_frame, "no worse than the per-frame filter");
     assert!(
-        learned <= MAX_EXCESS_COVERED_LIGHT,
+        learned <= max_excess,
         "learned denoiser: a blotch: {learned:.3}"
     );
     assert!(
@@ -81,19 +82,11 @@ fn covered_light_has_no_blotches() {
 }
 
 #[test]
+fn covered_light_has_no_blotches() {
+    assert_no_blotches("covered-light", MAX_EXCESS_COVERED_LIGHT);
+}
+
+#[test]
 fn caustics_have_no_blotches() {
-    let (svgf, per_frame, learned) = worst_errors("caustics");
-    eprintln!(
-        "caustics worst block excess: svgf {svgf:.3}, per-frame {per_frame:.3}, learned {learned:.3}"
-    );
-    assert!(svgf <= MAX_EXCESS_CAUSTICS, "a blotch: {svgf:.3}");
-    assert!(svgf <= per_frame, "no worse than the per-frame filter");
-    assert!(
-        learned <= MAX_EXCESS_CAUSTICS,
-        "learned denoiser: a blotch: {learned:.3}"
-    );
-    assert!(
-        learned <= per_frame,
-        "learned denoiser: no worse than the per-frame filter"
-    );
+    assert_no_blotches("caustics", MAX_EXCESS_CAUSTICS);
 }

@@ -661,33 +661,44 @@ impl Renderer {
     /// # Ok(()) }
     /// ```
     pub fn render_and_read(&mut self) -> Result<ImageData> {
+        Ok(self.render_and_read_with_record(false)?.0)
+    }
+
+    /// Renders one frame, waits for it and returns its HDR output and the learned denoiser's
+    /// per-pixel record of it (planar float channels, see [`neural::add_record`]): what
+    /// `lucid dataset` stores and image denoisers take as albedo and normal. An error unless the
+    /// learned denoiser runs.
+    pub fn render_and_read_record(&mut self) -> Result<(ImageData, Vec<u8>)> {
+        let (hdr, record) = self.render_and_read_with_record(true)?;
+        Ok((hdr, record.expect("asked for")))
+    }
+
+    /// One frame, waited for: its HDR output and, when `with_record`, its record.
+    fn render_and_read_with_record(
+        &mut self,
+        with_record: bool,
+    ) -> Result<(ImageData, Option<Vec<u8>>)> {
         let mut g = RenderGraph::new();
         let (images, stats) = self.add_frame(&mut g);
         let hdr = g.readback(images.hdr);
+        let record = match (with_record, images.neural_record) {
+            (false, _) => None,
+            (true, Some(record)) => Some(g.readback(record)),
+            (true, None) => {
+                return Err(EngineError::InvalidArgument(
+                    "the frame has no record: the learned denoiser does not run".into(),
+                ))
+            }
+        };
         let frame = self.executor.execute(g.compile()?)?;
         self.collect_pending_stats()?;
         let outputs = self.executor.wait(frame)?;
         self.collect_stats(&outputs, stats)?;
-        outputs.image(hdr)
-    }
-
-    /// Renders one frame, waits for it and returns the learned denoiser's per-pixel record of it
-    /// (planar float channels, see [`neural::add_record`]): what `lucid dataset` stores and image
-    /// denoisers take as albedo and normal. An error unless the learned denoiser runs.
-    pub fn render_and_read_record(&mut self) -> Result<Vec<u8>> {
-        let mut g = RenderGraph::new();
-        let (images, stats) = self.add_frame(&mut g);
-        let record = images.neural_record.ok_or_else(|| {
-            EngineError::InvalidArgument(
-                "the frame has no record: the learned denoiser does not run".into(),
-            )
-        })?;
-        let readback = g.readback(record);
-        let frame = self.executor.execute(g.compile()?)?;
-        self.collect_pending_stats()?;
-        let outputs = self.executor.wait(frame)?;
-        self.collect_stats(&outputs, stats)?;
-        Ok(outputs.bytes(readback)?.to_vec())
+        let record = match record {
+            Some(id) => Some(outputs.bytes(id)?.to_vec()),
+            None => None,
+        };
+        Ok((outputs.image(hdr)?, record))
     }
 
     /// Waits for the frame whose stats are pending, if any, and records them.

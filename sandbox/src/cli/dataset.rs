@@ -238,12 +238,9 @@ fn render_sequence(
     let mut references: Vec<u16> = Vec::with_capacity(cameras.len() * pixels * 3);
     for &camera in cameras {
         noisy.set_camera(camera);
-        let record = noisy.render_and_read_record()?;
-        records.extend(
-            record
-                .chunks_exact(4)
-                .map(|b| f16::from_f32(f32::from_le_bytes([b[0], b[1], b[2], b[3]])).to_bits()),
-        );
+        let (_, record) = noisy.render_and_read_record()?;
+        let floats: Vec<f32> = bytemuck::pod_collect_to_vec(&record);
+        records.extend(floats.iter().map(|&v| f16::from_f32(v).to_bits()));
 
         reference.set_camera(camera);
         for _ in 1..reference_frames {

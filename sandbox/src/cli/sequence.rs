@@ -136,7 +136,6 @@ pub fn run(args: &SequenceArgs) -> anyhow::Result<()> {
         let settings = method.settings(base);
         render(&ctx, &scene, args, &cameras, method.name(), settings, 1)?;
     }
-    render_aux(&ctx, &scene, args, &cameras, base)?;
     if args.no_evaluate {
         return Ok(());
     }
@@ -144,7 +143,9 @@ pub fn run(args: &SequenceArgs) -> anyhow::Result<()> {
 }
 
 /// Renders `cameras` with `settings`, accumulating `frames_each` frames per camera, into
-/// `<out>/<name>/NNNN.exr`.
+/// `<out>/<name>/NNNN.exr`. With the learned denoiser, also each frame's first-hit albedo and
+/// normal from its record (`albedo/NNNN.exr`, `normal/NNNN.exr`), which image denoisers run per
+/// frame take besides the noisy radiance (`training/oidn_baseline.py`).
 fn render(
     ctx: &Context,
     scene: &Scene,
@@ -161,50 +162,36 @@ fn render(
         .options
         .renderer(ctx, scene.clone(), (w, h), settings)?;
     eprintln!("{name}: {} frames", cameras.len());
+    let aux = if settings.denoiser == Denoiser::Neural {
+        [("albedo", RECORD_ALBEDO), ("normal", RECORD_NORMAL)].as_slice()
+    } else {
+        &[]
+    };
+    for (name, _) in aux {
+        let folder = args.out.join(name);
+        std::fs::create_dir_all(&folder)
+            .with_context(|| format!("creating {}", folder.display()))?;
+    }
     let progress = Progress::new(cameras.len() as u64, "frames");
     for (i, &camera) in cameras.iter().enumerate() {
         renderer.set_camera(camera);
         for _ in 1..frames_each {
             renderer.render()?;
         }
-        let image = renderer.render_and_read()?;
+        let image = if aux.is_empty() {
+            renderer.render_and_read()?
+        } else {
+            let (image, record) = renderer.render_and_read_record()?;
+            for &(name, channel) in aux {
+                let first_hit = record_image(&record, (w, h), channel)?;
+                save(&frame_path(&args.out.join(name), i), &first_hit)?;
+            }
+            image
+        };
         save(&frame_path(&folder, i), &image)?;
         progress.inc();
     }
     progress.finish();
-    renderer.finish()?;
-    Ok(())
-}
-
-/// Writes each frame's first-hit albedo and normal (`albedo/NNNN.exr`, `normal/NNNN.exr`), which
-/// image denoisers run per frame take besides the noisy radiance (`training/oidn_baseline.py`).
-fn render_aux(
-    ctx: &Context,
-    scene: &Scene,
-    args: &SequenceArgs,
-    cameras: &[Camera],
-    base: Settings,
-) -> anyhow::Result<()> {
-    let size = (args.options.size.width, args.options.size.height);
-    let settings = Settings {
-        denoiser: Denoiser::Neural,
-        ..base
-    };
-    let mut renderer = args.options.renderer(ctx, scene.clone(), size, settings)?;
-    let folders = [("albedo", RECORD_ALBEDO), ("normal", RECORD_NORMAL)];
-    for (name, _) in folders {
-        let folder = args.out.join(name);
-        std::fs::create_dir_all(&folder)
-            .with_context(|| format!("creating {}", folder.display()))?;
-    }
-    for (i, &camera) in cameras.iter().enumerate() {
-        renderer.set_camera(camera);
-        let record = renderer.render_and_read_record()?;
-        for (name, channel) in folders {
-            let image = record_image(&record, size, channel)?;
-            save(&frame_path(&args.out.join(name), i), &image)?;
-        }
-    }
     renderer.finish()?;
     Ok(())
 }

@@ -55,10 +55,8 @@ pub fn record_image(record: &[u8], (width, height): (u32, u32), first: u32) -> R
             first + 3
         )));
     }
-    let value = |c: usize, i: usize| {
-        let at = (c * plane + i) * 4;
-        f32::from_le_bytes([record[at], record[at + 1], record[at + 2], record[at + 3]])
-    };
+    let floats: Vec<f32> = bytemuck::pod_collect_to_vec(record);
+    let value = |c: usize, i: usize| floats[c * plane + i];
     let first = first as usize;
     let pixels = (0..plane)
         .map(|i| {

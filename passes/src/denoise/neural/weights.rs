@@ -201,11 +201,7 @@ fn read_tensor(
             view.shape()
         )));
     }
-    let values: Vec<f32> = view
-        .data()
-        .chunks_exact(4)
-        .map(|b| f32::from_le_bytes([b[0], b[1], b[2], b[3]]))
-        .collect();
+    let values: Vec<f32> = bytemuck::pod_collect_to_vec(view.data());
     if let Some(i) = values.iter().position(|v| !v.is_finite()) {
         return Err(problem(format!("value {i} is {}", values[i])));
     }
