@@ -1,5 +1,6 @@
 //! Logical-device creation: choose the physical device, its compute queue, and enable what Lucid uses.
 
+use super::cooperative_matrix::supports_tensor_cores;
 use super::select::{select_device, DeviceCandidate, DeviceKind};
 use crate::error::{EngineError, Result, VkResultExt};
 use ash::vk;
@@ -23,6 +24,9 @@ pub struct DeviceInfo {
     pub max_shared_memory: u32,
     /// Whether 16-bit floats are enabled in shaders.
     pub shader_float16: bool,
+    /// Whether NVIDIA cooperative matrices (fp16 16x16x16 products on 32-wide subgroups) and the
+    /// Vulkan memory model are enabled: the tensor-core kernels run.
+    pub tensor_cores: bool,
     /// Whether a present-capable queue is in use (a window was given).
     pub present: bool,
     /// Whether shaders may use 64-bit integers and `atomicAdd` them in
@@ -147,6 +151,7 @@ fn supports_pipeline_statistics(
 /// compute queue. `present` says whether a queue family can present to the window's surface;
 /// `want_statistics` enables pipeline statistics capture where the device supports it.
 pub(crate) fn create_device(
+    entry: &ash::Entry,
     instance: &ash::Instance,
     requested: Option<&str>,
     present: &dyn Fn(vk::PhysicalDevice, u32) -> bool,
@@ -188,8 +193,11 @@ pub(crate) fn create_device(
     let int64_atomics = base_supported.shader_int64 == vk::TRUE
         && supported12.shader_buffer_int64_atomics == vk::TRUE;
 
+    let available_extensions = device_extensions(instance, physical);
+    let tensor_cores = supports_tensor_cores(entry, instance, physical, &available_extensions);
     let mut f12 = vk::PhysicalDeviceVulkan12Features::default()
         .timeline_semaphore(true)
+        .vulkan_memory_model(tensor_cores)
         .scalar_block_layout(supported12.scalar_block_layout == vk::TRUE)
         .shader_float16(shader_float16)
         .shader_buffer_int64_atomics(int64_atomics)
@@ -209,7 +217,6 @@ pub(crate) fn create_device(
         .features(base)
         .push_next(&mut f12)
         .push_next(&mut f13);
-    let available_extensions = device_extensions(instance, physical);
     let pipeline_statistics =
         want_statistics && supports_pipeline_statistics(instance, physical, &available_extensions);
     if want_statistics && !pipeline_statistics {
@@ -224,7 +231,15 @@ pub(crate) fn create_device(
     if pipeline_statistics {
         features = features.push_next(&mut executable_info);
     }
+    let mut cooperative_matrix =
+        vk::PhysicalDeviceCooperativeMatrixFeaturesNV::default().cooperative_matrix(true);
+    if tensor_cores {
+        features = features.push_next(&mut cooperative_matrix);
+    }
     let mut extensions = vec![ash::khr::push_descriptor::NAME.as_ptr()];
+    if tensor_cores {
+        extensions.push(ash::nv::cooperative_matrix::NAME.as_ptr());
+    }
     if pipeline_statistics {
         extensions.push(ash::khr::pipeline_executable_properties::NAME.as_ptr());
     }
@@ -262,6 +277,7 @@ pub(crate) fn create_device(
         subgroup_size: subgroup.subgroup_size,
         max_shared_memory: props.limits.max_compute_shared_memory_size,
         shader_float16,
+        tensor_cores,
         present: need_swapchain,
         int64_atomics,
         pipeline_statistics,

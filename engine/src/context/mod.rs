@@ -4,6 +4,7 @@
 //! Headless is the default: [`Context::new`] needs no window. A windowed app uses
 //! [`Context::with_surface`]; an application that already has Vulkan uses [`Context::from_existing`].
 
+mod cooperative_matrix;
 mod debug;
 mod device;
 mod instance;
@@ -134,6 +135,7 @@ impl Context {
                 .unwrap_or(false)
         };
         let dev = match device::create_device(
+            &created.entry,
             &created.instance,
             desc.device.as_deref(),
             &present,
@@ -204,6 +206,7 @@ impl Context {
             subgroup_size: 32,
             max_shared_memory: props.limits.max_compute_shared_memory_size,
             shader_float16: false,
+            tensor_cores: false,
             present: false,
             int64_atomics: existing.int64_atomics,
             pipeline_statistics: false,

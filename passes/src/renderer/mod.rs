@@ -382,15 +382,25 @@ impl Renderer {
         Ok(())
     }
 
-    /// Replaces the learned denoiser's weights (e.g. `NetworkWeights::load` of a file that
-    /// `training/train.py` wrote); its history restarts.
-    pub fn set_neural_weights(&mut self, weights: &neural::NetworkWeights) -> Result<()> {
-        self.network = neural::Network::new(&self.ctx, weights)?;
+    /// Replaces the learned denoiser's network: `weights` (e.g. `NetworkWeights::load` of a file
+    /// that `training/train.py` wrote) run on `path`; its history restarts. An error when the
+    /// device cannot run `path`.
+    pub fn set_neural_network(
+        &mut self,
+        weights: &neural::NetworkWeights,
+        path: neural::InferencePath,
+    ) -> Result<()> {
+        self.network = neural::Network::with_path(&self.ctx, weights, path)?;
         if self.settings.denoiser == Denoiser::Neural {
             self.denoiser = ActiveDenoiser::new(&self.settings, &self.network, self.instance);
         }
         self.scene_changed = true;
         Ok(())
+    }
+
+    /// The path the learned denoiser's convolutions take.
+    pub fn neural_path(&self) -> neural::InferencePath {
+        self.network.path()
     }
 
     /// Frames averaged into the current output.

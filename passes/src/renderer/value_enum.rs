@@ -1,7 +1,8 @@
-//! `clap::ValueEnum` for [`Algorithm`] and [`Denoiser`] (the `clap` feature): the command line
+//! `clap::ValueEnum` for [`Algorithm`], [`Denoiser`] and [`InferencePath`] (the `clap` feature): the command line
 //! accepts their short names, case-insensitively where a caller asks.
 
 use super::{Algorithm, Denoiser};
+use crate::denoise::neural::InferencePath;
 use clap::builder::PossibleValue;
 use clap::ValueEnum;
 
@@ -29,6 +30,20 @@ impl ValueEnum for Denoiser {
             Denoiser::None => "No denoiser",
             Denoiser::Svgf => "SVGF (temporal, with A-SVGF gradients)",
             Denoiser::Neural => "The learned recurrent denoiser",
+        };
+        Some(PossibleValue::new(self.short_name()).help(help))
+    }
+}
+
+impl ValueEnum for InferencePath {
+    fn value_variants<'a>() -> &'a [Self] {
+        &Self::ALL
+    }
+
+    fn to_possible_value(&self) -> Option<PossibleValue> {
+        let help = match self {
+            InferencePath::Portable => "Plain compute shaders: every device",
+            InferencePath::TensorCores => "NVIDIA cooperative matrices (VK_NV_cooperative_matrix)",
         };
         Some(PossibleValue::new(self.short_name()).help(help))
     }

@@ -132,6 +132,8 @@ pub fn run(args: &BenchArgs) -> anyhow::Result<()> {
         "scene": renderer.scene().name,
         "triangles": renderer.scene().triangle_count(),
         "algorithm": settings.algorithm.short_name(),
+        "denoiser": settings.denoiser.short_name(),
+        "neural_path": renderer.neural_path().short_name(),
         "size": [w, h],
         "spp": args.options.spp.get(),
         "max_depth": args.options.max_depth,

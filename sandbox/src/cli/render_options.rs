@@ -7,7 +7,7 @@ use clap::Args;
 use lucid_engine::capture::{PngEncoding, ToneCurve};
 use lucid_engine::scene::Scene;
 use lucid_engine::Context;
-use lucid_passes::denoise::neural::NetworkWeights;
+use lucid_passes::denoise::neural::{InferencePath, NetworkWeights};
 use lucid_passes::renderer::{Algorithm, Denoiser, Renderer, SamplesPerPixel, Settings};
 use std::path::PathBuf;
 
@@ -45,6 +45,10 @@ pub struct RenderOptions {
     /// committed ones.
     #[arg(long)]
     pub neural_weights: Option<PathBuf>,
+    /// How the learned denoiser's convolutions run (default: tensor cores where the device has
+    /// them, else portable).
+    #[arg(long, value_enum)]
+    pub neural_path: Option<InferencePath>,
 }
 
 impl RenderOptions {
@@ -72,8 +76,13 @@ impl RenderOptions {
         settings: Settings,
     ) -> anyhow::Result<Renderer> {
         let mut renderer = Renderer::new(ctx, scene, width, height, settings)?;
-        if let Some(path) = &self.neural_weights {
-            renderer.set_neural_weights(&NetworkWeights::load(path)?)?;
+        if self.neural_weights.is_some() || self.neural_path.is_some() {
+            let weights = match &self.neural_weights {
+                Some(path) => NetworkWeights::load(path)?,
+                None => NetworkWeights::builtin(),
+            };
+            let path = self.neural_path.unwrap_or(InferencePath::best(ctx));
+            renderer.set_neural_network(&weights, path)?;
         }
         Ok(renderer)
     }

@@ -21,19 +21,20 @@
 //! `training/model.py` is the reference of every step; `tests/neural_parity.rs` checks this
 //! implementation against it.
 
+mod network;
 mod weights;
 
+pub use network::{InferencePath, Network};
 pub use weights::{Layer, NetworkWeights, WeightsError, BUILTIN, FEATURES, FORMAT, LAYERS};
 
 use crate::denoise::gbuffer::GBuffer;
 use crate::denoise::{DenoiseInputs, Denoised, FrameDenoiser, FrameInfo, TransportRequest};
 use crate::light_transport::SurfaceImages;
-use crate::shaders::neural::{CONV, FEATURES as FEATURES_SHADER, OUTPUT, POOL, RECORD};
+use crate::shaders::neural::{CONV, CONV_COOP, FEATURES as FEATURES_SHADER, OUTPUT, POOL, RECORD};
 use lucid_engine::capture::ImageData;
 use lucid_engine::graph::{BufferHandle, ImageHandle, RenderGraph};
-use lucid_engine::memory::{Buffer, ImageDesc};
-use lucid_engine::{Context, EngineError, Result};
-use std::sync::Arc;
+use lucid_engine::memory::ImageDesc;
+use lucid_engine::{EngineError, Result};
 
 /// Channels of a pixel's record (`RECORD_SIZE` in `shaders/neural/record.glsl`).
 pub const RECORD_CHANNELS: u32 = 17;
@@ -75,30 +76,6 @@ pub fn record_image(record: &[u8], (width, height): (u32, u32), first: u32) -> R
 /// Bytes of the record buffer of a `width` x `height` frame.
 pub fn record_bytes(width: u32, height: u32) -> u64 {
     u64::from(RECORD_CHANNELS) * u64::from(width) * u64::from(height) * 4
-}
-
-/// The network's weights on the GPU, shared by every frame.
-#[derive(Clone)]
-pub struct Network {
-    buffer: Arc<Buffer>,
-    offsets: [u32; LAYERS.len()],
-}
-
-impl Network {
-    /// Uploads `weights`.
-    pub fn new(ctx: &Context, weights: &NetworkWeights) -> Result<Self> {
-        let buffer = Buffer::with_data(
-            ctx,
-            "neural.weights",
-            "denoiser",
-            ash::vk::BufferUsageFlags::STORAGE_BUFFER,
-            bytemuck::cast_slice(weights.packed()),
-        )?;
-        Ok(Self {
-            buffer: Arc::new(buffer),
-            offsets: std::array::from_fn(|i| weights.offset(i)),
-        })
-    }
 }
 
 /// The learned denoiser as the renderer's denoiser: the network and its history prefix. It runs
@@ -177,6 +154,13 @@ impl HistoryKeys {
     }
 }
 
+/// The network's weights in a frame's graph: float32 (biases, and the portable path's weights) and,
+/// on the tensor-core path, half precision with each layer's offset in uvec4s.
+struct WeightHandles {
+    full: BufferHandle,
+    half: Option<(BufferHandle, [u32; LAYERS.len()])>,
+}
+
 /// A half-precision activation tensor of the network.
 #[derive(Clone, Copy)]
 struct Tensor {
@@ -195,13 +179,17 @@ pub fn add_neural(
     (width, height): (u32, u32),
     prefix: &str,
 ) -> ImageHandle {
-    let weights = g.import_buffer("neural.weights", network.buffer.clone());
+    let weights = WeightHandles {
+        full: g.import_buffer("neural.weights", network.buffer.clone()),
+        half: network.half.as_ref().map(|(buffer, offsets)| {
+            let handle = g.import_buffer("neural.half_weights", buffer.clone());
+            (handle, *offsets)
+        }),
+    };
     let keys = HistoryKeys::new(prefix);
     let output_history = g.temporal_image(&keys.output, ImageDesc::rgba16f(width, height));
     let surface_history = g.temporal_image(&keys.surface, ImageDesc::rgba32f(width, height));
     let full = (width, height);
-    let half = (width.div_ceil(2), height.div_ceil(2));
-    let quarter = (half.0.div_ceil(2), half.1.div_ceil(2));
 
     let mut p = g.compute_pass(&format!("{prefix}.features"), &FEATURES_SHADER);
     let prev_output = output_history.prev;
@@ -220,25 +208,16 @@ pub fn add_neural(
     };
     p.dispatch([width, height, 1]);
 
-    let conv = |g: &mut RenderGraph, layer: usize, in0: Tensor, in1: Option<Tensor>, size| {
-        add_conv(
-            g,
-            (weights, network.offsets[layer]),
-            &LAYERS[layer],
-            in0,
-            in1,
-            size,
-        )
+    let conv = |g: &mut RenderGraph, layer: usize, in0: Tensor, in1: Option<Tensor>, pool| {
+        add_conv(g, network, &weights, layer, (in0, in1), pool)
     };
-    let e0 = conv(g, 0, features, None, full);
-    let p0 = add_pool(g, e0, half);
-    let e1 = conv(g, 1, p0, None, half);
-    let p1 = add_pool(g, e1, quarter);
-    let e2 = conv(g, 2, p1, None, quarter);
-    let bottleneck = conv(g, 3, e2, None, quarter);
-    let d1 = conv(g, 4, bottleneck, Some(e1), half);
-    let d0 = conv(g, 5, d1, Some(e0), full);
-    let net = conv(g, 6, d0, None, full);
+    let (e0, p0) = conv(g, 0, features, None, true);
+    let (e1, p1) = conv(g, 1, p0.expect("pooled"), None, true);
+    let (e2, _) = conv(g, 2, p1.expect("pooled"), None, false);
+    let (bottleneck, _) = conv(g, 3, e2, None, false);
+    let (d1, _) = conv(g, 4, bottleneck, Some(e1), false);
+    let (d0, _) = conv(g, 5, d1, Some(e0), false);
+    let (net, _) = conv(g, 6, d0, None, false);
 
     let mut p = g.compute_pass(&format!("{prefix}.output"), &OUTPUT);
     p.read("b_record", record)
@@ -260,42 +239,93 @@ fn tensor_bytes(channels: u32, (width, height): (u32, u32)) -> u64 {
     u64::from(channels) * u64::from(width) * u64::from(height) * 2
 }
 
-/// Adds one convolution layer at `size`: `in0` (upsampled when smaller than `size`), then `in1`.
+/// Adds convolution `index` of [`LAYERS`] over `in0` (upsampled when smaller than `in1` or, without
+/// it, when the layer runs at a larger size: only decoders upsample, and they have a skip input),
+/// then `in1`. Returns its output and, when `pool`, the output 2x2 average-pooled (fused into the
+/// convolution on the tensor-core path).
 fn add_conv(
     g: &mut RenderGraph,
-    (weights, offset): (BufferHandle, u32),
-    layer: &Layer,
-    in0: Tensor,
-    in1: Option<Tensor>,
-    size: (u32, u32),
-) -> Tensor {
+    network: &Network,
+    weights: &WeightHandles,
+    index: usize,
+    (in0, in1): (Tensor, Option<Tensor>),
+    pool: bool,
+) -> (Tensor, Option<Tensor>) {
+    let offset = network.offsets[index];
+    let layer = &LAYERS[index];
     debug_assert_eq!(in0.channels, layer.in0);
     debug_assert_eq!(in1.map_or(0, |t| t.channels), layer.in1);
-    let per_thread = layer.out.min(16);
-    let mut p = g.compute_pass(&format!("neural.{}", layer.name), &CONV);
-    p.read("b_weights", weights)
+    let size = in1.map_or(in0.size, |t| t.size);
+    let name = format!("neural.{}", layer.name);
+    let shader = match network.path {
+        InferencePath::Portable => &CONV,
+        InferencePath::TensorCores => &CONV_COOP,
+    };
+    let mut p = g.compute_pass(&name, shader);
+    p.read("b_weights", weights.full)
         .read("b_in0", in0.buffer)
         // Without a second input the first is bound in its place (the shader does not read it).
         .read("b_in1", in1.unwrap_or(in0).buffer)
         .specialize("IN0_CHANNELS", layer.in0)
         .specialize("IN1_CHANNELS", layer.in1)
         .specialize("OUT_CHANNELS", layer.out)
-        .specialize("OUT_PER_THREAD", per_thread)
         .specialize("IN0_UPSAMPLED", in0.size != size)
-        .specialize("RELU", layer.name != "out")
-        .push(&[size.0, size.1, in0.size.0, in0.size.1, offset]);
-    let name = format!("neural.{}", layer.name);
+        .specialize("RELU", layer.name != "out");
     let buffer = p.create_buffer("b_out", &name, tensor_bytes(layer.out, size));
-    p.dispatch([size.0, size.1, layer.out / per_thread]);
-    Tensor {
+    let output = Tensor {
         buffer,
         channels: layer.out,
         size,
+    };
+    let push = [size.0, size.1, in0.size.0, in0.size.1];
+    match weights.half {
+        None => {
+            let per_thread = layer.out.min(16);
+            p.specialize("OUT_PER_THREAD", per_thread)
+                .push(&[push[0], push[1], push[2], push[3], offset]);
+            p.dispatch([size.0, size.1, layer.out / per_thread]);
+            (output, pool.then(|| add_pool(g, output)))
+        }
+        Some((half_weights, half_offsets)) => {
+            let bias = offset + 9 * layer.inputs() * layer.out / 4;
+            let half_offset = half_offsets[index];
+            // Two rows a subgroup: measured faster than four (and than staging the weights in
+            // shared memory) on an H100, `training/bench_gpu.sh`.
+            let rows = 2;
+            let pooled_size = half_size(size);
+            let pooled = p.create_buffer(
+                "b_pooled",
+                "neural.pooled",
+                if pool {
+                    tensor_bytes(layer.out, pooled_size)
+                } else {
+                    16
+                },
+            );
+            p.read("b_half_weights", half_weights)
+                .specialize("ROWS", rows)
+                .specialize("POOLED", pool)
+                .push(&[push[0], push[1], push[2], push[3], bias, half_offset]);
+            // A workgroup of 128 invocations per 16 x (4 * rows) tile.
+            p.dispatch([size.0.div_ceil(16) * 128, size.1.div_ceil(4 * rows), 1]);
+            let pooled = Tensor {
+                buffer: pooled,
+                channels: layer.out,
+                size: pooled_size,
+            };
+            (output, pool.then_some(pooled))
+        }
     }
 }
 
-/// Adds 2x2 average pooling of `input` down to `size`.
-fn add_pool(g: &mut RenderGraph, input: Tensor, size: (u32, u32)) -> Tensor {
+/// Half of `size`, rounded up: the size of the next level down.
+fn half_size((width, height): (u32, u32)) -> (u32, u32) {
+    (width.div_ceil(2), height.div_ceil(2))
+}
+
+/// Adds 2x2 average pooling of `input` down to half its size.
+fn add_pool(g: &mut RenderGraph, input: Tensor) -> Tensor {
+    let size = half_size(input.size);
     let mut p = g.compute_pass("neural.pool", &POOL);
     p.read("b_in", input.buffer)
         .specialize("CHANNELS", input.channels)

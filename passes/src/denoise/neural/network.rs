@@ -1,0 +1,153 @@
+//! The network's weights on the GPU and the way its convolutions run there.
+
+use super::weights::{NetworkWeights, LAYERS};
+use lucid_engine::memory::Buffer;
+use lucid_engine::{Context, EngineError, Result};
+use std::sync::Arc;
+
+/// How the network's convolutions run.
+///
+/// ```
+/// use lucid_passes::denoise::neural::InferencePath;
+/// assert_eq!(InferencePath::ALL.map(InferencePath::short_name), ["portable", "tensor-cores"]);
+/// ```
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum InferencePath {
+    /// Plain compute shaders (`shaders/neural/conv.comp`): single-precision arithmetic on
+    /// half-precision tensors, on every device, lavapipe included.
+    Portable,
+    /// Implicit GEMM on NVIDIA cooperative matrices (`shaders/neural/conv_coop.comp`): half-precision
+    /// products summed in single precision on the tensor cores.
+    TensorCores,
+}
+
+impl InferencePath {
+    /// Every path, in the order the command line lists them.
+    pub const ALL: [InferencePath; 2] = [InferencePath::Portable, InferencePath::TensorCores];
+
+    /// The name used on the command line and in benchmark output.
+    pub fn short_name(self) -> &'static str {
+        match self {
+            InferencePath::Portable => "portable",
+            InferencePath::TensorCores => "tensor-cores",
+        }
+    }
+
+    /// The fastest path `ctx`'s device runs.
+    pub fn best(ctx: &Context) -> Self {
+        if ctx.info().tensor_cores {
+            InferencePath::TensorCores
+        } else {
+            InferencePath::Portable
+        }
+    }
+
+    /// Every path `ctx`'s device runs.
+    pub fn available(ctx: &Context) -> Vec<Self> {
+        Self::ALL
+            .into_iter()
+            .filter(|path| path.check(ctx).is_ok())
+            .collect()
+    }
+
+    /// An error naming the device when it cannot run this path.
+    pub fn check(self, ctx: &Context) -> Result<()> {
+        match self {
+            InferencePath::TensorCores if !ctx.info().tensor_cores => {
+                Err(EngineError::InvalidArgument(format!(
+                    "the learned denoiser's tensor-core path needs VK_NV_cooperative_matrix with \
+                     fp16 16x16x16 products, shaderFloat16, vulkanMemoryModel and 32-wide \
+                     subgroups; {} lacks one of them (use the portable path)",
+                    ctx.info().name
+                )))
+            }
+            _ => Ok(()),
+        }
+    }
+}
+
+/// The network's weights on the GPU, shared by every frame, and the path its convolutions take.
+#[derive(Clone)]
+pub struct Network {
+    /// Every layer's float32 weights and bias (`conv.comp`'s layout).
+    pub(super) buffer: Arc<Buffer>,
+    /// Where each layer starts in `buffer`, in vec4s.
+    pub(super) offsets: [u32; LAYERS.len()],
+    /// On the tensor-core path, the half-precision weights in `conv_coop.comp`'s layout and where
+    /// each layer starts in them, in uvec4s.
+    pub(super) half: Option<(Arc<Buffer>, [u32; LAYERS.len()])>,
+    pub(super) path: InferencePath,
+}
+
+impl Network {
+    /// Uploads `weights`, to run on the fastest path the device has ([`InferencePath::best`]).
+    pub fn new(ctx: &Context, weights: &NetworkWeights) -> Result<Self> {
+        Self::with_path(ctx, weights, InferencePath::best(ctx))
+    }
+
+    /// Uploads `weights`, to run on `path`; an error when the device cannot run it.
+    pub fn with_path(ctx: &Context, weights: &NetworkWeights, path: InferencePath) -> Result<Self> {
+        path.check(ctx)?;
+        let upload = |name: &str, bytes: &[u8]| {
+            let usage = ash::vk::BufferUsageFlags::STORAGE_BUFFER;
+            Buffer::with_data(ctx, name, "denoiser", usage, bytes).map(Arc::new)
+        };
+        let buffer = upload("neural.weights", bytemuck::cast_slice(weights.packed()))?;
+        let half = match path {
+            InferencePath::Portable => None,
+            InferencePath::TensorCores => {
+                let (halves, offsets) = pack_half_weights(weights);
+                Some((
+                    upload("neural.half_weights", bytemuck::cast_slice(&halves))?,
+                    offsets,
+                ))
+            }
+        };
+        Ok(Self {
+            buffer,
+            offsets: std::array::from_fn(|i| weights.offset(i)),
+            half,
+            path,
+        })
+    }
+
+    /// The path the convolutions take.
+    pub fn path(&self) -> InferencePath {
+        self.path
+    }
+}
+
+/// Input channels per chunk of `conv_coop.comp` (the matrices' K) and output channels per tile
+/// (their N).
+const MATRIX_SIZE: usize = 16;
+
+/// The weights in `conv_coop.comp`'s layout: per layer, per chunk of 16 input channels and per tap,
+/// a row-major (16 input x output channels rounded up to 16) half-precision matrix, zero past the
+/// layer's channels. Returns the halves and where each layer starts, in uvec4s (eight halves).
+fn pack_half_weights(weights: &NetworkWeights) -> (Vec<u16>, [u32; LAYERS.len()]) {
+    let mut halves = Vec::new();
+    let mut offsets = [0; LAYERS.len()];
+    for (index, layer) in LAYERS.iter().enumerate() {
+        offsets[index] = (halves.len() / 8) as u32;
+        let (cin, cout) = (layer.inputs() as usize, layer.out as usize);
+        let padded = cout.div_ceil(MATRIX_SIZE) * MATRIX_SIZE;
+        // conv.comp's layout: output channels innermost, at (tap * cin + ci) * cout.
+        let packed = &weights.packed()[weights.offset(index) as usize * 4..];
+        for chunk in 0..cin.div_ceil(MATRIX_SIZE) {
+            for tap in 0..9 {
+                for k in 0..MATRIX_SIZE {
+                    let ci = chunk * MATRIX_SIZE + k;
+                    halves.extend((0..padded).map(|co| {
+                        let w = if ci < cin && co < cout {
+                            packed[(tap * cin + ci) * cout + co]
+                        } else {
+                            0.0
+                        };
+                        half::f16::from_f32(w).to_bits()
+                    }));
+                }
+            }
+        }
+    }
+    (halves, offsets)
+}
