@@ -1,64 +1,142 @@
 """Trains the recurrent denoiser on `lucid dataset` output and exports its weights.
 
     python3 train.py --data DIR --minutes 6 --out weights.safetensors --log train.json [--init W]
+        [--model direct|kernel] [--loss l1grad|l1msssim] [--burn-in K]
+
+`--model kernel` trains `kernel_model.KernelDenoiser` (exported as `lucid-kpn-experimental`, which
+the renderer does not load); `--loss` picks a loss of `losses.py`; `--burn-in K` runs the first K
+frames of each window without gradients and without loss, so that the recurrent state has warmed
+up when the loss starts.
 """
 
 import argparse
+import contextlib
 import json
 import math
 import time
 
 import torch
+import torch.nn as nn
 from safetensors.torch import load_file, save_file
 
 from data import load_split, sample_batch
-from model import FORMAT, LAYERS, RecurrentDenoiser, export_tensors
+from kernel_model import KERNEL_FORMAT, KernelDenoiser, kernel_layers
+from kernel_model import export_tensors as kernel_export_tensors
+from losses import DEFAULT_WEIGHTS, LOSSES, TERM_NAMES, display_ssim, log_tonemap, loss_fn, relmse, temporal_l1
+from model import FORMAT, LAYERS, RECORD_SIZE, RecurrentDenoiser, export_tensors
+
+MODELS = ("direct", "kernel")
 
 
-def tonemap(x):
-    return torch.log1p(x.clamp_min(0.0))
+def build_model(name):
+    return KernelDenoiser() if name == "kernel" else RecurrentDenoiser()
 
 
-def loss_terms(pred, ref):
-    """Spatial L1, gradient L1 and temporal L1 on frame differences (Chaitanya et al. 2017), in
-    log space, later frames weighted more (the recurrence has warmed up)."""
-    p, r = tonemap(pred), tonemap(ref)
-    t = p.shape[1]
-    wt = torch.linspace(0.5, 1.5, t, device=p.device).view(1, t, 1, 1, 1)
-    spatial = (wt * (p - r).abs()).mean()
-    gx = lambda x: x[..., :, 1:] - x[..., :, :-1]  # noqa: E731
-    gy = lambda x: x[..., 1:, :] - x[..., :-1, :]  # noqa: E731
-    grad = (gx(p) - gx(r)).abs().mean() + (gy(p) - gy(r)).abs().mean()
-    temporal = ((p[:, 1:] - p[:, :-1]) - (r[:, 1:] - r[:, :-1])).abs().mean()
-    return spatial, grad, temporal
+def named_convs(model):
+    """The model's convolutions under the names its weights file uses."""
+    if isinstance(model, KernelDenoiser):
+        return model.named_convs()
+    return {name: model.convs[name] for name, _, _ in LAYERS}
+
+
+def load_weights(model, path):
+    """Copies the tensors of a file train.py wrote into `model`. The direct model needs all of its
+    layers; the kernel model takes every layer whose shapes match (so direct weights start its
+    shared layers) and starts the others afresh."""
+    tensors = load_file(path)
+    loaded, skipped = [], []
+    with torch.no_grad():
+        for name, conv in named_convs(model).items():
+            w, b = tensors.get(f"{name}.weight"), tensors.get(f"{name}.bias")
+            if w is None or b is None or w.shape != conv.weight.shape or b.shape != conv.bias.shape:
+                skipped.append(name)
+                continue
+            conv.weight.copy_(w)
+            conv.bias.copy_(b)
+            loaded.append(name)
+    if isinstance(model, KernelDenoiser) and loaded:
+        print(f"--init: loaded {loaded}, started afresh {skipped}", flush=True)
+    elif skipped:
+        raise ValueError(f"{path}: no tensors or other shapes for layers {skipped}")
+
+
+def model_cost(model, device, size=64):
+    """Parameters and multiply-adds per pixel of one frame (convolutions counted by running one
+    step on a size x size frame, plus what the model declares besides: the kernel model's
+    filtering)."""
+    macs = 0
+
+    def count(mod, _inputs, out):
+        nonlocal macs
+        macs += out[0].numel() * (mod.in_channels // mod.groups) * mod.kernel_size[0] * mod.kernel_size[1]
+
+    handles = [m.register_forward_hook(count) for m in model.modules() if isinstance(m, nn.Conv2d)]
+    try:
+        with torch.no_grad():
+            model.step(torch.zeros(1, RECORD_SIZE, size, size, device=device), None)
+    finally:
+        for h in handles:
+            h.remove()
+    per_pixel = macs / (size * size) + getattr(model, "EXTRA_MACS_PER_PIXEL", 0.0)
+    return {
+        "parameters": sum(p.numel() for p in model.parameters()),
+        "macs_per_pixel": round(per_pixel, 1),
+        "flops_per_pixel": round(2 * per_pixel, 1),
+    }
 
 
 @torch.no_grad()
 def validate(model, sequences):
-    """Mean relMSE and temporal instability (mean |frame difference| of output minus reference's,
-    in log space) over whole validation sequences."""
+    """Over whole validation sequences, from no history: mean relMSE, mean SSIM (per frame, as
+    `lucid evaluate` computes it: luminance of the ACES + sRGB display images) and temporal
+    instability (mean |frame difference| of output minus reference's, in log space)."""
     model.eval()
-    rel, inst = [], []
+    rel, ssim, inst = [], [], []
     for s in sequences:
         rec = s["record"].float().unsqueeze(0)
         ref = s["reference"].float().unsqueeze(0)
         out = model(rec)
-        rel.append(((out - ref) ** 2 / (ref**2 + 1e-2)).mean().item())
-        p, r = tonemap(out), tonemap(ref)
-        inst.append(((p[:, 1:] - p[:, :-1]) - (r[:, 1:] - r[:, :-1])).abs().mean().item())
+        rel.append(relmse(out, ref).item())
+        ssim.append(display_ssim(out[0], ref[0]).mean().item())
+        inst.append(temporal_l1(log_tonemap(out), log_tonemap(ref)).item())
     model.train()
-    return {"relmse": sum(rel) / len(rel), "temporal": sum(inst) / len(inst)}
+    n = len(sequences)
+    return {"relmse": sum(rel) / n, "ssim": sum(ssim) / n, "temporal": sum(inst) / n}
+
+
+def run_window(model, rec, burn_in):
+    """The frames of a window [B, burn_in + frames, C, H, W] one `step` at a time, the first
+    `burn_in` without gradients; returns the outputs of the others [B, frames, 3, H, W]."""
+    state = None
+    if burn_in:
+        with torch.no_grad():
+            for t in range(burn_in):
+                _, state = model.step(rec[:, t], state)
+    outs = []
+    for t in range(burn_in, rec.shape[1]):
+        y, state = model.step(rec[:, t], state)
+        outs.append(y)
+    return torch.stack(outs, 1)
 
 
 def main():
+    process_start = time.time()
     ap = argparse.ArgumentParser()
     ap.add_argument("--data", required=True)
     ap.add_argument("--minutes", type=float, default=6.0)
     ap.add_argument("--batch", type=int, default=8)
-    ap.add_argument("--frames", type=int, default=8)
+    ap.add_argument("--frames", type=int, default=8, help="frames per window with a loss")
+    ap.add_argument("--burn-in", type=int, default=0, help="frames before them, no gradients, no loss")
     ap.add_argument("--crop", type=int, default=128)
     ap.add_argument("--lr", type=float, default=2e-3)
-    ap.add_argument("--weights", default="0.8,0.1,0.1", help="spatial,gradient,temporal loss weights")
+    ap.add_argument("--model", choices=MODELS, default="direct")
+    ap.add_argument("--loss", choices=LOSSES, default="l1grad")
+    ap.add_argument(
+        "--weights",
+        help="the loss terms' weights, comma-separated: l1grad spatial,gradient,temporal (default "
+        "0.8,0.1,0.1); l1msssim l1,msssim,temporal (default 0.16,0.84,0.1)",
+    )
+    ap.add_argument("--val-every", type=int, default=250, help="validate every this many steps")
     ap.add_argument("--seed", type=int, default=0)
     ap.add_argument("--init", help="start from these weights (a file train.py wrote)")
     ap.add_argument("--out", required=True)
@@ -68,15 +146,21 @@ def main():
     dev = "cuda" if torch.cuda.is_available() else "cpu"
     train = load_split(args.data, "train", dev)
     val = load_split(args.data, "validation", dev)
-    model = RecurrentDenoiser().to(dev)
+    window = args.burn_in + args.frames
+    shortest = min(s["record"].shape[0] for s in train)
+    if window > shortest:
+        raise SystemExit(f"--burn-in {args.burn_in} + --frames {args.frames} > {shortest}, the shortest sequence")
+    model = build_model(args.model).to(dev)
     if args.init:
-        tensors = load_file(args.init)
-        with torch.no_grad():
-            for name, _, _ in LAYERS:
-                model.convs[name].weight.copy_(tensors[f"{name}.weight"])
-                model.convs[name].bias.copy_(tensors[f"{name}.bias"])
+        load_weights(model, args.init)
+    cost = model_cost(model, dev)
+    print(json.dumps({"model": args.model, "loss": args.loss, "device": dev, **cost}), flush=True)
     opt = torch.optim.Adam(model.parameters(), lr=args.lr)
-    ws = [float(v) for v in args.weights.split(",")]
+    ws = [float(v) for v in args.weights.split(",")] if args.weights else list(DEFAULT_WEIGHTS[args.loss])
+    if len(ws) != 3:
+        raise SystemExit("--weights takes three numbers")
+    compute_loss = loss_fn(args.loss)
+    autocast = (lambda: torch.autocast("cuda", dtype=torch.bfloat16)) if dev == "cuda" else contextlib.nullcontext
     gen = torch.Generator().manual_seed(args.seed)
     budget = args.minutes * 60.0
     start = time.time()
@@ -85,36 +169,54 @@ def main():
         frac = (time.time() - start) / budget
         for group in opt.param_groups:
             group["lr"] = args.lr * 0.5 * (1.0 + math.cos(math.pi * min(frac, 1.0)))
-        rec, ref = sample_batch(train, args.batch, args.frames, args.crop, gen)
-        rec, ref = rec.to(dev), ref.to(dev)
-        with torch.autocast(device_type="cuda", dtype=torch.bfloat16, enabled=dev == "cuda"):
-            out = model(rec)
-        terms = loss_terms(out.float(), ref)
-        loss = sum(w * t for w, t in zip(ws, terms))
+        rec, ref = sample_batch(train, args.batch, window, args.crop, gen)
+        rec, ref = rec.to(dev), ref[:, args.burn_in :].to(dev)
+        with autocast():
+            out = run_window(model, rec, args.burn_in)
+        loss, terms = compute_loss(out.float(), ref, ws)
         opt.zero_grad(set_to_none=True)
         loss.backward()
         torch.nn.utils.clip_grad_norm_(model.parameters(), 1.0)
         opt.step()
         step += 1
-        if step % 250 == 0:
+        if step % args.val_every == 0:
             entry = {"step": step, "seconds": round(time.time() - start, 1), "loss": loss.item()}
+            entry["loss_terms"] = {k: round(v.item(), 6) for k, v in zip(TERM_NAMES[args.loss], terms)}
             entry.update(validate(model, val))
             history.append(entry)
             print(json.dumps(entry), flush=True)
+    train_seconds = time.time() - start
     final = validate(model, val)
+    if args.model == "kernel":
+        fmt, layers, tensors = KERNEL_FORMAT, kernel_layers(), kernel_export_tensors(model)
+    else:
+        fmt, layers, tensors = FORMAT, LAYERS, export_tensors(model)
     meta = {
-        "format": FORMAT,
-        "layers": json.dumps(LAYERS),
+        "format": fmt,
+        "layers": json.dumps(layers),
+        "model": args.model,
+        "loss": args.loss,
+        "loss_weights": ",".join(str(w) for w in ws),
+        "burn_in": str(args.burn_in),
         "steps": str(step),
         "data": args.data,
         "init": args.init or "",
         "validation_relmse": f"{final['relmse']:.5f}",
+        "validation_ssim": f"{final['ssim']:.5f}",
         "validation_temporal": f"{final['temporal']:.5f}",
     }
-    save_file(export_tensors(model), args.out, metadata=meta)
+    save_file(tensors, args.out, metadata=meta)
+    summary = {
+        "final": final,
+        "steps": step,
+        "train_seconds": round(train_seconds, 1),
+        "total_seconds": round(time.time() - process_start, 1),
+        "device": torch.cuda.get_device_name() if dev == "cuda" else "cpu",
+        **cost,
+    }
     with open(args.log, "w") as f:
-        json.dump({"args": vars(args), "final": final, "steps": step, "history": history}, f, indent=1)
-    print(json.dumps({"final": final, "steps": step}))
+        json.dump({"args": vars(args), "format": fmt, "loss_weights": ws, **summary, "history": history}, f, indent=1)
+    print(json.dumps(summary), flush=True)
 
 
 if __name__ == "__main__":

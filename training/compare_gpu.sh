@@ -1,0 +1,134 @@
+#!/usr/bin/env bash
+# Design choices measured against each other, in one command on the NVIDIA machine (within
+# $BUDGET = 560 seconds, dataset included):
+#   training/compare_gpu.sh OUT_DIR
+# Renders the dataset into /tmp/lucid-dataset unless it is there (dataset_gpu.sh, as train_gpu.sh),
+# then trains every variant of $VARIANTS at once on the one GPU (one background train.py each, the
+# same --minutes: by default what $BUDGET leaves after the dataset and $RESERVE = 90 seconds for
+# start-up, validation and export, at most 6), waits for them and writes into OUT_DIR:
+#   compare.json          per variant: final validation relMSE, SSIM, temporal instability, steps,
+#                         seconds, parameters, FLOPs per pixel (and the ratios to the first variant)
+#   variants.tar.gz       per variant: weights (<name>.safetensors), log (<name>.json) and output
+#                         (<name>.log)
+#   lucid-rae-v1.safetensors, train.json, neural_parity.safetensors
+#                         the direct+l1grad run's weights under the shipping name (model.FORMAT),
+#                         its log and the parity fixture from them, as train_gpu.sh writes them
+#   dataset.json          the dataset's index
+# (6 files: what the GPU machine sends back is limited to 8.)
+# A variant is MODEL:LOSS[:BURN_IN[:SEED]] (train.py's --model, --loss, --burn-in, --seed) and is
+# named MODEL-LOSS[-burnK][-seedN]. VARIANTS defaults to
+# "direct:l1grad kernel:l1grad direct:l1msssim"; SEED (0) is the seed of variants that name none:
+# the same seed draws the same training windows. Also: LUCID, ROOMS (dataset_gpu.sh), DATA, the
+# dataset's folder; INIT, weights every variant starts from; TRAIN_ARGS, more train.py arguments
+# for every variant; SHIP, the variant exported under the shipping name (direct-l1grad).
+set -euo pipefail
+out=${1:?usage: training/compare_gpu.sh OUT_DIR}
+here=$(cd "$(dirname "$0")" && pwd)
+data=${DATA:-/tmp/lucid-dataset}
+budget=${BUDGET:-560}
+reserve=${RESERVE:-90}
+variants=${VARIANTS:-direct:l1grad kernel:l1grad direct:l1msssim}
+ship=${SHIP:-direct-l1grad}
+start=$(date +%s)
+names=()
+args=()
+for v in $variants; do
+  IFS=: read -r model loss burn seed extra <<< "$v"
+  if [ -z "$model" ] || [ -z "$loss" ] || [ -n "$extra" ]; then
+    echo "variant '$v' is not MODEL:LOSS[:BURN_IN[:SEED]]" >&2
+    exit 2
+  fi
+  name=$model-$loss${burn:+-burn$burn}${seed:+-seed$seed}
+  for n in "${names[@]}"; do
+    if [ "$n" = "$name" ]; then echo "variant $name twice" >&2; exit 2; fi
+  done
+  names+=("$name")
+  args+=("--model $model --loss $loss --burn-in ${burn:-0} --seed ${seed:-${SEED:-0}}")
+done
+mkdir -p "$out"
+out=$(realpath "$out")
+data=$(realpath -m "$data")
+init=${INIT:+$(realpath "$INIT")}
+"$here/dataset_gpu.sh" "$data"
+echo "dataset: $(( $(date +%s) - start )) s, $(du -sh "$data" | cut -f1)"
+cp "$data/index.json" "$out/dataset.json"
+minutes=${MINUTES:-$(python3 -c "print(round(max(0.1, min(6.0, ($budget - $reserve - ($(date +%s) - $start)) / 60)), 2))")}
+work=$(mktemp -d "${TMPDIR:-/tmp}/lucid-compare.XXXXXX")
+cd "$here"
+pids=()
+for i in "${!names[@]}"; do
+  name=${names[$i]}
+  # shellcheck disable=SC2086 # the variant's and TRAIN_ARGS's words are separate arguments
+  PYTHONUNBUFFERED=1 python3 train.py --data "$data" --minutes "$minutes" ${args[$i]} \
+    --out "$work/$name.safetensors" --log "$work/$name.json" ${init:+--init "$init"} ${TRAIN_ARGS:-} \
+    > "$work/$name.log" 2>&1 &
+  pids+=($!)
+done
+echo "training ${names[*]} for $minutes minutes each, in parallel"
+failed=0
+for i in "${!pids[@]}"; do
+  if wait "${pids[$i]}"; then
+    echo "${names[$i]}: $(tail -n 1 "$work/${names[$i]}.log")"
+  else
+    echo "${names[$i]}: failed (exit $?); the end of its output:"
+    tail -n 20 "$work/${names[$i]}.log"
+    failed=1
+  fi
+done
+python3 - "$work" "$out/compare.json" "$minutes" "$(( $(date +%s) - start ))" "${names[@]}" <<'EOF'
+import json, sys
+from pathlib import Path
+
+work, dest, minutes, elapsed, names = Path(sys.argv[1]), sys.argv[2], float(sys.argv[3]), int(sys.argv[4]), sys.argv[5:]
+keys = ("relmse", "ssim", "temporal")
+rows = []
+for name in names:
+    log = work / f"{name}.json"
+    if not log.exists():
+        rows.append({"name": name, "ok": False})
+        continue
+    r = json.loads(log.read_text())
+    a = r["args"]
+    rows.append({
+        "name": name, "ok": True, "model": a["model"], "loss": a["loss"], "loss_weights": r["loss_weights"],
+        "burn_in": a["burn_in"], "seed": a["seed"], "format": r["format"],
+        **{k: r["final"][k] for k in keys},
+        "steps": r["steps"], "train_seconds": r["train_seconds"], "total_seconds": r["total_seconds"],
+        "parameters": r["parameters"], "macs_per_pixel": r["macs_per_pixel"], "flops_per_pixel": r["flops_per_pixel"],
+        "device": r["device"], "weights": f"{name}.safetensors",
+    })
+base = rows[0] if rows and rows[0]["ok"] else None
+if base:
+    for row in rows[1:]:
+        if row["ok"]:
+            row["vs_" + base["name"]] = {
+                k: round(row[k] / base[k], 4) if base[k] else None
+                for k in keys + ("steps", "parameters", "flops_per_pixel")
+            }
+summary = {
+    "minutes": minutes,
+    "seconds_before_export": elapsed,
+    "note": "variants trained at the same time on one GPU; validation from no history over whole "
+    "validation sequences; relMSE and SSIM as lucid evaluate computes them, temporal = mean |frame "
+    "difference of output - reference's| in log space",
+    "variants": rows,
+}
+Path(dest).write_text(json.dumps(summary, indent=1))
+print(json.dumps(summary, indent=1))
+EOF
+if [ -f "$work/$ship.json" ]; then
+  format=$(python3 -c "import model; print(model.FORMAT)")
+  if [ "$(python3 -c "import json; print(json.load(open('$work/$ship.json'))['format'])")" = "$format" ]; then
+    cp "$work/$ship.safetensors" "$out/$format.safetensors"
+    cp "$work/$ship.json" "$out/train.json"
+    python3 make_parity.py --weights "$out/$format.safetensors" --data "$data" --out "$out/neural_parity.safetensors"
+  else
+    echo "$ship is no $format model: nothing exported under the shipping name"
+  fi
+else
+  echo "no $ship run: nothing exported under the shipping name"
+fi
+tar -czf "$out/variants.tar.gz" -C "$work" .
+rm -r "$work"
+echo "total: $(( $(date +%s) - start )) s"
+exit $failed

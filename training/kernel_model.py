@@ -1,0 +1,143 @@
+"""A kernel-predicting variant of the recurrent denoiser (format `lucid-kpn-experimental`), to
+measure against the direct-predicting `model.RecurrentDenoiser`. Training only: the Vulkan
+inference does not implement it.
+
+Everything but the output layer is `model.py`'s: the input features, the reprojected history, the
+U-Net convolutions of `model.LAYERS` up to `dec0`, the temporal blend with the warped history and
+the recurrent state. The output layer `out` is replaced by `KernelOutput`:
+
+- **Three scales** (Vogels et al. 2018, "Denoising with kernel prediction and asymmetric loss
+  functions"): the demodulated radiance at full resolution, average-pooled 2x2 (half) and 4x4
+  (quarter), each as log(1 + radiance) (pooled in linear space, then the log), so that the
+  coarser scales gather 4 and 16 samples per pixel of a 1-sample frame.
+- **Kernels from pooled decoder features**: the last decoder features (`dec0`, full resolution)
+  go through three 3x3 convolution heads: `out` on them at full resolution, `out_half` on them
+  average-pooled to half resolution, `out_quarter` on them pooled again to quarter resolution. Each
+  head predicts the 25 weights of a 5x5 kernel per pixel (softmax, so the filter is a weighted
+  mean; borders replicate), applied to the log radiance of its scale.
+- **Coarse-to-fine**: `fine' = fine - a * U(D(fine)) + a * U(coarse)` with D the 2x2 average, U
+  bilinear upsampling and `a = sigmoid(.)` a per-pixel weight predicted by the finer scale's head
+  (`out_half` for quarter into half, `out` for half into full): the coarse result replaces the
+  fine result's low frequencies where `a` is 1.
+- **The rest as `model.py`**: `out`'s remaining channels are the direct model's output channels
+  after its 3 radiance channels (the blend weight, and any later additions): the combined kernel
+  result takes the place of the predicted log radiance, and `RecurrentDenoiser.step` does the
+  rest (blend with the warped history, re-modulation, the state). The model subclasses it and only
+  swaps its `out` convolution, so it keeps `step`/`forward` and the state as `model.py` defines
+  them.
+
+Export (`export_tensors`): the layers of `model.LAYERS` under their names (`out` with its
+25 + 1 + (outputs - 3) channels) plus `out_half` and `out_quarter`, float32.
+"""
+
+import torch
+import torch.nn as nn
+import torch.nn.functional as F
+
+from model import LAYERS, RecurrentDenoiser, half, pool, split_record
+
+KERNEL_FORMAT = "lucid-kpn-experimental"
+KERNEL = 5
+TAPS = KERNEL * KERNEL
+_OUT = {name: (cin, cout) for name, cin, cout in LAYERS}["out"]
+OUT_IN = _OUT[0]
+# The direct model's output channels after the 3 radiance channels (blend weight, ...).
+EXTRA = _OUT[1] - 3
+# (name, input channels, output channels, resolution divisor) of the kernel heads.
+HEADS = [
+    ("out", OUT_IN, TAPS + 1 + EXTRA, 1),
+    ("out_half", OUT_IN, TAPS + 1, 2),
+    ("out_quarter", OUT_IN, TAPS, 4),
+]
+
+
+def apply_kernel(x, logits):
+    """Filters `x` [B,C,H,W] with the per-pixel 5x5 kernels whose weights are softmax(`logits`)
+    [B,25,H,W] (taps row-major, borders replicated). Float32."""
+    b, c, h, w = x.shape
+    r = KERNEL // 2
+    weights = torch.softmax(logits.float(), 1)
+    taps = F.unfold(F.pad(x.float(), (r, r, r, r), mode="replicate"), KERNEL)  # [B, C*25, H*W]
+    return (taps.view(b, c, TAPS, h, w) * weights.unsqueeze(1)).sum(2)
+
+
+def upsample(x, size):
+    return F.interpolate(x, size=size, mode="bilinear", align_corners=False)
+
+
+def combine(fine, coarse, a):
+    """Vogels et al.'s scale compositing: the low frequencies of `fine` replaced by `coarse` where
+    the per-pixel weight `a` is 1."""
+    size = fine.shape[-2:]
+    return fine + a * (upsample(coarse, size) - upsample(pool(fine), size))
+
+
+class KernelOutput(nn.Module):
+    """Stands in for the direct model's `out` convolution: called with the last decoder features,
+    returns what `out` returns (log radiance in channels 0-2, then the other output channels), the
+    radiance here being the multi-scale kernel-filtered input. The frame's record and precision
+    are set in `context` by `KernelDenoiser.step`."""
+
+    def __init__(self):
+        super().__init__()
+        self.heads = nn.ModuleDict({name: nn.Conv2d(cin, cout, 3, padding=1) for name, cin, cout, _ in HEADS})
+        self.context = None
+
+    def forward(self, d0):
+        record, fp16 = self.context
+        radiance = split_record(record)["demodulated"].float().clamp_min(0.0)
+        r1 = pool(radiance)
+        r2 = pool(r1)
+        f1 = half(pool(d0), fp16)
+        f2 = half(pool(f1), fp16)
+        o0 = self.heads["out"](d0)
+        o1 = self.heads["out_half"](f1)
+        o2 = self.heads["out_quarter"](f2)
+        y2 = apply_kernel(half(torch.log1p(r2), fp16), o2)
+        y1 = apply_kernel(half(torch.log1p(r1), fp16), o1[:, :TAPS])
+        y1 = combine(y1, y2, torch.sigmoid(o1[:, TAPS : TAPS + 1].float()))
+        y0 = apply_kernel(half(torch.log1p(radiance), fp16), o0[:, :TAPS])
+        y0 = combine(y0, y1, torch.sigmoid(o0[:, TAPS : TAPS + 1].float()))
+        return torch.cat([y0, o0[:, TAPS + 1 :].float()], 1)
+
+
+class KernelDenoiser(RecurrentDenoiser):
+    """`RecurrentDenoiser` with the kernel-predicting output layer; same `step`, `forward`, state."""
+
+    def __init__(self):
+        super().__init__()
+        self.convs["out"] = KernelOutput()
+
+    def step(self, record, state, fp16_storage=False):
+        head = self.convs["out"]
+        head.context = (record, fp16_storage)
+        try:
+            return super().step(record, state, fp16_storage)
+        finally:
+            head.context = None
+
+    def named_convs(self):
+        """Every convolution under its export name."""
+        convs = {name: self.convs[name] for name, _, _ in LAYERS if name != "out"}
+        convs.update(self.convs["out"].heads.items())
+        return convs
+
+    # Multiply-adds per full-resolution pixel outside the convolutions: the three 5x5 filters on
+    # 3 channels (full, 1/4 and 1/16 of the pixels) and the two compositing steps.
+    EXTRA_MACS_PER_PIXEL = 3 * TAPS * (1 + 1 / 4 + 1 / 16) + 3 * 2 * (1 + 1 / 4)
+
+
+def kernel_layers():
+    """(name, input channels, output channels) of every exported layer, in execution order."""
+    layers = [(n, cin, cout) for n, cin, cout in LAYERS if n != "out"]
+    return layers + [(n, cin, cout) for n, cin, cout, _ in HEADS]
+
+
+def export_tensors(model):
+    """`<layer>.weight` [out,in,3,3] and `<layer>.bias` [out], float32, for every layer of
+    `kernel_layers()`."""
+    return {
+        f"{name}.{kind}": getattr(conv, kind).detach().float().cpu().contiguous()
+        for name, conv in model.named_convs().items()
+        for kind in ("weight", "bias")
+    }
