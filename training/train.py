@@ -1,6 +1,10 @@
 """Trains the recurrent denoiser on `lucid dataset` output and exports its weights.
 
     python3 train.py --data DIR --minutes 6 --out weights.safetensors --log train.json [--init W]
+
+`--init` starts from a weights file: one of this format, or one of `lucid-rae-v1`, whose enc0 had 16
+inputs (15 features and a zero channel): its first 15 input channels are kept and the new inputs'
+weights start at zero (`model.load_weights`), so training starts from what v1 computed.
 """
 
 import argparse
@@ -12,7 +16,7 @@ import torch
 from safetensors.torch import load_file, save_file
 
 from data import load_split, sample_batch
-from model import FORMAT, LAYERS, RecurrentDenoiser, export_tensors
+from model import FORMAT, LAYERS, RecurrentDenoiser, export_tensors, load_weights
 
 
 def tonemap(x):
@@ -60,7 +64,7 @@ def main():
     ap.add_argument("--lr", type=float, default=2e-3)
     ap.add_argument("--weights", default="0.8,0.1,0.1", help="spatial,gradient,temporal loss weights")
     ap.add_argument("--seed", type=int, default=0)
-    ap.add_argument("--init", help="start from these weights (a file train.py wrote)")
+    ap.add_argument("--init", help="start from these weights (a file train.py wrote; v1's enc0 is zero-padded)")
     ap.add_argument("--out", required=True)
     ap.add_argument("--log", required=True)
     args = ap.parse_args()
@@ -70,11 +74,7 @@ def main():
     val = load_split(args.data, "validation", dev)
     model = RecurrentDenoiser().to(dev)
     if args.init:
-        tensors = load_file(args.init)
-        with torch.no_grad():
-            for name, _, _ in LAYERS:
-                model.convs[name].weight.copy_(tensors[f"{name}.weight"])
-                model.convs[name].bias.copy_(tensors[f"{name}.bias"])
+        load_weights(model, load_file(args.init), grow_input=True)
     opt = torch.optim.Adam(model.parameters(), lr=args.lr)
     ws = [float(v) for v in args.weights.split(",")]
     gen = torch.Generator().manual_seed(args.seed)
