@@ -1,13 +1,16 @@
 """Writes the parity fixture `tests/references/neural_parity.safetensors`: two consecutive frames of
 per-pixel records and what `model.py` computes from them with the committed weights (half-precision
-storage emulated), which `tests/neural_parity.rs` checks the Vulkan inference against.
+storage emulated): the denoised radiance (`expected`), and the running mean with its length
+(`accum`) and the second moment of luminance (`moment`), which `tests/neural_parity.rs` checks the
+Vulkan inference against.
 
-    python3 make_parity.py --weights ../passes/src/neural/lucid-rae-v1.safetensors \
-        [--data DATASET_DIR] --out ../tests/references/neural_parity.safetensors
+    python3 make_parity.py --weights ../passes/src/denoise/neural/lucid-rae-v2.safetensors \
+        [--data DATASET_DIR | --records FIXTURE] --out ../tests/references/neural_parity.safetensors
 
 With `--data`, the frames are a 32x24 crop of the first validation sequence's first two frames;
-without, a synthetic pair (a textured plane seen by a camera that moves by a sub-pixel offset, sky in a corner,
-and an object appearing in the second frame).
+with `--records`, the records of an existing fixture (to keep its frames when only the model or
+the weights change); without either, a synthetic pair (a textured plane seen by a camera that
+moves by a sub-pixel offset, sky in a corner, and an object appearing in the second frame).
 Run it again whenever the weights change.
 """
 
@@ -18,7 +21,7 @@ from pathlib import Path
 import torch
 from safetensors.torch import load_file, save_file
 
-from model import LAYERS, RECORD_SIZE, RecurrentDenoiser
+from model import RECORD_SIZE, RecurrentDenoiser, load_weights
 
 W, H = 32, 24
 
@@ -61,24 +64,41 @@ def from_dataset(root):
 def main():
     ap = argparse.ArgumentParser()
     ap.add_argument("--weights", required=True)
-    ap.add_argument("--data")
+    group = ap.add_mutually_exclusive_group()
+    group.add_argument("--data")
+    group.add_argument("--records", help="reuse the records of this parity fixture")
     ap.add_argument("--out", required=True)
     args = ap.parse_args()
     model = RecurrentDenoiser()
-    tensors = load_file(args.weights)
+    load_weights(model, load_file(args.weights))
+    if args.data:
+        record, source = from_dataset(args.data), args.data
+    elif args.records:
+        fixture = load_file(args.records)
+        record = fixture["record"]
+        source = safe_open_metadata(args.records).get("source", args.records)
+    else:
+        record, source = synthetic(), "synthetic"
+    expected, accum, moment, state = [], [], [], None
     with torch.no_grad():
-        for name, _, _ in LAYERS:
-            model.convs[name].weight.copy_(tensors[f"{name}.weight"])
-            model.convs[name].bias.copy_(tensors[f"{name}.bias"])
-        record = from_dataset(args.data) if args.data else synthetic()
-        expected = model(record.unsqueeze(0), fp16_storage=True)[0]
-    source = args.data or "synthetic"
-    save_file(
-        {"record": record.contiguous(), "expected": expected.contiguous()},
-        args.out,
-        metadata={"weights": Path(args.weights).name, "source": source},
-    )
-    print(f"{args.out}: {W}x{H}, 2 frames, from {source}")
+        for t in range(record.shape[0]):
+            y, state = model.step(record[t : t + 1], state, fp16_storage=True)
+            expected.append(y[0])
+            accum.append(state["accum"][0])
+            moment.append(state["moment"][0])
+    tensors = {"record": record, "expected": expected, "accum": accum, "moment": moment}
+    tensors = {k: (torch.stack(v) if isinstance(v, list) else v).contiguous() for k, v in tensors.items()}
+    save_file(tensors, args.out, metadata={"weights": Path(args.weights).name, "source": source})
+    reprojected = (tensors["accum"][-1, 3] > 1.0).float().mean().item()
+    print(f"{args.out}: {W}x{H}, {record.shape[0]} frames, from {source}; running mean reprojected at {reprojected:.0%}")
+
+
+def safe_open_metadata(path):
+    """The metadata of a safetensors file."""
+    from safetensors import safe_open
+
+    with safe_open(path, "pt") as f:
+        return f.metadata() or {}
 
 
 if __name__ == "__main__":

@@ -1,10 +1,11 @@
-"""Lucid's recurrent denoising autoencoder (format `lucid-rae-v1`), the PyTorch twin of the Vulkan
-inference in `passes/src/neural/` and `shaders/neural/`.
+"""Lucid's recurrent denoising autoencoder (format `lucid-rae-v2`), the PyTorch twin of the Vulkan
+inference in `passes/src/denoise/neural/` and `shaders/neural/`.
 
 Everything the shaders compute is defined here, in the same order and with the same arithmetic:
-the input features (with last frame's output warped by the motion vectors and masked where
-reprojection fails), the U-Net of 3x3 convolutions, and the output (a blend of the network's
-prediction with the warped history, re-modulated by albedo plus emission). With
+the input features (with last frame's output and the running mean of the noisy radiance warped by
+the motion vectors and masked where reprojection fails), the U-Net of 3x3 convolutions, and the
+output (a blend of the network's prediction with the warped history, re-modulated by albedo plus
+emission). With
 `fp16_storage=True` every tensor the shaders store in half precision is rounded to it here too,
 so the parity test can compare tightly.
 
@@ -15,7 +16,7 @@ import torch
 import torch.nn as nn
 import torch.nn.functional as F
 
-FORMAT = "lucid-rae-v1"
+FORMAT = "lucid-rae-v2"
 
 # The per-pixel inputs of a frame, in the order the dataset and the parity fixture store them.
 RECORD_CHANNELS = {
@@ -29,7 +30,10 @@ RECORD_CHANNELS = {
 }
 RECORD_SIZE = sum(RECORD_CHANNELS.values())
 
-FEATURES = 16
+FEATURES = 20  # a multiple of 4: the shaders pack 4 half-precision channels per uvec2
+# The input channels of `lucid-rae-v1` that mean something (its 16th was a zero); v2 keeps them
+# first, in the same order (see `load_weights`).
+V1_FEATURES = 15
 # (name, input channels, output channels): the convolutions, in execution order.
 LAYERS = [
     ("enc0", FEATURES, 32),
@@ -45,6 +49,12 @@ LAYERS = [
 DEPTH_TOLERANCE = 0.05
 NORMAL_COS = 0.9
 MIN_WEIGHT = 0.01
+
+# The running mean of the noisy radiance: the longest history it averages (after that, an
+# exponential moving average with weight 1/N_MAX), and the luminance its moments are taken of
+# (Rec. 709, `luminance` in shaders/common/math.glsl).
+N_MAX = 32.0
+LUMINANCE = (0.2126, 0.7152, 0.0722)
 
 
 def split_record(record):
@@ -115,9 +125,36 @@ def warp_history(history, prev_surface, motion, normal, depth):
     return warped, ok.float().unsqueeze(1)
 
 
-def features(rec, warped, mask):
-    """The network's 16 input channels for one frame."""
-    zero = torch.zeros_like(mask)
+def luminance(rgb):
+    """Rec. 709 luminance of [B,3,H,W] -> [B,1,H,W], summed in the shader's order."""
+    return rgb[:, 0:1] * LUMINANCE[0] + rgb[:, 1:2] * LUMINANCE[1] + rgb[:, 2:3] * LUMINANCE[2]
+
+
+def accumulate(demodulated, warped_accum, warped_moment, mask):
+    """This frame's running mean of the noisy demodulated radiance, as SVGF's temporal pass keeps
+    it: where reprojection holds (`mask`), the history length n = min(n' + 1, N_MAX) of the
+    warped length n', the mean and the second moment of luminance move towards this frame's
+    values by 1/n; elsewhere n = 1 and they are this frame's. Returns (accum [B,4,H,W]: mean rgb
+    and n; moment [B,1,H,W])."""
+    current = demodulated.clamp_min(0.0)
+    lum = luminance(current)
+    ok = mask > 0.0
+    n = torch.where(ok, torch.clamp(warped_accum[:, 3:4] + 1.0, max=N_MAX), torch.ones_like(mask))
+    alpha = 1.0 / n
+    prev_mean = warped_accum[:, 0:3]
+    mean = torch.where(ok, prev_mean + (current - prev_mean) * alpha, current)
+    moment = torch.where(ok, warped_moment + (lum * lum - warped_moment) * alpha, lum * lum)
+    return torch.cat([mean, n], 1), moment
+
+
+def features(rec, warped, mask, accum, moment):
+    """The network's 20 input channels for one frame: 15 as in `lucid-rae-v1` (log radiance,
+    albedo, normal, roughness, log depth, warped output, mask), then log(1 + running mean) (3),
+    its history length / N_MAX and log(1 + the standard deviation of luminance over it; 0 from
+    one sample)."""
+    mean, n = accum[:, 0:3], accum[:, 3:4]
+    mean_lum = luminance(mean)
+    variance = torch.where(n > 1.0, (moment - mean_lum * mean_lum).clamp_min(0.0), torch.zeros_like(n))
     return torch.cat(
         [
             torch.log1p(rec["demodulated"].clamp_min(0.0)),
@@ -127,7 +164,9 @@ def features(rec, warped, mask):
             torch.log1p(rec["depth"].clamp_min(0.0)),
             warped,
             mask,
-            zero,
+            torch.log1p(mean),
+            n / N_MAX,
+            torch.log1p(torch.sqrt(variance)),
         ],
         dim=1,
     )
@@ -152,14 +191,22 @@ class RecurrentDenoiser(nn.Module):
 
     def step(self, record, state, fp16_storage=False):
         """One frame. `record` [B,RECORD_SIZE,H,W]; `state` None (no history) or the dict returned
-        by the previous step. Returns (radiance [B,3,H,W], new state)."""
+        by the previous step (`output`: log radiance [B,3], `surface`: depth and normal [B,4],
+        `accum`: running mean and its length [B,4], `moment`: second moment of luminance [B,1]).
+        Returns (radiance [B,3,H,W], new state)."""
         rec = split_record(record)
         if state is None:
-            warped = torch.zeros_like(rec["demodulated"])
-            mask = torch.zeros_like(rec["depth"])
+            zero = torch.zeros_like(rec["depth"])
+            warped, mask = torch.zeros_like(rec["demodulated"]), zero
+            warped_accum, warped_moment = torch.zeros_like(record[:, 0:4]), zero
         else:
-            warped, mask = warp_history(state["output"], state["surface"], rec["motion"], rec["normal"], rec["depth"])
-        x = half(features(rec, warped, mask), fp16_storage)
+            # One warp (the same taps and mask) for the output and the running mean.
+            history = torch.cat([state["output"], state["accum"], state["moment"]], 1)
+            history, mask = warp_history(history, state["surface"], rec["motion"], rec["normal"], rec["depth"])
+            warped, warped_accum, warped_moment = history[:, 0:3], history[:, 3:7], history[:, 7:8]
+        # The accumulation depends on the records only (no weights): no gradient through it.
+        accum, moment = accumulate(rec["demodulated"], warped_accum.detach(), warped_moment.detach(), mask)
+        x = half(features(rec, warped, mask, accum, moment), fp16_storage)
         warped, mask = x[:, 11:14], x[:, 14:15]  # as the output pass reads them: stored
         c = self.convs
         r = lambda t: half(F.relu(t), fp16_storage)  # noqa: E731
@@ -175,7 +222,7 @@ class RecurrentDenoiser(nn.Module):
         log_out = half(log_out, fp16_storage)
         radiance = torch.expm1(log_out) * rec["albedo"] + rec["emission"]
         surface = torch.cat([rec["depth"], rec["normal"]], 1)
-        return radiance, {"output": log_out, "surface": surface}
+        return radiance, {"output": log_out, "surface": surface, "accum": accum, "moment": moment}
 
     def forward(self, records, fp16_storage=False):
         """A sequence [B,T,RECORD_SIZE,H,W] from no history; returns [B,T,3,H,W]."""
@@ -184,6 +231,26 @@ class RecurrentDenoiser(nn.Module):
             y, state = self.step(records[:, t], state, fp16_storage)
             outs.append(y)
         return torch.stack(outs, 1)
+
+
+def load_weights(model, tensors, grow_input=False):
+    """Copies `<layer>.weight`/`.bias` from `tensors` (a dict, e.g. safetensors' `load_file`) into
+    `model`. With `grow_input`, an `enc0.weight` of `lucid-rae-v1` (16 inputs: `V1_FEATURES`
+    meaningful ones and a zero channel) is accepted: its first `V1_FEATURES` input channels are
+    copied, the weights of the new inputs set to zero, so that the model computes what v1 did
+    until it is trained further."""
+    with torch.no_grad():
+        for name, _, _ in LAYERS:
+            weight = tensors[f"{name}.weight"]
+            target = model.convs[name].weight
+            if name == "enc0" and grow_input and weight.shape[1] != target.shape[1]:
+                if weight.shape[1] != V1_FEATURES + 1:
+                    raise ValueError(f"enc0.weight has {weight.shape[1]} inputs: neither {FEATURES} nor v1's 16")
+                grown = torch.zeros_like(target)
+                grown[:, :V1_FEATURES] = weight[:, :V1_FEATURES]
+                weight = grown
+            target.copy_(weight)
+            model.convs[name].bias.copy_(tensors[f"{name}.bias"])
 
 
 def export_tensors(model):

@@ -1,9 +1,12 @@
 #version 460
-// The learned denoiser's 16 input channels (training/model.py, `features`): log radiance, albedo,
+// The learned denoiser's 20 input channels (training/model.py, `features`): log radiance, albedo,
 // normal, roughness, log depth, last frame's output reprojected by the motion vectors where the
-// surface is the same (`warp_history`), the reprojection mask and a zero. Also writes this frame's
-// surface (depth, normal) for the next frame's reprojection.
+// surface is the same (`warp_history`), the reprojection mask, then the running mean of the noisy
+// radiance (`accumulate`, reprojected with the same taps): log(1 + mean), its history length /
+// N_MAX and log(1 + the standard deviation of luminance). Also writes this frame's surface (depth,
+// normal), running mean and second moment for the next frame.
 #include "common/image_coords.glsl"
+#include "common/math.glsl"
 #include "neural/record.glsl"
 #include "neural/tensor.glsl"
 
@@ -14,6 +17,10 @@ layout(set = 0, binding = 1, rgba16f) uniform readonly image2D u_prev_output;
 layout(set = 0, binding = 2, rgba32f) uniform readonly image2D u_prev_surface;
 layout(set = 0, binding = 3, rgba32f) uniform writeonly image2D u_surface;
 layout(set = 0, binding = 4, std430) writeonly buffer Features { uvec2 v[]; } b_features;
+layout(set = 0, binding = 5, rgba32f) uniform readonly image2D u_prev_accum;
+layout(set = 0, binding = 6, rgba32f) uniform writeonly image2D u_accum;
+layout(set = 0, binding = 7, r32f) uniform readonly image2D u_prev_moment;
+layout(set = 0, binding = 8, r32f) uniform writeonly image2D u_moment;
 
 layout(push_constant) uniform Params {
     uint width;
@@ -24,6 +31,8 @@ layout(push_constant) uniform Params {
 const float DEPTH_TOLERANCE = 0.05;
 const float NORMAL_COS = 0.9;
 const float MIN_WEIGHT = 0.01;
+// The longest history the running mean averages; after that it is an exponential moving average.
+const float N_MAX = 32.0;
 
 uvec2 size() {
     return uvec2(params.width, params.height);
@@ -47,7 +56,10 @@ void main() {
     vec3 motion = channel3(RECORD_MOTION, pixel);
     imageStore(u_surface, pixel, vec4(depth, normal));
 
+    // The output history, the running mean with its length, and the second moment, warped together.
     vec3 warped = vec3(0.0);
+    vec4 warped_accum = vec4(0.0);
+    float warped_moment = 0.0;
     float weight_sum = 0.0;
     if (params.history_valid != 0u) {
         vec2 prev_pos = vec2(pixel) + motion.xy;
@@ -67,25 +79,50 @@ void main() {
             bool valid = here_sky ? q_sky : (!q_sky && same);
             if (valid) {
                 warped += w * imageLoad(u_prev_output, ivec2(q)).rgb;
+                warped_accum += w * imageLoad(u_prev_accum, ivec2(q));
+                warped_moment += w * imageLoad(u_prev_moment, ivec2(q)).r;
                 weight_sum += w;
             }
         }
     }
     float mask = 0.0;
     if (weight_sum >= MIN_WEIGHT) {
-        warped /= max(weight_sum, 1e-8);
+        float norm = max(weight_sum, 1e-8);
+        warped /= norm;
+        warped_accum /= norm;
+        warped_moment /= norm;
         mask = 1.0;
     } else {
         warped = vec3(0.0);
     }
     vec3 demodulated = max(channel3(RECORD_DEMODULATED, pixel), vec3(0.0));
+
+    // The running mean (`accumulate`): this frame's values where nothing is reprojected.
+    float lum = luminance(demodulated);
+    float n = 1.0;
+    vec3 mean = demodulated;
+    float moment = lum * lum;
+    if (mask > 0.0) {
+        n = min(warped_accum.a + 1.0, N_MAX);
+        float alpha = 1.0 / n;
+        mean = warped_accum.rgb + (demodulated - warped_accum.rgb) * alpha;
+        moment = warped_moment + (lum * lum - warped_moment) * alpha;
+    }
+    imageStore(u_accum, pixel, vec4(mean, n));
+    imageStore(u_moment, pixel, vec4(moment, 0.0, 0.0, 0.0));
+    float mean_lum = luminance(mean);
+    float variance = n > 1.0 ? max(moment - mean_lum * mean_lum, 0.0) : 0.0;
+    vec3 log_mean = log(vec3(1.0) + mean);
+    float log_std = log(1.0 + sqrt(variance));
+
     vec3 albedo = channel3(RECORD_ALBEDO, pixel);
     float roughness = channel(RECORD_ROUGHNESS, pixel);
     vec3 log_radiance = log(vec3(1.0) + demodulated);
     float log_depth = log(1.0 + max(depth, 0.0));
-    uint at = tensor_index(pixel, params.width, 4u, 0u);
+    uint at = tensor_index(pixel, params.width, FEATURE_GROUPS, 0u);
     b_features.v[at + 0u] = pack_channels(vec4(log_radiance, albedo.r));
     b_features.v[at + 1u] = pack_channels(vec4(albedo.gb, normal.xy));
     b_features.v[at + 2u] = pack_channels(vec4(normal.z, roughness, log_depth, warped.r));
-    b_features.v[at + 3u] = pack_channels(vec4(warped.gb, mask, 0.0));
+    b_features.v[at + 3u] = pack_channels(vec4(warped.gb, mask, log_mean.r));
+    b_features.v[at + 4u] = pack_channels(vec4(log_mean.gb, n / N_MAX, log_std));
 }

@@ -25,7 +25,7 @@ void main() {
     if (!pixel_in_bounds(pixel, ivec2(size))) {
         return;
     }
-    uint at = tensor_index(pixel, params.width, 4u, 0u);
+    uint at = tensor_index(pixel, params.width, FEATURE_GROUPS, 0u);
     vec4 f2 = unpack_channels(b_features.v[at + 2u]);
     vec4 f3 = unpack_channels(b_features.v[at + 3u]);
     vec3 warped = vec3(f2.w, f3.xy);

@@ -1,9 +1,11 @@
 //! The learned denoiser's Vulkan inference against its PyTorch definition (`training/model.py`):
 //! two consecutive frames of a committed fixture (`references/neural_parity.safetensors`, made by
 //! `training/make_parity.py` with the committed weights), so the features, every convolution,
-//! pooling and upsampling, the history warp and the recurrent blend are all covered. Every
-//! inference path the device runs is checked (lavapipe: the portable one; NVIDIA: the tensor-core
-//! one too), so where both run they agree within twice the tolerance.
+//! pooling and upsampling, the history warp and the recurrent blend are all covered. The running
+//! mean of the noisy radiance and its second moment (reprojected in the second frame) are also
+//! compared directly, so they are checked whatever weight the network gives them. Every inference
+//! path the device runs is checked (lavapipe: the portable one; NVIDIA: the tensor-core one too),
+//! so where both run they agree within twice the tolerance.
 
 use lucid_engine::graph::{Access, RenderGraph};
 use lucid_passes::denoise::neural::{
@@ -13,6 +15,8 @@ use safetensors::SafeTensors;
 
 /// Half-precision activations give relative differences of about 1e-4 per layer, after seven layers still well under 5e-3.
 const TOLERANCE: f32 = 5e-3;
+/// The accumulation is float32 throughout: only rounding differences.
+const ACCUM_TOLERANCE: f32 = 1e-4;
 
 fn floats(tensors: &SafeTensors<'_>, name: &str) -> (Vec<usize>, Vec<f32>) {
     let view = tensors.tensor(name).expect("fixture tensor");
@@ -20,11 +24,14 @@ fn floats(tensors: &SafeTensors<'_>, name: &str) -> (Vec<usize>, Vec<f32>) {
     (view.shape().to_vec(), values)
 }
 
-/// The fixture: its records (frames x channels x height x width) and PyTorch's outputs
-/// (frames x 3 x height x width).
+/// The fixture: its records (frames x channels x height x width) and PyTorch's outputs: radiance
+/// (frames x 3 x height x width), running mean and length (frames x 4 x ...) and second moment
+/// (frames x 1 x ...).
 struct Fixture {
     record: Vec<f32>,
     expected: Vec<f32>,
+    accum: Vec<f32>,
+    moment: Vec<f32>,
     frames: usize,
     size: (usize, usize),
 }
@@ -38,23 +45,35 @@ fn fixture() -> Fixture {
     let tensors = SafeTensors::deserialize(&bytes).expect("parse the parity fixture");
     let (shape, record) = floats(&tensors, "record");
     let (_, expected) = floats(&tensors, "expected");
+    let (_, accum) = floats(&tensors, "accum");
+    let (_, moment) = floats(&tensors, "moment");
     assert_eq!(shape[1], RECORD_CHANNELS as usize);
     Fixture {
         record,
         expected,
+        accum,
+        moment,
         frames: shape[0],
         size: (shape[3], shape[2]),
     }
 }
 
-/// The denoised radiance of consecutive frames of `records` (each a planar record of `size`), by
-/// `network` from no history (each path keeps its own).
+/// One frame's results: the denoised radiance, the running mean (rgb) with its length (a), and the
+/// second moment of luminance (r), pixel by pixel.
+struct Frame {
+    radiance: Vec<[f32; 4]>,
+    accum: Vec<[f32; 4]>,
+    moment: Vec<[f32; 4]>,
+}
+
+/// The results of consecutive frames of `records` (each a planar record of `size`), by `network`
+/// from no history (each path keeps its own).
 fn denoise(
     executor: &mut lucid_engine::graph::Executor,
     network: &Network,
     records: &[Vec<f32>],
     (w, h): (usize, usize),
-) -> Vec<Vec<[f32; 4]>> {
+) -> Vec<Frame> {
     let prefix = format!("neural.{}", network.path().short_name());
     let mut images = Vec::new();
     for record in records {
@@ -64,10 +83,17 @@ fn denoise(
         let buffer = p.create_buffer("record", data.len() as u64);
         let buffer = p.write(buffer, Access::TransferWrite);
         p.execute(move |ctx| ctx.update_buffer(buffer, &data));
-        let image = neural::add_neural(&mut g, network, buffer, (w as u32, h as u32), &prefix);
-        let readback = g.readback(image);
+        let images_of = neural::add_neural(&mut g, network, buffer, (w as u32, h as u32), &prefix);
+        let readbacks =
+            [images_of.radiance, images_of.accum, images_of.moment].map(|i| g.readback(i));
         let outputs = lucid_tests::run(executor, g);
-        images.push(outputs.image(readback).expect("read back").pixels.clone());
+        let [radiance, accum, moment] =
+            readbacks.map(|r| outputs.image(r).expect("read back").pixels.clone());
+        images.push(Frame {
+            radiance,
+            accum,
+            moment,
+        });
     }
     images
 }
@@ -90,11 +116,35 @@ fn vulkan_inference_matches_pytorch_over_two_frames() {
             Network::with_path(&ctx, &NetworkWeights::builtin(), path).expect("upload weights");
         let images = denoise(&mut executor, &network, &records, (w, h));
         let mut worst_per_frame = Vec::new();
-        for (t, image) in images.iter().enumerate() {
+        let mut worst_accum_per_frame = Vec::new();
+        for (t, frame) in images.iter().enumerate() {
+            let mut worst_accum = 0.0f32;
+            for y in 0..h {
+                for x in 0..w {
+                    let i = y * w + x;
+                    let channels = (0..4).map(|c| {
+                        (
+                            frame.accum[i][c],
+                            fixture.accum[((t * 4 + c) * h + y) * w + x],
+                        )
+                    });
+                    let second = (frame.moment[i][0], fixture.moment[(t * h + y) * w + x]);
+                    for (c, (got, want)) in channels.chain([second]).enumerate() {
+                        let err = (got - want).abs() / (want.abs() + 0.05);
+                        assert!(
+                            err <= ACCUM_TOLERANCE,
+                            "frame {t} pixel ({x}, {y}) accumulation channel {c}: Vulkan {got}, \
+                             PyTorch {want}"
+                        );
+                        worst_accum = worst_accum.max(err);
+                    }
+                }
+            }
+            worst_accum_per_frame.push(worst_accum);
             let mut worst = 0.0f32;
             for y in 0..h {
                 for x in 0..w {
-                    for (c, &got) in image[y * w + x][..3].iter().enumerate() {
+                    for (c, &got) in frame.radiance[y * w + x][..3].iter().enumerate() {
                         let want = fixture.expected[((t * 3 + c) * h + y) * w + x];
                         let err = (got - want).abs() / (want.abs() + 0.05);
                         assert!(
@@ -110,7 +160,8 @@ fn vulkan_inference_matches_pytorch_over_two_frames() {
             worst_per_frame.push(worst);
         }
         eprintln!(
-            "{} path: worst relative difference per frame: {worst_per_frame:?}",
+            "{} path: worst relative difference per frame: {worst_per_frame:?}, accumulation: \
+             {worst_accum_per_frame:?}",
             path.short_name()
         );
     }
@@ -159,7 +210,7 @@ fn inference_paths_agree_at_odd_sizes() {
     }
     let mut worst = 0.0f32;
     for (t, (a, b)) in results[0].iter().zip(&results[1]).enumerate() {
-        for (i, (pa, pb)) in a.iter().zip(b).enumerate() {
+        for (i, (pa, pb)) in a.radiance.iter().zip(&b.radiance).enumerate() {
             for c in 0..3 {
                 let err = (pa[c] - pb[c]).abs() / (pa[c].abs() + 0.05);
                 assert!(

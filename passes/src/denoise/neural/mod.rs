@@ -5,9 +5,11 @@
 //! 1. **Record** ([`add_record`]): the light transport's surface images and the G-buffer are
 //!    gathered into one planar float buffer (`shaders/neural/record.glsl`), which is also what
 //!    `lucid dataset` writes for training.
-//! 2. **Features**: log radiance, albedo, normal, roughness, log depth, and last frame's output
-//!    reprojected by the motion vectors where depth and normal say the surface is the same, with
-//!    the reprojection mask: 16 half-precision channels.
+//! 2. **Features**: log radiance, albedo, normal, roughness, log depth, last frame's output
+//!    reprojected by the motion vectors where depth and normal say the surface is the same, the
+//!    reprojection mask, and a running mean of the noisy radiance reprojected with the same taps
+//!    (as SVGF accumulates it: log mean, history length, log standard deviation of luminance):
+//!    20 half-precision channels.
 //! 3. **Network**: 3x3 convolutions at full, half and quarter resolution with skip connections
 //!    ([`LAYERS`]), fused bias and ReLU, average pooling down and nearest upsampling up (read in
 //!    place by the next convolution).
@@ -15,8 +17,9 @@
 //!    per-pixel weight (only where the mask allows), kept as the next frame's history, and
 //!    re-modulated by albedo plus emission.
 //!
-//! The history (last output and surface) is the render graph's keyed temporal images under a
-//! per-denoiser prefix, so two denoisers in one graph keep their own; a resize or
+//! The history (last output, surface, running mean and second moment) is the render graph's keyed
+//! temporal images under a per-denoiser prefix, so two denoisers in one graph keep their own; a
+//! resize, a scene change or
 //! [`Executor::reset_history`](lucid_engine::graph::Executor::reset_history) starts afresh.
 //! `training/model.py` is the reference of every step; `tests/neural_parity.rs` checks this
 //! implementation against it.
@@ -106,7 +109,7 @@ impl FrameDenoiser for NeuralDenoiser {
         let size = (inputs.width, inputs.height);
         let record = add_record(g, &inputs.surface, &inputs.gbuffer, size);
         Denoised {
-            image: add_neural(g, &self.network, record, size, &self.prefix),
+            image: add_neural(g, &self.network, record, size, &self.prefix).radiance,
             gradient: None,
             record: Some(record),
         }
@@ -114,7 +117,7 @@ impl FrameDenoiser for NeuralDenoiser {
 
     fn reset_on_scene_change(&self) -> Vec<String> {
         let keys = HistoryKeys::new(&self.prefix);
-        vec![keys.output, keys.surface]
+        vec![keys.output, keys.surface, keys.accum, keys.moment]
     }
 }
 
@@ -142,6 +145,8 @@ pub fn add_record(
 struct HistoryKeys {
     output: String,
     surface: String,
+    accum: String,
+    moment: String,
 }
 
 impl HistoryKeys {
@@ -150,6 +155,8 @@ impl HistoryKeys {
         Self {
             output: key("output"),
             surface: key("surface"),
+            accum: key("accum"),
+            moment: key("moment"),
         }
     }
 }
@@ -161,6 +168,19 @@ struct WeightHandles {
     half: Option<(BufferHandle, [u32; LAYERS.len()])>,
 }
 
+/// What [`add_neural`] adds to the graph that callers read.
+#[derive(Clone, Copy, Debug)]
+pub struct NeuralImages {
+    /// The denoised radiance (`rgba32f`).
+    pub radiance: ImageHandle,
+    /// This frame's running mean of the demodulated radiance (rgb) and its history length (a),
+    /// `rgba32f`: the `<prefix>.accum` history as written this frame.
+    pub accum: ImageHandle,
+    /// This frame's running second moment of the demodulated radiance's luminance (`r32f`): the
+    /// `<prefix>.moment` history as written this frame.
+    pub moment: ImageHandle,
+}
+
 /// A half-precision activation tensor of the network.
 #[derive(Clone, Copy)]
 struct Tensor {
@@ -170,15 +190,16 @@ struct Tensor {
 }
 
 /// Adds the denoiser over the frame `record` (from [`add_record`], or uploaded by a test) at
-/// `width` x `height`, with its history under the keys `<prefix>.output` and `<prefix>.surface`;
-/// returns the denoised radiance (`rgba32f`).
+/// `width` x `height`, with its history under the keys `<prefix>.output`, `<prefix>.surface`,
+/// `<prefix>.accum` (running mean and its length) and `<prefix>.moment` (second moment of
+/// luminance); returns the denoised radiance and this frame's accumulation.
 pub fn add_neural(
     g: &mut RenderGraph,
     network: &Network,
     record: BufferHandle,
     (width, height): (u32, u32),
     prefix: &str,
-) -> ImageHandle {
+) -> NeuralImages {
     let weights = WeightHandles {
         full: g.import_buffer("neural.weights", network.buffer.clone()),
         half: network.half.as_ref().map(|(buffer, offsets)| {
@@ -189,14 +210,21 @@ pub fn add_neural(
     let keys = HistoryKeys::new(prefix);
     let output_history = g.temporal_image(&keys.output, ImageDesc::rgba16f(width, height));
     let surface_history = g.temporal_image(&keys.surface, ImageDesc::rgba32f(width, height));
+    let accum_history = g.temporal_image(&keys.accum, ImageDesc::rgba32f(width, height));
+    let moment_history = g.temporal_image(&keys.moment, ImageDesc::r32f(width, height));
     let full = (width, height);
 
     let mut p = g.compute_pass(&format!("{prefix}.features"), &FEATURES_SHADER);
-    let prev_output = output_history.prev;
+    let prev = [output_history.prev, accum_history.prev, moment_history.prev];
     p.read("b_record", record)
-        .read("u_prev_output", prev_output)
-        .push_with(move |ctx| [width, height, u32::from(ctx.history_valid(prev_output))]);
+        .read("u_prev_output", prev[0])
+        .push_with(move |ctx| {
+            let valid = prev.iter().all(|&h| ctx.history_valid(h));
+            [width, height, u32::from(valid)]
+        });
     p.history("u_prev_surface", "u_surface", surface_history);
+    let accum = p.history("u_prev_accum", "u_accum", accum_history);
+    let moment = p.history("u_prev_moment", "u_moment", moment_history);
     let features = Tensor {
         buffer: p.create_buffer(
             "b_features",
@@ -231,7 +259,11 @@ pub fn add_neural(
         ImageDesc::rgba32f(width, height),
     );
     p.dispatch([width, height, 1]);
-    radiance
+    NeuralImages {
+        radiance,
+        accum,
+        moment,
+    }
 }
 
 /// Bytes of a half-precision tensor of `channels` at `size`.

@@ -7,10 +7,11 @@ use safetensors::tensor::{Dtype, SafeTensors};
 use std::path::Path;
 
 /// The network format this code runs (`FORMAT` in `training/model.py`).
-pub const FORMAT: &str = "lucid-rae-v1";
+pub const FORMAT: &str = "lucid-rae-v2";
 
-/// Channels of the network's input features (`FEATURES` in `training/model.py`).
-pub const FEATURES: u32 = 16;
+/// Channels of the network's input features (`FEATURES` in `training/model.py`; a multiple of 4,
+/// `FEATURE_GROUPS` in `shaders/neural/tensor.glsl`).
+pub const FEATURES: u32 = 20;
 
 /// One 3x3 convolution of the network.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -57,9 +58,9 @@ pub const LAYERS: [Layer; 7] = [
     Layer::new("out", 32, 0, 4),
 ];
 
-/// The weights of the committed network (`passes/src/neural/lucid-rae-v1.safetensors`; see
+/// The weights of the committed network (`passes/src/denoise/neural/lucid-rae-v2.safetensors`; see
 /// `training/README.md` for the command and data that produced them).
-pub const BUILTIN: &[u8] = include_bytes!("lucid-rae-v1.safetensors");
+pub const BUILTIN: &[u8] = include_bytes!("lucid-rae-v2.safetensors");
 
 /// A weights file that cannot be used, naming the file and, where it applies, the tensor.
 #[derive(Debug, thiserror::Error)]
@@ -268,7 +269,7 @@ mod tests {
             truncated.contains("w.safetensors") && truncated.contains("not a valid safetensors")
         );
         assert!(error(b"not a weights file").contains("not a valid safetensors"));
-        assert!(error(&file("lucid-rae-v0", |_, _, _| true)).contains("format \"lucid-rae-v0\""));
+        assert!(error(&file("lucid-rae-v1", |_, _, _| true)).contains("format \"lucid-rae-v1\""));
         let missing = error(&file(FORMAT, |name, _, _| name != "dec1.bias"));
         assert!(
             missing.contains("dec1.bias") && missing.contains("missing"),
