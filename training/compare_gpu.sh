@@ -10,7 +10,7 @@
 #                         seconds, parameters, FLOPs per pixel (and the ratios to the first variant)
 #   variants.tar.gz       per variant: weights (<name>.safetensors), log (<name>.json) and output
 #                         (<name>.log)
-#   lucid-rae-v1.safetensors, train.json, neural_parity.safetensors
+#   lucid-rae-v2.safetensors, train.json, neural_parity.safetensors
 #                         the direct+l1grad run's weights under the shipping name (model.FORMAT),
 #                         its log and the parity fixture from them, as train_gpu.sh writes them
 #   dataset.json          the dataset's index
