@@ -36,6 +36,9 @@ pub struct Scene {
     /// Non-fatal problems found while building or importing (for example
     /// clamped material parameters or a scene without any light).
     pub warnings: Vec<String>,
+    /// What an importer supplied because the input lacked it (a default camera or sky), for the
+    /// user to know why the image looks as it does.
+    pub notes: Vec<String>,
 }
 
 /// Closed-form pixel values of a furnace-like scene (see
@@ -65,6 +68,7 @@ impl Scene {
             camera: Camera::look_at(Vec3::ZERO, Vec3::NEG_Z, Vec3::Y, 45.0),
             camera_path: None,
             warnings: Vec::new(),
+            notes: Vec::new(),
         }
     }
 

@@ -47,6 +47,9 @@ fn scene(ui: &mut egui::Ui, state: &mut AppState, requests: &mut Requests) {
             for warning in &info.warnings {
                 ui.colored_label(egui::Color32::YELLOW, warning);
             }
+            for note in &info.notes {
+                ui.label(note);
+            }
             ui.label("Features:");
             ui.indent("features", |ui| {
                 for (name, used) in feature_list(&info.features) {
@@ -166,7 +169,7 @@ fn camera(ui: &mut egui::Ui, state: &mut AppState, requests: &mut Requests) {
             .prefix("speed: ")
             .suffix(" /s"),
     );
-    ui.label("WASD move, Q/E down/up, right mouse look, wheel speed");
+    ui.label("WASD move, Q/E down/up, right mouse look, wheel speed, F frames the scene");
     let stored = state.bookmarks.stored_keys();
     ui.label(if stored.is_empty() {
         "bookmarks: Shift+1..9 stores, 1..9 recalls".to_string()

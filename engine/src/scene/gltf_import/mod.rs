@@ -11,7 +11,8 @@
 //!
 //! What is imported: triangle, strip and fan primitives (positions, normals, `TEXCOORD_0`,
 //! indices) as meshes, the default scene's node hierarchy as instances
-//! with world transforms, the first perspective camera, materials (see
+//! with world transforms, the first perspective camera (without one, [`Camera::framing`] frames
+//! the scene's bounds and a note in `Scene::notes` says so), materials (see
 //! [`materials`]) with base-colour textures, and `KHR_lights_punctual`
 //! point and spot lights (the first directional light becomes the sun).
 //! Punctual intensities are used as radiometric values as given.
@@ -26,7 +27,6 @@ mod uri;
 use std::collections::HashMap;
 use std::path::Path;
 
-use glam::Vec3;
 use gltf::buffer::Source;
 use gltf::json::mesh::Semantic;
 use gltf::json::validation::Checked;
@@ -34,6 +34,9 @@ use gltf::json::validation::Checked;
 use super::{Camera, Scene, SceneError};
 use materials::MaterialImporter;
 use nodes::NodeImporter;
+
+/// Vertical field of view of the camera that frames a file without one.
+pub const DEFAULT_VFOV_DEGREES: f32 = 45.0;
 
 /// Extensions the importer understands (and so accepts as required).
 pub const SUPPORTED_EXTENSIONS: [&str; 4] = [
@@ -167,10 +170,10 @@ fn import(bytes: &[u8], base: Option<&Path>, label: &str) -> Result<Scene, Strin
         ));
     }
     if !importer.camera_found {
-        let b = scene.bounds();
-        let radius = b.extent().length().max(1e-3) * 0.5;
-        let c = b.center();
-        scene.camera = Camera::look_at(c + Vec3::new(0.0, 0.0, 2.5 * radius), c, Vec3::Y, 45.0);
+        scene.camera = Camera::framing(&scene.bounds(), DEFAULT_VFOV_DEGREES);
+        scene.notes.push(format!(
+            "no camera in {label}: framing the scene's bounds from a three-quarter view"
+        ));
     }
     scene.validate().map_err(|e| e.to_string())?;
     Ok(scene)
