@@ -6,7 +6,8 @@ use std::sync::atomic::{AtomicU32, Ordering};
 
 use glam::{UVec3, Vec3};
 use lucid_engine::scene::{
-    load_gltf, load_gltf_slice, MaterialKind, PunctualLight, SceneError, TexelData,
+    load_gltf, load_gltf_slice, Camera, Environment, MaterialKind, PunctualLight, SceneError,
+    TexelData,
 };
 
 static COUNTER: AtomicU32 = AtomicU32::new(0);
@@ -430,18 +431,35 @@ fn empty_scenes_and_cycles_are_errors() {
 }
 
 #[test]
-fn scene_without_light_loads_with_a_warning() {
+fn scene_without_light_or_camera_gets_the_neutral_sky_and_a_framing_camera_with_notes() {
     let dark =
         r#"{"name": "dark", "pbrMetallicRoughness": {"baseColorFactor": [0.5, 0.5, 0.5, 1]}}"#;
     let file = write_case("nolight", &quad_doc("quad.bin", &[dark], ""), true);
     let s = load_gltf(&file).unwrap();
-    assert!(!s.has_light());
-    assert!(
-        s.warnings
+    assert!(s.has_light());
+    assert!(s.punctual_lights.is_empty() && s.sun.is_none());
+    assert_eq!(s.environment, Environment::NEUTRAL_SKY);
+    assert!(s.warnings.is_empty(), "{:?}", s.warnings);
+    let note = |what: &str| {
+        s.notes
             .iter()
-            .any(|w| w.contains("no light") && w.contains("scene.gltf")),
+            .any(|n| n.contains(what) && n.contains("scene.gltf"))
+    };
+    assert!(note("no light") && note("sky"), "{:?}", s.notes);
+    assert!(note("no camera") && note("three-quarter"), "{:?}", s.notes);
+    assert_eq!(s.camera, Camera::framing(&s.bounds(), 45.0));
+    // A file with a light keeps its black environment and says nothing about a sky.
+    let lit = load_gltf(&write_case(
+        "lit",
+        &quad_doc("quad.bin", &[dark, EMISSIVE], ""),
+        true,
+    ))
+    .unwrap();
+    assert!(lit.environment.is_black());
+    assert!(
+        !lit.notes.iter().any(|n| n.contains("sky")),
         "{:?}",
-        s.warnings
+        lit.notes
     );
 }
 

@@ -1,10 +1,10 @@
-//! What a glTF file gets when it lacks a camera: a camera framing the scene's bounds from a
-//! three-quarter view, with a note. Rendered at 64x64 on lavapipe.
+//! What a glTF file gets when it lacks a camera or a light: a camera framing the scene's bounds
+//! from a three-quarter view, and a neutral sky, each with a note. Rendered at 64x64 on lavapipe.
 
 use lucid_engine::capture::ImageData;
-use lucid_engine::scene::Scene;
+use lucid_engine::scene::{Environment, Scene};
 use lucid_passes::renderer::{Algorithm, SamplesPerPixel, Settings};
-use lucid_tests::gltf::{plane, Doc};
+use lucid_tests::gltf::{cube, plane, Doc};
 use lucid_tests::render::render_accumulated;
 
 const SIZE: u32 = 64;
@@ -80,4 +80,46 @@ fn a_floor_without_a_camera_is_framed_from_above() {
         .filter(|&(x, y)| image.get(x, y).unwrap()[..3].iter().any(|&c| c > 1e-3))
         .count();
     assert_eq!(border_lit, 0, "the floor reaches the image border");
+}
+
+#[test]
+fn a_scene_without_light_renders_under_the_neutral_sky_with_both_algorithms() {
+    let mut doc = Doc::new();
+    let (positions, indices) = cube(0.5);
+    let p = doc.floats(&positions);
+    let i = doc.indices(&indices);
+    let m = doc.material(
+        r#"{"pbrMetallicRoughness": {"baseColorFactor": [0.6, 0.6, 0.6, 1], "metallicFactor": 0}}"#,
+    );
+    let mesh = doc.mesh(&[("POSITION", p)], Some(i), Some(m));
+    doc.node(&format!(r#"{{"mesh": {mesh}}}"#));
+    let scene = doc.load("dark.gltf");
+    assert_eq!(scene.environment, Environment::NEUTRAL_SKY);
+    assert!(
+        has_note(&scene, &["no light in dark.gltf", "sky"]),
+        "{:?}",
+        scene.notes
+    );
+    assert!(scene.warnings.is_empty(), "{:?}", scene.warnings);
+    for algorithm in Algorithm::ALL {
+        let image = render(scene.clone(), algorithm, 8);
+        // Every pixel sees the sky or the cube lit by it (the darkest, the bottom face, is not
+        // in view from above).
+        let share = lit_share(&image, 0.05);
+        let centre = image.get(SIZE / 2, SIZE / 2).unwrap();
+        println!(
+            "{}: {:.1}% lit, centre {centre:?}",
+            algorithm.short_name(),
+            100.0 * share
+        );
+        // (Not all: the cube's shared corners get averaged normals, which darken some pixels.)
+        assert!(share > 0.95, "{}: {share}", algorithm.short_name());
+        // The cube's top face (albedo 0.6) under a sky of radiance about 0.9 above and 0.3
+        // below: well lit, and darker than the sky behind it.
+        assert!(
+            centre[1] > 0.2 && centre[1] < 0.9,
+            "{}: cube {centre:?}",
+            algorithm.short_name()
+        );
+    }
 }

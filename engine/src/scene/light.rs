@@ -95,6 +95,15 @@ pub enum Environment {
 }
 
 impl Environment {
+    /// The neutral sky a scene without any light gets (glTF import): a pale, nearly white
+    /// gradient of radiance about 1 above the horizon and a grey ground, so that a white
+    /// Lambertian surface facing up comes out at about its albedo.
+    pub const NEUTRAL_SKY: Environment = Environment::Sky {
+        zenith: Vec3::new(0.8, 0.85, 0.95),
+        horizon: Vec3::new(1.0, 1.0, 1.0),
+        ground: Vec3::new(0.3, 0.28, 0.25),
+    };
+
     /// Radiance arriving from unit direction `dir` (i.e. seen looking
     /// along `dir`).
     pub fn radiance(&self, dir: Vec3) -> Vec3 {

@@ -6,8 +6,8 @@
 //! than trusting the `gltf` crate's loaders, and each failure becomes a
 //! [`SceneError::Gltf`] naming the file and the problem. Required
 //! extensions other than [`SUPPORTED_EXTENSIONS`] are rejected by name. A
-//! scene without any light is accepted with a warning in
-//! `Scene::warnings`.
+//! scene without any light (no emissive surface, punctual light or sun) gets
+//! [`Environment::NEUTRAL_SKY`], and a note in `Scene::notes` says so.
 //!
 //! What is imported: triangle, strip and fan primitives (positions, normals, `TEXCOORD_0`,
 //! indices) as meshes, the default scene's node hierarchy as instances
@@ -31,7 +31,7 @@ use gltf::buffer::Source;
 use gltf::json::mesh::Semantic;
 use gltf::json::validation::Checked;
 
-use super::{Camera, Scene, SceneError};
+use super::{Camera, Environment, Scene, SceneError};
 use materials::MaterialImporter;
 use nodes::NodeImporter;
 
@@ -173,6 +173,12 @@ fn import(bytes: &[u8], base: Option<&Path>, label: &str) -> Result<Scene, Strin
         scene.camera = Camera::framing(&scene.bounds(), DEFAULT_VFOV_DEGREES);
         scene.notes.push(format!(
             "no camera in {label}: framing the scene's bounds from a three-quarter view"
+        ));
+    }
+    if !scene.has_light() {
+        scene.environment = Environment::NEUTRAL_SKY;
+        scene.notes.push(format!(
+            "no light in {label}: lighting it with a neutral default sky"
         ));
     }
     scene.validate().map_err(|e| e.to_string())?;
