@@ -45,7 +45,7 @@ PathResult trace_path(vec3 o, vec3 d, inout uint rng, uint max_depth, uint rr_de
         if (depth + 1u >= max_depth) {
             break;
         }
-        BsdfParams m = material_params(s.material, s.uv);
+        BsdfParams m = material_params(s.material, s.uv, s.color);
         if (depth == 0u) {
             r.first_albedo = demodulation_albedo(m);
         }

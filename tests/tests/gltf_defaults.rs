@@ -112,8 +112,7 @@ fn a_scene_without_light_renders_under_the_neutral_sky_with_both_algorithms() {
             algorithm.short_name(),
             100.0 * share
         );
-        // (Not all: the cube's shared corners get averaged normals, which darken some pixels.)
-        assert!(share > 0.95, "{}: {share}", algorithm.short_name());
+        assert_eq!(share, 1.0, "{}: every pixel is lit", algorithm.short_name());
         // The cube's top face (albedo 0.6) under a sky of radiance about 0.9 above and 0.3
         // below: well lit, and darker than the sky behind it.
         assert!(

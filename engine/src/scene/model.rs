@@ -310,6 +310,7 @@ impl Scene {
             h.bytes(bytemuck::cast_slice(&m.positions));
             h.bytes(bytemuck::cast_slice(&m.normals));
             h.bytes(bytemuck::cast_slice(&m.uvs));
+            h.bytes(bytemuck::cast_slice(&m.colors));
             h.bytes(bytemuck::cast_slice(&m.indices));
             h.u32(m.material);
         }

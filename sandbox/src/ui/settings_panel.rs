@@ -64,7 +64,7 @@ fn scene(ui: &mut egui::Ui, state: &mut AppState, requests: &mut Requests) {
 }
 
 /// The scene features with their names, in a fixed order.
-fn feature_list(f: &SceneFeatures) -> [(&'static str, bool); 10] {
+fn feature_list(f: &SceneFeatures) -> [(&'static str, bool); 11] {
     [
         ("diffuse", f.diffuse),
         ("conductor", f.conductor),
@@ -73,6 +73,7 @@ fn feature_list(f: &SceneFeatures) -> [(&'static str, bool); 10] {
         ("emissive", f.emissive),
         ("spheres", f.spheres),
         ("textures", f.textures),
+        ("vertex colours", f.vertex_colors),
         ("environment", f.environment),
         ("sun", f.sun),
         ("point/spot lights", f.delta_lights),

@@ -3,7 +3,8 @@
 //!
 //! Buffers and how they reference each other:
 //! - `vertices` ([`GpuVertex`], 20 B) and `indices` (3 × `u32` per
-//!   triangle, absolute vertex indices). Each mesh's triangles are stored
+//!   triangle, absolute vertex indices); `vertex_colors` (8 B per vertex) only when a mesh has
+//!   vertex colours. Each mesh's triangles are stored
 //!   in its BLAS leaf order, so a BLAS leaf `(first, count)` is directly a
 //!   global triangle range.
 //! - `blas_nodes` / `tlas_nodes` ([`GpuBvhNode`], 64 B, see [`bvh_pack`]):
@@ -25,7 +26,7 @@ mod layout;
 mod params;
 
 pub use bvh_pack::GpuBvhNode;
-pub use encode::{decode_normal, encode_normal, encode_uv};
+pub use encode::{decode_normal, encode_color, encode_normal, encode_uv};
 pub use flat::{apply_flattening, pack_flat, INSTANCE_FLATTENED};
 pub use layout::{
     light_kind, material_kind, texture_format, GpuAliasEntry, GpuCamera, GpuEnvironment,
@@ -52,6 +53,9 @@ pub const INSTANCE_SPHERES: u32 = 1;
 pub struct GpuScene {
     /// Mesh vertices.
     pub vertices: Vec<GpuVertex>,
+    /// Vertex colours, one per vertex (`[packHalf2x16(r, g), packHalf2x16(b, 0)]`), when some
+    /// mesh has them; else empty (and `HAS_VERTEX_COLORS` off).
+    pub vertex_colors: Vec<[u32; 2]>,
     /// Triangle vertex indices, three per triangle.
     pub indices: Vec<u32>,
     /// Triangles for ray intersection (first vertex and edges), in the order of `indices`.
@@ -100,6 +104,7 @@ impl GpuScene {
         let (texels, textures) = params::textures(scene);
         Self {
             vertices: geo.vertices,
+            vertex_colors: geo.vertex_colors,
             indices: geo.indices,
             triangles: geo.triangles,
             blas_nodes: geo.blas_nodes,
@@ -236,6 +241,7 @@ impl GpuScene {
     /// Bytes of vertices and indices.
     pub fn geometry_bytes(&self) -> usize {
         self.vertices.len() * size_of::<GpuVertex>()
+            + self.vertex_colors.len() * 8
             + self.indices.len() * 4
             + self.triangles.len() * size_of::<GpuTriangle>()
             + self.spheres.len() * size_of::<GpuSphere>()
