@@ -7,7 +7,7 @@ use std::sync::atomic::{AtomicU32, Ordering};
 use glam::{UVec3, Vec3};
 use lucid_engine::scene::{
     load_gltf, load_gltf_slice, Camera, Environment, MaterialKind, PunctualLight, SceneError,
-    TexelData,
+    TexelData, LUMENS_PER_WATT,
 };
 
 static COUNTER: AtomicU32 = AtomicU32::new(0);
@@ -247,7 +247,9 @@ fn imports_cameras_hierarchy_instancing_and_punctual_lights() {
             ..
         }] => {
             assert_eq!(*position, Vec3::new(0.0, 4.0, 0.0));
-            assert_eq!(*intensity, Vec3::new(10.0, 5.0, 5.0));
+            // 10 cd of (1, 0.5, 0.5): W/sr through 683 lm/W.
+            let want = Vec3::new(10.0, 5.0, 5.0) / LUMENS_PER_WATT;
+            assert!((*intensity - want).length() < 1e-7, "{intensity}");
             assert!((*direction - Vec3::NEG_Y).length() < 1e-5, "{direction}");
             assert_eq!((*inner_angle, *outer_angle), (0.1, 0.5));
         }
@@ -255,7 +257,7 @@ fn imports_cameras_hierarchy_instancing_and_punctual_lights() {
     }
     let sun = s.sun.unwrap();
     assert!((sun.direction - Vec3::Y).length() < 1e-5);
-    assert_eq!(sun.irradiance, Vec3::splat(2.0));
+    assert_eq!(sun.irradiance, Vec3::splat(2.0 / LUMENS_PER_WATT), "2 lux");
     let f = s.features();
     assert!(f.delta_lights && f.sun && !f.emissive);
 }

@@ -1,6 +1,5 @@
 // Emission sampling for light subpaths (bidirectional methods) and the emission and NEE pdfs their
-// MIS weights need. A light-table entry is picked in proportion to power (the alias table NEE
-// uses); emissive triangles and spheres emit from a uniform point with a cosine-weighted direction
+// MIS weights need. A light-table entry is picked as NEE picks it (the alias table NEE uses); emissive triangles and spheres emit from a uniform point with a cosine-weighted direction
 // on the front side, point lights uniformly over the sphere, spot lights uniformly within the outer
 // cone. The sun and the environment emit no light subpaths: paths that start on them are left to
 // the camera subpath's own strategies (BSDF sampling and NEE). Requires math.glsl, scene.glsl,
@@ -23,8 +22,7 @@ struct EmitSample {
 // Probability (for MIS) that light sampling picks an area emitter with `emission` and `area`,
 // among the light table alone (the sun excluded).
 float emitter_selection(vec3 emission, float area) {
-    float total = b_scene.p.light.x;
-    return total > 0.0 ? emitter_power(emission, area) / total : 0.0;
+    return light_selection(emitter_power(emission, area));
 }
 
 float sphere_area(float r) {

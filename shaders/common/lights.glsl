@@ -1,6 +1,7 @@
 // Light sampling for next-event estimation and the matching pdfs for MIS: emissive triangles and
-// spheres (power-proportional alias table), point and spot lights, the sun, and the environment
-// (reached by BSDF sampling only). Requires scene.glsl, math.glsl.
+// spheres, point and spot lights (an alias table, half by power and half uniform: see
+// lucid_engine::scene::LightDistribution), the sun, and the environment (reached by BSDF sampling
+// only). Requires scene.glsl, math.glsl.
 #ifndef LUCID_LIGHTS_GLSL
 #define LUCID_LIGHTS_GLSL
 
@@ -58,8 +59,16 @@ vec3 triangle_front_normal(Light light) {
     return normalize(cross(light.p1.xyz - light.p0.xyz, light.p2.xyz - light.p0.xyz)) * light.p1.w;
 }
 
+// An area emitter's power as the light table weighs it: on its strongest channel
+// (lucid_engine::scene::selection_power).
 float emitter_power(vec3 emission, float area) {
-    return PI * area * luminance(emission);
+    return PI * area * max3(emission);
+}
+
+// The probability that the light table picks an emitter of `power` (the sun's share excluded):
+// half in proportion to power, half uniform over the lights with power.
+float light_selection(float power) {
+    return power > 0.0 ? power * b_scene.p.light.z + b_scene.p.light.y : 0.0;
 }
 
 // Solid-angle pdf that NEE samples the point `p_light` on emissive triangle `tri` of `instance`
@@ -73,7 +82,7 @@ float triangle_light_pdf(vec3 p, vec3 p_light, vec3 front, vec3 p0, vec3 p1, vec
     vec3 d = p_light - p;
     float dist2 = dot(d, d);
     float cos_l = abs(dot(front, normalize(d)));
-    float selection = emitter_power(emission, area) / total * (1.0 - sun_selection());
+    float selection = light_selection(emitter_power(emission, area)) * (1.0 - sun_selection());
     return selection * dist2 / max(cos_l * area, 1e-12);
 }
 
@@ -85,7 +94,7 @@ float sphere_light_pdf(vec3 p, vec4 center_radius, vec3 emission) {
         return 0.0;
     }
     float cos_max = sqrt(max(0.0, 1.0 - r * r / d2));
-    float selection = emitter_power(emission, 4.0 * PI * r * r) / total * (1.0 - sun_selection());
+    float selection = light_selection(emitter_power(emission, 4.0 * PI * r * r)) * (1.0 - sun_selection());
     return selection / (2.0 * PI * max(1.0 - cos_max, 1e-7));
 }
 

@@ -15,7 +15,9 @@
 //! the scene's bounds and a note in `Scene::notes` says so), materials (see
 //! [`materials`]) with base-colour textures, and `KHR_lights_punctual`
 //! point and spot lights (the first directional light becomes the sun).
-//! Punctual intensities are used as radiometric values as given.
+//! Light intensities are photometric, as the extension specifies: candela for
+//! point and spot lights, lux for directional ones; they become radiometric
+//! values through [`crate::scene::LUMENS_PER_WATT`] (see [`crate::scene::PunctualLight`]).
 
 mod accessor;
 mod container;

@@ -11,7 +11,7 @@ use gltf::{Document, Node};
 
 use super::materials::MaterialImporter;
 use super::meshes::{self, MAX_COORDINATE};
-use crate::scene::{Camera, PunctualLight, Scene, Sun};
+use crate::scene::{Camera, PunctualLight, Scene, Sun, LUMENS_PER_WATT};
 
 /// Walks one glTF scene into a Lucid scene.
 pub struct NodeImporter<'a> {
@@ -147,7 +147,8 @@ impl NodeImporter<'_> {
             .and_then(|e| e.khr_lights_punctual.as_ref())
             .and_then(|l| l.lights.get(index))
             .ok_or_else(|| format!("node {node}: light {index} does not exist"))?;
-        let color = Vec3::from(light.color) * light.intensity;
+        // Candela (point, spot) and lux (directional) to W/sr and W/m² per channel.
+        let color = Vec3::from(light.color) * light.intensity / LUMENS_PER_WATT;
         let position = world.w_axis.truncate();
         let axis = world.transform_vector3(Vec3::NEG_Z).normalize_or_zero();
         if !color.is_finite() || color.min_element() < 0.0 || axis == Vec3::ZERO {

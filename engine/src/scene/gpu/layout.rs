@@ -284,7 +284,7 @@ pub struct GpuSun {
 ///     Camera camera; Environment environment; Sun sun;
 ///     uvec4 counts0;  // triangles, instances, spheres, lights
 ///     uvec4 counts1;  // materials, textures, tlas root word, blas nodes
-///     vec4  light;    // total NEE light power, 0, 0, 0
+///     vec4  light;    // total NEE light power, uniform selection, power scale, 0
 /// };
 /// ```
 #[repr(C)]
@@ -301,9 +301,10 @@ pub struct GpuSceneParams {
     /// Materials, textures, the TLAS root's child word (`bvh_pack::EMPTY` without instances),
     /// BLAS nodes.
     pub counts1: [u32; 4],
-    /// Total power of the light table (x). A BSDF-sampled hit on an
-    /// emitter has selection probability `power / total`, with power
-    /// computed as in `LightDistribution`, so no reverse lookup is needed.
+    /// Total power of the light table (x), and the selection constants `uniform` (y) and
+    /// `power_scale` (z) of [`crate::scene::Selection`]: a BSDF-sampled hit on an emitter has
+    /// selection probability `power * power_scale + uniform`, with power computed as in
+    /// `LightDistribution`, so no reverse lookup is needed.
     pub light: [f32; 4],
 }
 

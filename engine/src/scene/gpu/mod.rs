@@ -14,8 +14,8 @@
 //! - `instances` ([`GpuInstance`]): transforms, BLAS root, material.
 //! - `spheres` ([`GpuSphere`]) in sphere-BLAS leaf order.
 //! - `materials`, `textures` (records into the flat `texels` word buffer).
-//! - `lights` + `light_table`: the NEE light list with its power-based
-//!   alias table / CDF.
+//! - `lights` + `light_table`: the NEE light list with its alias table / CDF
+//!   (power and uniform selection, see [`crate::scene::LightDistribution`]).
 //! - `params`: camera, environment, sun, counts.
 
 pub mod bvh_pack;
@@ -137,8 +137,8 @@ impl GpuScene {
             let mesh = scene.instances[instance as usize].mesh as usize;
             self.triangle_base[mesh] + inverse_orders[mesh][t as usize]
         };
-        let (lights, table, power) = self.pack_lights(scene, &gpu_of_instance, &triangle);
-        self.set_lights(scene, lights, table, power);
+        let (lights, table, light) = self.pack_lights(scene, &gpu_of_instance, &triangle);
+        self.set_lights(scene, lights, table, light);
     }
 
     /// Packs the TLAS and the instances of `scene` (in TLAS leaf order); returns the GPU instance
@@ -182,7 +182,7 @@ impl GpuScene {
         scene: &Scene,
         instance: &[u32],
         triangle: &dyn Fn(u32, u32) -> u32,
-    ) -> (Vec<GpuLight>, Vec<GpuAliasEntry>, f32) {
+    ) -> (Vec<GpuLight>, Vec<GpuAliasEntry>, [f32; 4]) {
         let mut gpu_of_sphere = vec![u32::MAX; scene.spheres.len()];
         for (slot, s) in self.spheres.iter().enumerate() {
             gpu_of_sphere[s.scene_sphere as usize] = slot as u32;
@@ -197,17 +197,23 @@ impl GpuScene {
                 sphere: &gpu_of_sphere,
             },
         );
-        (lights, table, dist.total_power())
+        let light = [
+            dist.total_power(),
+            dist.selection.uniform,
+            dist.selection.power_scale,
+            0.0,
+        ];
+        (lights, table, light)
     }
 
     /// Stores the lights and packs the params (camera, environment and sun of `scene`, counts,
-    /// total light power).
+    /// `light`: total light power and the selection constants, see [`GpuSceneParams::light`]).
     fn set_lights(
         &mut self,
         scene: &Scene,
         lights: Vec<GpuLight>,
         table: Vec<GpuAliasEntry>,
-        total_power: f32,
+        light: [f32; 4],
     ) {
         self.lights = lights;
         self.light_table = table;
@@ -227,7 +233,7 @@ impl GpuScene {
                 self.tlas_root,
                 self.blas_nodes.len() as u32,
             ],
-            light: [total_power, 0.0, 0.0, 0.0],
+            light,
         };
     }
 
