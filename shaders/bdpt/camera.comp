@@ -53,7 +53,7 @@ struct CameraVertex {
 
 // Next-event estimation (s = 1) from camera vertex c.
 vec3 connect_to_light(CameraVertex c, inout uint rng) {
-    vec3 u = vec3(rng_next(rng), rng_next2(rng));
+    vec4 u = vec4(rng_next(rng), rng_next2(rng), rng_side(rng));
     LightSample ls;
     if (!sample_light(c.s.p, u, ls) || ls.pdf <= 0.0) {
         return vec3(0.0);
@@ -67,7 +67,7 @@ vec3 connect_to_light(CameraVertex c, inout uint rng) {
     float w;
     float emit_pdf;
     float cos_light;
-    if (light_sample_emission(c.s.p, u, ls, emit_pdf, cos_light)) {
+    if (light_sample_emission(c.s.p, ls, emit_pdf, cos_light)) {
         float rev_pdf;
         bsdf_eval(c.m, wi, c.wo, rev_pdf);
         float cos_here = abs(dot(c.s.ng, ls.wi));
@@ -86,7 +86,7 @@ vec3 connect_to_light(CameraVertex c, inout uint rng) {
     if (w <= 0.0 || counted_occluded(origin, ls.wi, t_max)) {
         return vec3(0.0);
     }
-    return f * ls.radiance * (w / ls.pdf);
+    return f * ls.radiance * (w * ls.weight);
 }
 
 // Connection (s > 1, t > 1) of camera vertex c to the cached light vertex v.

@@ -138,15 +138,13 @@ float surface_emission_pdf(Surface s, float cos_out) {
 // For a light sample `ls` that sample_light(p, u, ls) drew, the emission pdf (area x solid angle)
 // of the same segment traced from the light towards p, and the cosine at the light (1 for delta
 // lights). Returns false when the sample is the sun's.
-bool light_sample_emission(vec3 p, vec3 u, LightSample ls, out float pdf_dir, out float cos_light) {
+bool light_sample_emission(vec3 p, LightSample ls, out float pdf_dir, out float cos_light) {
     pdf_dir = 0.0;
     cos_light = 1.0;
-    float p_sun = sun_selection();
-    if (u.x < p_sun) {
+    if (ls.light == SUN_LIGHT) {
         return false;
     }
-    float u_pick = p_sun > 0.0 ? (u.x - p_sun) / (1.0 - p_sun) : u.x;
-    uint index = pick_light(min(u_pick, 0.99999994), b_scene.p.counts0.w);
+    uint index = ls.light;
     Light light = b_lights.l[index];
     if (light.kind == LIGHT_TRIANGLE) {
         vec3 front = triangle_front_normal(light);
