@@ -28,6 +28,7 @@ pub struct Doc {
     lights: Vec<String>,
     cameras: Vec<String>,
     extensions_used: Vec<String>,
+    members: Vec<String>,
 }
 
 fn type_name(components: usize) -> &'static str {
@@ -124,6 +125,27 @@ impl Doc {
         self.materials.len() - 1
     }
 
+    /// Adds a mesh (its JSON object); returns its index.
+    pub fn mesh_json(&mut self, json: &str) -> usize {
+        self.meshes.push(json.to_string());
+        self.meshes.len() - 1
+    }
+
+    /// Adds a camera (its JSON object) on a node with `transform`.
+    pub fn camera_json(&mut self, json: &str, transform: &str) -> usize {
+        self.cameras.push(json.to_string());
+        let sep = if transform.is_empty() { "" } else { ", " };
+        self.node(&format!(
+            r#"{{{transform}{sep}"camera": {}}}"#,
+            self.cameras.len() - 1
+        ))
+    }
+
+    /// Adds a top-level member the other methods do not write (e.g. `"textures": [...]`).
+    pub fn member(&mut self, json: &str) {
+        self.members.push(json.to_string());
+    }
+
     /// Adds a mesh of one triangle primitive with `attributes` (semantic, accessor); returns its
     /// index.
     pub fn mesh(
@@ -169,14 +191,12 @@ impl Doc {
 
     /// Adds a perspective camera on a node with `transform`.
     pub fn camera(&mut self, yfov: f32, transform: &str) -> usize {
-        self.cameras.push(format!(
-            r#"{{"type": "perspective", "perspective": {{"yfov": {yfov}, "znear": 0.01}}}}"#
-        ));
-        let sep = if transform.is_empty() { "" } else { ", " };
-        self.node(&format!(
-            r#"{{{transform}{sep}"camera": {}}}"#,
-            self.cameras.len() - 1
-        ))
+        self.camera_json(
+            &format!(
+                r#"{{"type": "perspective", "perspective": {{"yfov": {yfov}, "znear": 0.01}}}}"#
+            ),
+            transform,
+        )
     }
 
     /// Lists `name` in `extensionsUsed`.
@@ -220,6 +240,7 @@ impl Doc {
                 list(&self.lights)
             ));
         }
+        top.extend(self.members.iter().cloned());
         if !self.extensions_used.is_empty() {
             let used: Vec<String> = self
                 .extensions_used

@@ -10,14 +10,19 @@
 //!
 //! Roughness maps to GGX `alpha = roughness²`. Emission is
 //! `emissiveFactor × KHR_materials_emissive_strength`. The base-colour
-//! texture (sRGB, `TEXCOORD_0`) is kept for every kind.
+//! texture (sRGB, `TEXCOORD_0`) is kept for every kind. What a material uses beyond this
+//! (textures other than base colour, alpha modes, partial metal or transmission, other texture
+//! coordinates or wrap modes) is reported once per feature per file ([`super::unsupported`]).
 
 use std::collections::HashMap;
 use std::path::Path;
 
 use glam::Vec3;
+use gltf::material::AlphaMode;
+use gltf::texture::WrappingMode;
 use gltf::Document;
 
+use super::unsupported::{Feature, Unsupported};
 use super::uri;
 use crate::scene::{Material, MaterialKind, Scene, TexelData, Texture};
 
@@ -41,8 +46,14 @@ impl<'a> MaterialImporter<'a> {
         }
     }
 
-    /// Adds glTF material `index` to the scene and returns its index.
-    pub fn import(&mut self, scene: &mut Scene, index: usize) -> Result<u32, String> {
+    /// Adds glTF material `index` to the scene and returns its index; what it uses that Lucid
+    /// does not render goes to `unsupported`.
+    pub fn import(
+        &mut self,
+        scene: &mut Scene,
+        index: usize,
+        unsupported: &mut Unsupported,
+    ) -> Result<u32, String> {
         let m = self
             .doc
             .materials()
@@ -59,9 +70,8 @@ impl<'a> MaterialImporter<'a> {
             .materials
             .get(index)
             .and_then(|j| j.extensions.as_ref());
-        let transmission = ext
-            .and_then(|e| e.transmission.as_ref())
-            .map_or(0.0, |t| t.transmission_factor.0);
+        let transmission_ext = ext.and_then(|e| e.transmission.as_ref());
+        let transmission = transmission_ext.map_or(0.0, |t| t.transmission_factor.0);
         let ior = ext.and_then(|e| e.ior.as_ref()).map_or(1.5, |i| i.ior.0);
         let strength = ext
             .and_then(|e| e.emissive_strength.as_ref())
@@ -74,13 +84,45 @@ impl<'a> MaterialImporter<'a> {
             MaterialKind::Diffuse
         };
         let roughness = pbr.roughness_factor();
+        let mut note =
+            |feature| unsupported.note(feature, "materials", || format!("material `{name}`"));
+        let metallic = pbr.metallic_factor();
+        if kind != MaterialKind::Dielectric && metallic > 0.0 && metallic < 1.0 {
+            note(Feature::PartialMetal);
+        }
+        let partial_transmission = transmission_ext
+            .is_some_and(|t| t.transmission_texture.is_some() || t.transmission_factor.0 < 1.0);
+        if kind == MaterialKind::Dielectric && partial_transmission {
+            note(Feature::PartialTransmission);
+        }
+        if pbr.metallic_roughness_texture().is_some() {
+            note(Feature::MetallicRoughnessTexture);
+        }
+        if m.normal_texture().is_some() {
+            note(Feature::NormalMap);
+        }
+        if m.occlusion_texture().is_some() {
+            note(Feature::Occlusion);
+        }
+        if m.emissive_texture().is_some() {
+            note(Feature::EmissiveTexture);
+        }
+        match m.alpha_mode() {
+            AlphaMode::Opaque => {}
+            AlphaMode::Mask => note(Feature::AlphaMask),
+            AlphaMode::Blend => note(Feature::AlphaBlend),
+        }
         let texture = match pbr.base_color_texture() {
             Some(info) => {
                 if info.tex_coord() != 0 {
-                    scene.warnings.push(format!(
-                        "material `{name}`: base colour texture uses TEXCOORD_{}; TEXCOORD_0 is used instead",
-                        info.tex_coord()
-                    ));
+                    note(Feature::OtherTexCoords);
+                }
+                let sampler = info.texture().sampler();
+                if [sampler.wrap_s(), sampler.wrap_t()]
+                    .iter()
+                    .any(|&w| w != WrappingMode::Repeat)
+                {
+                    note(Feature::WrapMode);
                 }
                 Some(self.image(scene, info.texture().source().index())?)
             }

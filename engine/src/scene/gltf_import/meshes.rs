@@ -6,6 +6,7 @@ use gltf::mesh::Mode;
 use gltf::{Primitive, Semantic};
 
 use super::accessor::{read_floats, read_indices};
+use super::unsupported::{Feature, Unsupported};
 use crate::scene::{Mesh, Scene};
 
 /// The largest coordinate magnitude of world-space geometry: squared distances (the bounds'
@@ -13,15 +14,15 @@ use crate::scene::{Mesh, Scene};
 pub const MAX_COORDINATE: f32 = 1e18;
 
 /// Converts one triangle, triangle-strip or triangle-fan primitive into a
-/// scene mesh and returns its id, or `None` (with a warning) for points and
+/// scene mesh and returns its id, or `None` (noted in `unsupported`) for points and
 /// lines. Reads POSITION, NORMAL (flat normals without it, as the spec requires), `TEXCOORD_0`
 /// and `COLOR_0`.
 pub fn primitive(
     scene: &mut Scene,
-    mesh: &gltf::Mesh,
-    prim: &Primitive,
+    (mesh, prim): (&gltf::Mesh, &Primitive),
     buffers: &[Vec<u8>],
     material: u32,
+    unsupported: &mut Unsupported,
 ) -> Result<Option<u32>, String> {
     let name = format!(
         "{}/{}",
@@ -33,12 +34,15 @@ pub fn primitive(
         prim.mode(),
         Mode::Triangles | Mode::TriangleStrip | Mode::TriangleFan
     ) {
-        scene.warnings.push(format!(
-            "mesh `{name}`: {:?} primitives are not supported (only triangles, triangle strips \
-             and triangle fans); skipped",
-            prim.mode()
-        ));
+        unsupported.note(Feature::PointsAndLines, "primitives", || {
+            format!("mesh `{name}` ({:?})", prim.mode())
+        });
         return Ok(None);
+    }
+    if prim.morph_targets().next().is_some() {
+        unsupported.note(Feature::MorphTargets, "primitives", || {
+            format!("mesh `{name}`")
+        });
     }
     let ctx = |e: String| format!("mesh `{name}`: {e}");
     let pos = prim

@@ -24,6 +24,7 @@ mod container;
 pub mod materials;
 mod meshes;
 mod nodes;
+mod unsupported;
 mod uri;
 
 use std::collections::HashMap;
@@ -36,6 +37,7 @@ use gltf::json::validation::Checked;
 use super::{Camera, Environment, Scene, SceneError};
 use materials::MaterialImporter;
 use nodes::NodeImporter;
+use unsupported::{Feature, Unsupported};
 
 /// Vertical field of view of the camera that frames a file without one.
 pub const DEFAULT_VFOV_DEGREES: f32 = 45.0;
@@ -158,8 +160,17 @@ fn import(bytes: &[u8], base: Option<&Path>, label: &str) -> Result<Scene, Strin
         mesh_cache: HashMap::new(),
         material_cache: HashMap::new(),
         camera_found: false,
+        unsupported: Unsupported::default(),
     };
     importer.walk(&mut scene, gscene.nodes().collect())?;
+    if doc.animations().next().is_some() {
+        importer
+            .unsupported
+            .note(Feature::Animations, "animations", || {
+                format!("{} animations", doc.animations().count())
+            });
+    }
+    scene.warnings.extend(importer.unsupported.warnings(label));
     if scene.instances.is_empty() {
         let skipped = if scene.warnings.is_empty() {
             String::new()
