@@ -25,7 +25,8 @@ struct Sphere { vec4 center_radius; uint material; uint scene_sphere; uint pad0;
 struct Material {
     vec3 base_color; uint kind;
     vec3 emission; float alpha;
-    float ior; uint texture; uint flags; uint pad;
+    float ior; uint texture; uint flags; uint metal_roughness;
+    float metallic; uint pad0; uint pad1; uint pad2;
 };
 struct Light { uint kind; uint index; uint instance; uint pad; vec4 p0; vec4 p1; vec4 p2; vec4 emission; };
 struct LightTableEntry { float threshold; uint alias; float pdf; float cdf; };

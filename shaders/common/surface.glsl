@@ -101,6 +101,18 @@ BsdfParams material_params(uint material, vec2 uv, vec3 vertex_color) {
     p.alpha = max(m.alpha, 1e-4);
     p.ior = m.ior;
     p.smooth_lobe = (m.flags & MATERIAL_FLAG_SMOOTH) != 0u;
+    if (HAS_TEXTURES && m.kind == MATERIAL_CONDUCTOR && m.metal_roughness != 0xffffffffu) {
+        // glTF's metallic-roughness texture: roughness in G (alpha scales by its square), metal
+        // in B; a texel less than half metal is diffuse.
+        vec4 mr = sample_texture(m.metal_roughness, uv);
+        float alpha = m.alpha * mr.g * mr.g;
+        p.alpha = max(alpha, 1e-4);
+        p.smooth_lobe = alpha < 1e-3;
+        if (m.metallic * mr.b < 0.5) {
+            p.kind = MATERIAL_DIFFUSE;
+            p.smooth_lobe = false;
+        }
+    }
     return p;
 }
 

@@ -32,7 +32,8 @@ fn everything_unsupported() -> Doc {
     };
     let glass = |name: &str| {
         format!(
-            r#"{{"name": "{name}", "extensions": {{"KHR_materials_transmission": {{"transmissionFactor": 0.5}}}}}}"#
+            r#"{{"name": "{name}", "pbrMetallicRoughness": {{"metallicRoughnessTexture": {{"index": 0}}}},
+                "extensions": {{"KHR_materials_transmission": {{"transmissionFactor": 0.5}}}}}}"#
         )
     };
     let materials = [
@@ -86,7 +87,10 @@ fn every_unsupported_feature_is_said_once_per_file() {
     }
     // (what the warning names, how many things use it)
     let expected = [
-        ("metallic-roughness textures", "4 materials"),
+        (
+            "metallic-roughness textures",
+            "2 materials, the first material `bottle`",
+        ),
         ("normal maps", "4 materials"),
         ("occlusion textures", "4 materials"),
         ("emissive textures", "4 materials"),

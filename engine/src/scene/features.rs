@@ -54,6 +54,11 @@ impl SceneFeatures {
             let Some(m) = scene.materials.get(id as usize) else {
                 continue;
             };
+            // A metallic-roughness texture can make a conductor's texels diffuse.
+            let textured_metal =
+                m.kind == MaterialKind::Conductor && m.metallic_roughness_texture.is_some();
+            f.diffuse |= textured_metal;
+            f.textures |= textured_metal;
             match m.kind {
                 MaterialKind::Diffuse => f.diffuse = true,
                 MaterialKind::Conductor => f.conductor = true,

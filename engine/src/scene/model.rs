@@ -189,7 +189,10 @@ impl Scene {
             self.warnings.extend(w);
         }
         for m in &self.materials {
-            if let Some(t) = m.base_color_texture {
+            for t in [m.base_color_texture, m.metallic_roughness_texture]
+                .into_iter()
+                .flatten()
+            {
                 if t as usize >= self.textures.len() {
                     return invalid(format!("material `{}` uses missing texture {t}", m.name));
                 }
@@ -331,6 +334,8 @@ impl Scene {
             h.bytes(bytemuck::cast_slice(&[m.base_color, m.emission]));
             h.bytes(bytemuck::cast_slice(&[m.alpha, m.ior]));
             h.u32(m.base_color_texture.map_or(u32::MAX, |t| t));
+            h.u32(m.metallic_roughness_texture.map_or(u32::MAX, |t| t));
+            h.bytes(bytemuck::cast_slice(&[m.metallic]));
         }
         for t in &self.textures {
             h.u32(t.width);

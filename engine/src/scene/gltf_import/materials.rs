@@ -10,7 +10,9 @@
 //!
 //! Roughness maps to GGX `alpha = roughness²`. Emission is
 //! `emissiveFactor × KHR_materials_emissive_strength`. The base-colour
-//! texture (sRGB, `TEXCOORD_0`) is kept for every kind. What a material uses beyond this
+//! texture (sRGB, `TEXCOORD_0`) is kept for every kind; a metal's
+//! metallic-roughness texture (linear, roughness in G, metal in B) scales its
+//! roughness per texel and makes the texels where `metallic × B < 0.5` diffuse. What a material uses beyond this
 //! (textures other than base colour, alpha modes, partial metal or transmission, other texture
 //! coordinates or wrap modes) is reported once per feature per file ([`super::unsupported`]).
 
@@ -31,8 +33,8 @@ pub struct MaterialImporter<'a> {
     doc: &'a Document,
     buffers: &'a [Vec<u8>],
     base: Option<&'a Path>,
-    /// Scene texture index of each decoded glTF image.
-    images: HashMap<usize, u32>,
+    /// Scene texture index of each decoded glTF image and colour space (sRGB or not).
+    images: HashMap<(usize, bool), u32>,
 }
 
 impl<'a> MaterialImporter<'a> {
@@ -95,7 +97,7 @@ impl<'a> MaterialImporter<'a> {
         if kind == MaterialKind::Dielectric && partial_transmission {
             note(Feature::PartialTransmission);
         }
-        if pbr.metallic_roughness_texture().is_some() {
+        if kind == MaterialKind::Dielectric && pbr.metallic_roughness_texture().is_some() {
             note(Feature::MetallicRoughnessTexture);
         }
         if m.normal_texture().is_some() {
@@ -112,21 +114,30 @@ impl<'a> MaterialImporter<'a> {
             AlphaMode::Mask => note(Feature::AlphaMask),
             AlphaMode::Blend => note(Feature::AlphaBlend),
         }
-        let texture = match pbr.base_color_texture() {
-            Some(info) => {
-                if info.tex_coord() != 0 {
-                    note(Feature::OtherTexCoords);
-                }
-                let sampler = info.texture().sampler();
-                if [sampler.wrap_s(), sampler.wrap_t()]
-                    .iter()
-                    .any(|&w| w != WrappingMode::Repeat)
-                {
-                    note(Feature::WrapMode);
-                }
-                Some(self.image(scene, info.texture().source().index())?)
+        let mut check = |info: &gltf::texture::Info| {
+            if info.tex_coord() != 0 {
+                note(Feature::OtherTexCoords);
             }
+            let sampler = info.texture().sampler();
+            if [sampler.wrap_s(), sampler.wrap_t()]
+                .iter()
+                .any(|&w| w != WrappingMode::Repeat)
+            {
+                note(Feature::WrapMode);
+            }
+            info.texture().source().index()
+        };
+        let texture = match pbr.base_color_texture() {
+            Some(info) => Some(self.image(scene, check(&info), true)?),
             None => None,
+        };
+        // Metal and roughness per texel matter only to a metal: below a metallic factor of 0.5
+        // every texel is diffuse, and Lambertian reflection has no roughness.
+        let metallic_roughness = match pbr.metallic_roughness_texture() {
+            Some(info) if kind == MaterialKind::Conductor => {
+                Some(self.image(scene, check(&info), false)?)
+            }
+            _ => None,
         };
         Ok(scene.add_material(Material {
             name,
@@ -134,14 +145,17 @@ impl<'a> MaterialImporter<'a> {
             base_color: Vec3::new(r, g, b),
             base_color_texture: texture,
             alpha: roughness * roughness,
+            metallic_roughness_texture: metallic_roughness,
+            metallic,
             ior,
             emission: Vec3::from(m.emissive_factor()) * strength,
         }))
     }
 
-    /// Decodes glTF image `index` once and returns its scene texture.
-    fn image(&mut self, scene: &mut Scene, index: usize) -> Result<u32, String> {
-        if let Some(&t) = self.images.get(&index) {
+    /// Decodes glTF image `index` once per colour space (`srgb` for colours, linear for data)
+    /// and returns its scene texture.
+    fn image(&mut self, scene: &mut Scene, index: usize, srgb: bool) -> Result<u32, String> {
+        if let Some(&t) = self.images.get(&(index, srgb)) {
             return Ok(t);
         }
         // Read the raw JSON: `gltf::Image::source` panics on an image with
@@ -192,10 +206,10 @@ impl<'a> MaterialImporter<'a> {
                 .unwrap_or_else(|| format!("image {index}")),
             width,
             height,
-            srgb: true,
+            srgb,
             texels: TexelData::Rgba8(texels),
         });
-        self.images.insert(index, t);
+        self.images.insert((index, srgb), t);
         Ok(t)
     }
 }

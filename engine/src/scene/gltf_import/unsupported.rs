@@ -7,7 +7,7 @@ use std::collections::BTreeMap;
 /// A glTF feature the importer ignores or approximates.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, PartialOrd, Ord)]
 pub enum Feature {
-    /// `pbrMetallicRoughness.metallicRoughnessTexture`.
+    /// `pbrMetallicRoughness.metallicRoughnessTexture` on a transmissive material.
     MetallicRoughnessTexture,
     /// `normalTexture`.
     NormalMap,
@@ -48,8 +48,8 @@ impl Feature {
     fn describe(self) -> &'static str {
         match self {
             Feature::MetallicRoughnessTexture => {
-                "metallic-roughness textures are not supported: the metallic and roughness \
-                 factors alone are used"
+                "metallic-roughness textures on transmissive materials are not supported: their \
+                 roughness factor alone is used"
             }
             Feature::NormalMap => {
                 "normal maps (normalTexture) are not supported: the meshes' own normals are used"
@@ -105,29 +105,53 @@ impl Feature {
 /// The unsupported features one file uses.
 #[derive(Debug, Default)]
 pub struct Unsupported {
-    /// Per feature: how many users, the first user and what kind of thing users are.
-    seen: BTreeMap<Feature, (usize, String, &'static str)>,
+    /// Per feature: how many users, the first and the last user, and what kind of thing users
+    /// are.
+    seen: BTreeMap<Feature, Users>,
+}
+
+#[derive(Debug)]
+struct Users {
+    count: usize,
+    first: String,
+    last: String,
+    kind: &'static str,
 }
 
 impl Unsupported {
     /// Records that `user` (e.g. "material `brick`"), one of the file's `kind` (plural, e.g.
-    /// "materials"), uses `feature`.
+    /// "materials"), uses `feature` (a user noted twice in a row counts once).
     pub fn note(&mut self, feature: Feature, kind: &'static str, user: impl FnOnce() -> String) {
-        self.seen
-            .entry(feature)
-            .and_modify(|(count, _, _)| *count += 1)
-            .or_insert_with(|| (1, user(), kind));
+        let user = user();
+        match self.seen.get_mut(&feature) {
+            Some(u) if u.last == user => {}
+            Some(u) => {
+                u.count += 1;
+                u.last = user;
+            }
+            None => {
+                self.seen.insert(
+                    feature,
+                    Users {
+                        count: 1,
+                        first: user.clone(),
+                        last: user,
+                        kind,
+                    },
+                );
+            }
+        }
     }
 
     /// One warning per feature, naming the file `label`.
     pub fn warnings(&self, label: &str) -> Vec<String> {
         self.seen
             .iter()
-            .map(|(feature, (count, first, kind))| {
-                let users = if *count == 1 {
-                    first.clone()
+            .map(|(feature, u)| {
+                let users = if u.count == 1 {
+                    u.first.clone()
                 } else {
-                    format!("{count} {kind}, the first {first}")
+                    format!("{} {}, the first {}", u.count, u.kind, u.first)
                 };
                 format!("{label}: {} ({users})", feature.describe())
             })
@@ -142,7 +166,7 @@ mod tests {
     #[test]
     fn one_warning_per_feature_with_a_count() {
         let mut u = Unsupported::default();
-        for name in ["a", "b", "c"] {
+        for name in ["a", "b", "b", "c"] {
             u.note(Feature::NormalMap, "materials", || {
                 format!("material `{name}`")
             });

@@ -93,14 +93,15 @@ pub mod material_kind {
     pub const DIELECTRIC: u32 = 2;
 }
 
-/// A material, 48 bytes.
+/// A material, 64 bytes.
 /// ```glsl
 /// struct Material {
 ///     vec3  base_color; uint kind;    // kind: 0 diffuse, 1 conductor, 2 dielectric
 ///     vec3  emission;   float alpha;  // GGX alpha
 ///     float ior; uint texture;        // ~0u = no base-colour texture
 ///     uint  flags;                    // bit 0 emissive, bit 1 smooth (alpha < 1e-3)
-///     uint  pad;
+///     uint  metal_roughness;          // ~0u = no metallic-roughness texture (G roughness, B metal)
+///     float metallic; uint pad0, pad1, pad2; // metallic factor
 /// };
 /// ```
 #[repr(C)]
@@ -120,8 +121,13 @@ pub struct GpuMaterial {
     pub texture: u32,
     /// Bit 0: emissive; bit 1: smooth.
     pub flags: u32,
-    /// Padding to 48 bytes.
-    pub pad: u32,
+    /// Metallic-roughness texture record index or `u32::MAX`.
+    pub metal_roughness: u32,
+    /// Metallic factor (with a metallic-roughness texture, a texel is metal where
+    /// `metallic * B >= 0.5`).
+    pub metallic: f32,
+    /// Padding to 64 bytes.
+    pub pad: [u32; 3],
 }
 
 /// Light kinds as stored in [`GpuLight::kind`].
@@ -318,7 +324,7 @@ mod tests {
         assert_eq!(size_of::<GpuVertex>(), 20);
         assert_eq!(size_of::<GpuInstance>(), 112);
         assert_eq!(size_of::<GpuSphere>(), 32);
-        assert_eq!(size_of::<GpuMaterial>(), 48);
+        assert_eq!(size_of::<GpuMaterial>(), 64);
         assert_eq!(size_of::<GpuLight>(), 80);
         assert_eq!(size_of::<GpuAliasEntry>(), 16);
         assert_eq!(size_of::<GpuTextureRecord>(), 16);
