@@ -6,7 +6,8 @@ use std::sync::atomic::{AtomicU32, Ordering};
 
 use glam::{UVec3, Vec3};
 use lucid_engine::scene::{
-    load_gltf, load_gltf_slice, MaterialKind, PunctualLight, SceneError, TexelData,
+    load_gltf, load_gltf_slice, Camera, Environment, MaterialKind, PunctualLight, SceneError,
+    TexelData, LUMENS_PER_WATT,
 };
 
 static COUNTER: AtomicU32 = AtomicU32::new(0);
@@ -97,7 +98,14 @@ fn imports_every_material_kind() {
         "extensionsRequired": ["KHR_materials_transmission"],"#;
     let file = write_case("materials", &quad_doc("quad.bin", &materials, extra), true);
     let s = load_gltf(&file).unwrap();
-    assert!(s.warnings.is_empty(), "{:?}", s.warnings);
+    // Frosted glass transmits 90%: rendered as fully transmissive, and said so.
+    match s.warnings.as_slice() {
+        [w] => assert!(
+            w.contains("partial transmission") && w.contains("material `frosted`"),
+            "{w}"
+        ),
+        other => panic!("{other:?}"),
+    }
     assert_eq!(s.meshes.len(), 5);
     assert_eq!(s.instances.len(), 5);
     let m = |n: &str| s.materials.iter().find(|m| m.name == n).unwrap().clone();
@@ -246,7 +254,9 @@ fn imports_cameras_hierarchy_instancing_and_punctual_lights() {
             ..
         }] => {
             assert_eq!(*position, Vec3::new(0.0, 4.0, 0.0));
-            assert_eq!(*intensity, Vec3::new(10.0, 5.0, 5.0));
+            // 10 cd of (1, 0.5, 0.5): W/sr through 683 lm/W.
+            let want = Vec3::new(10.0, 5.0, 5.0) / LUMENS_PER_WATT;
+            assert!((*intensity - want).length() < 1e-7, "{intensity}");
             assert!((*direction - Vec3::NEG_Y).length() < 1e-5, "{direction}");
             assert_eq!((*inner_angle, *outer_angle), (0.1, 0.5));
         }
@@ -254,7 +264,7 @@ fn imports_cameras_hierarchy_instancing_and_punctual_lights() {
     }
     let sun = s.sun.unwrap();
     assert!((sun.direction - Vec3::Y).length() < 1e-5);
-    assert_eq!(sun.irradiance, Vec3::splat(2.0));
+    assert_eq!(sun.irradiance, Vec3::splat(2.0 / LUMENS_PER_WATT), "2 lux");
     let f = s.features();
     assert!(f.delta_lights && f.sun && !f.emissive);
 }
@@ -430,18 +440,35 @@ fn empty_scenes_and_cycles_are_errors() {
 }
 
 #[test]
-fn scene_without_light_loads_with_a_warning() {
+fn scene_without_light_or_camera_gets_the_neutral_sky_and_a_framing_camera_with_notes() {
     let dark =
         r#"{"name": "dark", "pbrMetallicRoughness": {"baseColorFactor": [0.5, 0.5, 0.5, 1]}}"#;
     let file = write_case("nolight", &quad_doc("quad.bin", &[dark], ""), true);
     let s = load_gltf(&file).unwrap();
-    assert!(!s.has_light());
-    assert!(
-        s.warnings
+    assert!(s.has_light());
+    assert!(s.punctual_lights.is_empty() && s.sun.is_none());
+    assert_eq!(s.environment, Environment::NEUTRAL_SKY);
+    assert!(s.warnings.is_empty(), "{:?}", s.warnings);
+    let note = |what: &str| {
+        s.notes
             .iter()
-            .any(|w| w.contains("no light") && w.contains("scene.gltf")),
+            .any(|n| n.contains(what) && n.contains("scene.gltf"))
+    };
+    assert!(note("no light") && note("sky"), "{:?}", s.notes);
+    assert!(note("no camera") && note("three-quarter"), "{:?}", s.notes);
+    assert_eq!(s.camera, Camera::framing(&s.bounds(), 45.0));
+    // A file with a light keeps its black environment and says nothing about a sky.
+    let lit = load_gltf(&write_case(
+        "lit",
+        &quad_doc("quad.bin", &[dark, EMISSIVE], ""),
+        true,
+    ))
+    .unwrap();
+    assert!(lit.environment.is_black());
+    assert!(
+        !lit.notes.iter().any(|n| n.contains("sky")),
         "{:?}",
-        s.warnings
+        lit.notes
     );
 }
 
@@ -503,7 +530,9 @@ fn strips_and_fans_are_triangulated() {
     let lines = base.replace(r#""indices": 3,"#, r#""mode": 1,"#);
     let (_, msg) = gltf_error(load_gltf(&write_case("lines", &lines, true)));
     assert!(
-        msg.contains("Lines primitives are not supported") && msg.contains("only triangles"),
+        msg.contains("line primitives are not supported")
+            && msg.contains("only triangles")
+            && msg.contains("(Lines)"),
         "{msg}"
     );
 }

@@ -10,7 +10,7 @@ use lucid_engine::scene::gpu::{
     apply_flattening, decode_normal, light_kind, pack_flat, texture_format, GpuBvhNode, GpuLight,
     GpuScene, INSTANCE_FLATTENED,
 };
-use lucid_engine::scene::{luminance, Bvh, FlatScene, Scene};
+use lucid_engine::scene::{Bvh, FlatScene, Scene};
 
 const REDUCED: BuildOptions = BuildOptions { detail: 0.01 };
 
@@ -149,13 +149,17 @@ fn moving_an_instance_updates_the_top_level_only() {
 }
 
 #[test]
-fn cornell_light_table_is_power_proportional() {
+fn cornell_light_table_splits_between_the_two_equal_triangles() {
     let scene = builtin::build("cornell-box").unwrap();
     let g = GpuScene::new(&scene, &Bvh::build(&scene));
     assert_eq!(g.lights.len(), 2, "the light quad is two triangles");
     let area = 0.46 * 0.38;
-    let power = std::f32::consts::PI * area * luminance(Vec3::new(18.387, 13.9873, 6.75357));
+    // Power on the strongest channel, red.
+    let power = std::f32::consts::PI * area * 18.387;
     assert!((g.params.light[0] - power).abs() < 1e-3 * power);
+    // Selection: half by power, half uniform over the two triangles.
+    let (uniform, power_scale) = (g.params.light[1], g.params.light[2]);
+    assert!((uniform - 0.25).abs() < 1e-6 && (power_scale - 0.5 / power).abs() < 1e-6 / power);
     for (l, e) in g.lights.iter().zip(&g.light_table) {
         assert_eq!(l.kind, light_kind::TRIANGLE);
         assert!((l.p0[3] - area / 2.0).abs() < 1e-5);

@@ -1,5 +1,5 @@
 //! Keyboard and mouse state for the camera and the app's keys: held WASD/QE, right-button mouse
-//! look, wheel steps, digits for bookmarks and F12 for captures.
+//! look, wheel steps, digits for bookmarks, F to frame the scene and F12 for captures.
 
 use super::camera::FlyInput;
 use glam::{Vec2, Vec3};
@@ -16,6 +16,8 @@ pub enum Action {
     Store(u8),
     /// Capture the HDR output (F12).
     Capture,
+    /// Frame the whole scene from a three-quarter view (F).
+    FrameScene,
 }
 
 /// Input gathered between frames.
@@ -40,8 +42,10 @@ impl Input {
         if repeat {
             return None;
         }
-        if code == KeyCode::F12 {
-            return Some(Action::Capture);
+        match code {
+            KeyCode::F12 => return Some(Action::Capture),
+            KeyCode::KeyF => return Some(Action::FrameScene),
+            _ => {}
         }
         digit(code).map(|d| {
             if self.shift {
@@ -142,6 +146,10 @@ mod tests {
         );
         assert_eq!(input.key(KeyCode::Digit9, true, true), None);
         assert_eq!(input.key(KeyCode::F12, true, false), Some(Action::Capture));
+        assert_eq!(
+            input.key(KeyCode::KeyF, true, false),
+            Some(Action::FrameScene)
+        );
         input.release_all();
         assert_eq!(input.take().movement, Vec3::ZERO);
     }

@@ -29,8 +29,18 @@ pub struct SceneInfo {
     pub camera: Camera,
     /// Import warnings.
     pub warnings: Vec<String>,
+    /// What the importer supplied (a default camera or sky).
+    pub notes: Vec<String>,
     /// The validated scene itself, for the renderer.
     pub scene: std::sync::Arc<Scene>,
+}
+
+impl SceneInfo {
+    /// The camera that frames the whole scene from a three-quarter view with a vertical field of
+    /// view of `vfov_degrees` (what a glTF file without a camera starts with, and the F key).
+    pub fn framing(&self, vfov_degrees: f32) -> Camera {
+        Camera::framing(&self.scene.bounds(), vfov_degrees)
+    }
 }
 
 /// Loads `spec`: a `.gltf` / `.glb` file, or a built-in scene name.
@@ -52,6 +62,7 @@ pub fn load(spec: &str) -> anyhow::Result<SceneInfo> {
         features: SceneFeatures::from_scene(&scene),
         camera: scene.camera,
         warnings: scene.warnings.clone(),
+        notes: scene.notes.clone(),
         scene: std::sync::Arc::new(scene),
     })
 }
@@ -64,6 +75,8 @@ mod tests {
     fn loads_builtins_and_reports_bad_input() {
         let info = load(DEFAULT_SCENE).unwrap();
         assert!(info.triangles > 0);
+        let framed = info.framing(45.0);
+        assert_eq!(framed, Camera::framing(&info.scene.bounds(), 45.0));
         let unknown = load("no-such-scene").unwrap_err().to_string();
         assert!(unknown.contains("no-such-scene"), "{unknown}");
         let missing = load("/nonexistent/file.glb").unwrap_err();

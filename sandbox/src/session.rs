@@ -1,6 +1,7 @@
 //! A running sandbox window: the window, its GPU objects, the frame source and the app state,
 //! and how window events change them.
 
+use super::camera::Pose;
 use super::frame_source::{FrameSource, RendererSource, TestPatternSource};
 use super::input::{Action, Input};
 use super::options::{AppOptions, Startup};
@@ -171,6 +172,14 @@ impl Session {
     fn act(&mut self, action: Action) {
         match action {
             Action::Capture => self.capture_requested = true,
+            Action::FrameScene => {
+                if let Ok(info) = &self.state.scene {
+                    let vfov = self.state.camera.pose.vfov_degrees;
+                    self.state.camera.pose = Pose::from_camera(&info.framing(vfov));
+                    self.state.path = PathMode::Idle;
+                    self.state.message = Some("framed the scene's bounds (F)".into());
+                }
+            }
             Action::Store(key) => {
                 self.state.bookmarks.store(key, self.state.camera.pose);
                 self.state.message = Some(format!("stored the camera in bookmark {key}"));

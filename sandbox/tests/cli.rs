@@ -425,3 +425,53 @@ fn evaluate_without_method_folders_names_the_expected_ones() {
     assert!(!dir.join("metrics.csv").exists());
     std::fs::remove_dir_all(&dir).unwrap();
 }
+
+#[test]
+fn a_gltf_without_camera_or_light_renders_and_says_what_it_supplied() {
+    // One triangle, no camera, no light.
+    let file = temp("bare.gltf");
+    std::fs::write(
+        &file,
+        r#"{"asset": {"version": "2.0"}, "scene": 0, "scenes": [{"nodes": [0]}],
+  "nodes": [{"mesh": 0}], "meshes": [{"primitives": [{"attributes": {"POSITION": 0}}]}],
+  "accessors": [{"bufferView": 0, "componentType": 5126, "count": 3, "type": "VEC3",
+                 "min": [0, 0, 0], "max": [1, 1, 0]}],
+  "bufferViews": [{"buffer": 0, "byteLength": 36}],
+  "buffers": [{"byteLength": 36,
+               "uri": "data:application/octet-stream;base64,AAAAAAAAAAAAAAAAAACAPwAAAAAAAAAAAAAAAAAAgD8AAAAA"}]}"#,
+    )
+    .unwrap();
+    let png = temp("bare.png");
+    let out = lucid(&[
+        "render",
+        "--scene",
+        file.to_str().unwrap(),
+        "--size",
+        "16x16",
+        "--out",
+        png.to_str().unwrap(),
+    ]);
+    let err = stderr(&out);
+    assert!(out.status.success(), "{err}");
+    let name = file.display().to_string();
+    assert!(
+        err.contains(&format!(
+            "note: no camera in {name}: framing the scene's bounds"
+        )),
+        "{err}"
+    );
+    assert!(
+        err.contains(&format!(
+            "note: no light in {name}: lighting it with a neutral default sky"
+        )),
+        "{err}"
+    );
+    assert!(!err.contains("render black"), "{err}");
+    let image = image::open(&png).unwrap().to_rgb8();
+    assert!(
+        image.pixels().all(|p| p.0.iter().any(|&c| c > 20)),
+        "every pixel is lit"
+    );
+    std::fs::remove_file(&file).unwrap();
+    std::fs::remove_file(&png).unwrap();
+}

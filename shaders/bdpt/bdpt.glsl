@@ -39,6 +39,16 @@ struct LightVertex {
     uint segments;   // segments from the light
 };
 
+// A cached vertex's vertex colour (only with HAS_VERTEX_COLORS, in the parallel buffer
+// b_lvc_colors, so that scenes without vertex colours keep 64-byte vertices): RGB as half floats.
+uvec2 encode_lvc_color(vec3 c) {
+    return uvec2(packHalf2x16(c.rg), packHalf2x16(vec2(c.b, 0.0)));
+}
+
+vec3 decode_lvc_color(uvec2 c) {
+    return vec3(unpackHalf2x16(c.x), unpackHalf2x16(c.y).x);
+}
+
 // Light-tracing splats are summed in fixed point with 32 fractional bits (64-bit integers need the
 // int64 extensions in the including shader): integer sums do not depend on the order threads add in.
 const float SPLAT_ONE = 4294967296.0;

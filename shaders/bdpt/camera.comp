@@ -36,6 +36,7 @@ layout(set = 0, binding = 25, std430) buffer RngState { uint s[]; } b_rng_state;
 layout(set = 0, binding = 20, std430) readonly buffer Lvc { LightVertex v[]; } b_lvc;
 layout(set = 0, binding = 21, std430) readonly buffer LvcLengths { uint n[]; } b_lvc_lengths;
 layout(set = 0, binding = 22, std430) readonly buffer Splat { uint64_t v[]; } b_splat;
+layout(set = 0, binding = 26, std430) readonly buffer LvcColors { uvec2 c[]; } b_lvc_colors;
 
 // A camera subpath vertex: position, normals, frame, BSDF, direction towards the previous vertex
 // (local), throughput and MIS quantities.
@@ -52,7 +53,7 @@ struct CameraVertex {
 
 // Next-event estimation (s = 1) from camera vertex c.
 vec3 connect_to_light(CameraVertex c, inout uint rng) {
-    vec3 u = vec3(rng_next(rng), rng_next2(rng));
+    vec4 u = vec4(rng_next(rng), rng_next2(rng), rng_side(rng));
     LightSample ls;
     if (!sample_light(c.s.p, u, ls) || ls.pdf <= 0.0) {
         return vec3(0.0);
@@ -66,7 +67,7 @@ vec3 connect_to_light(CameraVertex c, inout uint rng) {
     float w;
     float emit_pdf;
     float cos_light;
-    if (light_sample_emission(c.s.p, u, ls, emit_pdf, cos_light)) {
+    if (light_sample_emission(c.s.p, ls, emit_pdf, cos_light)) {
         float rev_pdf;
         bsdf_eval(c.m, wi, c.wo, rev_pdf);
         float cos_here = abs(dot(c.s.ng, ls.wi));
@@ -85,11 +86,11 @@ vec3 connect_to_light(CameraVertex c, inout uint rng) {
     if (w <= 0.0 || counted_occluded(origin, ls.wi, t_max)) {
         return vec3(0.0);
     }
-    return f * ls.radiance * (w / ls.pdf);
+    return f * ls.radiance * (w * ls.weight);
 }
 
 // Connection (s > 1, t > 1) of camera vertex c to the cached light vertex v.
-vec3 connect_vertices(CameraVertex c, LightVertex v) {
+vec3 connect_vertices(CameraVertex c, LightVertex v, uint slot) {
     vec3 to_light = v.p - c.s.p;
     float dist2 = dot(to_light, to_light);
     if (dist2 < 1e-12) {
@@ -108,7 +109,8 @@ vec3 connect_vertices(CameraVertex c, LightVertex v) {
     vec3 t;
     vec3 b;
     make_frame(ns, t, b);
-    BsdfParams ml = material_params(v.material, unpackHalf2x16(v.uv));
+    vec3 color = HAS_VERTEX_COLORS ? decode_lvc_color(b_lvc_colors.c[slot]) : vec3(1.0);
+    BsdfParams ml = material_params(v.material, unpackHalf2x16(v.uv), color);
     vec3 to_camera = to_local(-dir, t, b, ns);
     vec3 wl = to_local(v.wi, t, b, ns);
     float light_rev_pdf;
@@ -149,9 +151,10 @@ vec3 connect_to_cache(CameraVertex c, uint segments, uint max_depth, inout uint 
         if (n == 0u) {
             continue;
         }
-        LightVertex v = b_lvc.v[path * pc.path_vertices + min(uint(u_vertex * float(n)), n - 1u)];
+        uint slot = path * pc.path_vertices + min(uint(u_vertex * float(n)), n - 1u);
+        LightVertex v = b_lvc.v[slot];
         if (v.segments + segments + 1u <= max_depth) {
-            sum += connect_vertices(c, v) * float(n);
+            sum += connect_vertices(c, v, slot) * float(n);
         }
     }
     return sum / float(pc.connections);
@@ -213,7 +216,7 @@ vec3 trace_camera(vec3 o, vec3 d, inout uint rng, uint max_depth, uint rr_depth,
         if (depth + 1u >= max_depth) {
             break;
         }
-        c.m = material_params(c.s.material, c.s.uv);
+        c.m = material_params(c.s.material, c.s.uv, c.s.color);
         if (depth == 0u) {
             first_albedo = demodulation_albedo(c.m);
         }

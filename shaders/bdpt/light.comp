@@ -29,6 +29,7 @@ layout(set = 0, binding = 18, std430) buffer Stats { uint non_finite; uint rays;
 layout(set = 0, binding = 20, std430) writeonly buffer Lvc { LightVertex v[]; } b_lvc;
 layout(set = 0, binding = 21, std430) writeonly buffer LvcLengths { uint n[]; } b_lvc_lengths;
 layout(set = 0, binding = 22, std430) buffer Splat { uint64_t v[]; } b_splat;
+layout(set = 0, binding = 26, std430) writeonly buffer LvcColors { uvec2 c[]; } b_lvc_colors;
 
 void splat_add(uint i, float x) {
     atomicAdd(b_splat.v[i], splat_fixed(x));
@@ -99,6 +100,9 @@ void store_vertex(uint slot, Surface s, vec3 wl, vec3 beta, float dvcm, float dv
     v.uv = packHalf2x16(s.uv);
     v.segments = segments;
     b_lvc.v[slot] = v;
+    if (HAS_VERTEX_COLORS) {
+        b_lvc_colors.c[slot] = encode_lvc_color(s.color);
+    }
 }
 
 void main() {
@@ -144,7 +148,7 @@ void main() {
             dvcm *= mis(dist2) / mis(cos_in);
             dvc /= mis(cos_in);
         }
-        BsdfParams m = material_params(s.material, s.uv);
+        BsdfParams m = material_params(s.material, s.uv, s.color);
         vec3 t;
         vec3 b;
         make_frame(s.ns, t, b);

@@ -1,6 +1,5 @@
 // Emission sampling for light subpaths (bidirectional methods) and the emission and NEE pdfs their
-// MIS weights need. A light-table entry is picked in proportion to power (the alias table NEE
-// uses); emissive triangles and spheres emit from a uniform point with a cosine-weighted direction
+// MIS weights need. A light-table entry is picked as NEE picks it (the alias table NEE uses); emissive triangles and spheres emit from a uniform point with a cosine-weighted direction
 // on the front side, point lights uniformly over the sphere, spot lights uniformly within the outer
 // cone. The sun and the environment emit no light subpaths: paths that start on them are left to
 // the camera subpath's own strategies (BSDF sampling and NEE). Requires math.glsl, scene.glsl,
@@ -23,8 +22,7 @@ struct EmitSample {
 // Probability (for MIS) that light sampling picks an area emitter with `emission` and `area`,
 // among the light table alone (the sun excluded).
 float emitter_selection(vec3 emission, float area) {
-    float total = b_scene.p.light.x;
-    return total > 0.0 ? emitter_power(emission, area) / total : 0.0;
+    return light_selection(emitter_power(emission, area));
 }
 
 float sphere_area(float r) {
@@ -140,15 +138,13 @@ float surface_emission_pdf(Surface s, float cos_out) {
 // For a light sample `ls` that sample_light(p, u, ls) drew, the emission pdf (area x solid angle)
 // of the same segment traced from the light towards p, and the cosine at the light (1 for delta
 // lights). Returns false when the sample is the sun's.
-bool light_sample_emission(vec3 p, vec3 u, LightSample ls, out float pdf_dir, out float cos_light) {
+bool light_sample_emission(vec3 p, LightSample ls, out float pdf_dir, out float cos_light) {
     pdf_dir = 0.0;
     cos_light = 1.0;
-    float p_sun = sun_selection();
-    if (u.x < p_sun) {
+    if (ls.light == SUN_LIGHT) {
         return false;
     }
-    float u_pick = p_sun > 0.0 ? (u.x - p_sun) / (1.0 - p_sun) : u.x;
-    uint index = pick_light(min(u_pick, 0.99999994), b_scene.p.counts0.w);
+    uint index = ls.light;
     Light light = b_lights.l[index];
     if (light.kind == LIGHT_TRIANGLE) {
         vec3 front = triangle_front_normal(light);

@@ -1,6 +1,7 @@
 // Light sampling for next-event estimation and the matching pdfs for MIS: emissive triangles and
-// spheres (power-proportional alias table), point and spot lights, the sun, and the environment
-// (reached by BSDF sampling only). Requires scene.glsl, math.glsl.
+// spheres, point and spot lights (an alias table, half by power and half uniform: see
+// lucid_engine::scene::LightDistribution), the sun, and the environment (reached by BSDF sampling
+// only). Requires scene.glsl, math.glsl.
 #ifndef LUCID_LIGHTS_GLSL
 #define LUCID_LIGHTS_GLSL
 
@@ -8,12 +9,23 @@ layout(constant_id = 104) const bool HAS_SUN = true;
 layout(constant_id = 105) const bool HAS_DELTA_LIGHTS = true;
 layout(constant_id = 106) const bool HAS_ENVIRONMENT = true;
 
+// Candidates resampled per next-event light sample (sample_light) when the table has more than
+// one light; 1 turns resampling off.
+const uint LIGHT_CANDIDATES = 4u;
+
+// LightSample::light of the sun.
+const uint SUN_LIGHT = 0xffffffffu;
+
 struct LightSample {
     vec3 wi;        // unit direction from the shading point to the light
     float dist;     // distance to the sampled point (T_INFINITY for the sun)
     vec3 radiance;  // arriving radiance (or intensity / dist^2 for delta lights)
-    float pdf;      // solid-angle pdf including selection (selection only for delta lights)
+    float pdf;      // solid-angle pdf of the light table's (or the sun's) strategy, selection
+                    // included (selection only for delta lights): what MIS weighs
+    float weight;   // what multiplies radiance in the estimate: 1 / pdf, or with resampling its
+                    // unbiased contribution weight
     bool delta;
+    uint light;     // the light-table entry, or SUN_LIGHT
 };
 
 bool sun_enabled() {
@@ -58,8 +70,16 @@ vec3 triangle_front_normal(Light light) {
     return normalize(cross(light.p1.xyz - light.p0.xyz, light.p2.xyz - light.p0.xyz)) * light.p1.w;
 }
 
+// An area emitter's power as the light table weighs it: on its strongest channel
+// (lucid_engine::scene::selection_power).
 float emitter_power(vec3 emission, float area) {
-    return PI * area * luminance(emission);
+    return PI * area * max3(emission);
+}
+
+// The probability that the light table picks an emitter of `power` (the sun's share excluded):
+// half in proportion to power, half uniform over the lights with power.
+float light_selection(float power) {
+    return power > 0.0 ? power * b_scene.p.light.z + b_scene.p.light.y : 0.0;
 }
 
 // Solid-angle pdf that NEE samples the point `p_light` on emissive triangle `tri` of `instance`
@@ -73,7 +93,7 @@ float triangle_light_pdf(vec3 p, vec3 p_light, vec3 front, vec3 p0, vec3 p1, vec
     vec3 d = p_light - p;
     float dist2 = dot(d, d);
     float cos_l = abs(dot(front, normalize(d)));
-    float selection = emitter_power(emission, area) / total * (1.0 - sun_selection());
+    float selection = light_selection(emitter_power(emission, area)) * (1.0 - sun_selection());
     return selection * dist2 / max(cos_l * area, 1e-12);
 }
 
@@ -85,7 +105,7 @@ float sphere_light_pdf(vec3 p, vec4 center_radius, vec3 emission) {
         return 0.0;
     }
     float cos_max = sqrt(max(0.0, 1.0 - r * r / d2));
-    float selection = emitter_power(emission, 4.0 * PI * r * r) / total * (1.0 - sun_selection());
+    float selection = light_selection(emitter_power(emission, 4.0 * PI * r * r)) * (1.0 - sun_selection());
     return selection / (2.0 * PI * max(1.0 - cos_max, 1e-7));
 }
 
@@ -96,35 +116,19 @@ uint pick_light(float u, uint count) {
     return fract(scaled) < e.threshold ? i : e.alias;
 }
 
-// Samples a light as seen from p. u.x picks the light; u.yz place the point.
-bool sample_light(vec3 p, vec3 u, out LightSample ls) {
+// Samples point u on light-table entry `index`, which was picked with probability `selection`
+// (the sun's share included), as seen from p. Sets everything but `weight`.
+bool sample_table_light(vec3 p, uint index, float selection, vec2 u, out LightSample ls) {
     ls.delta = false;
     ls.dist = T_INFINITY;
     ls.radiance = vec3(0.0);
     ls.pdf = 0.0;
     ls.wi = vec3(0.0, 1.0, 0.0);
-    float p_sun = sun_selection();
-    uint count = b_scene.p.counts0.w;
-    if (u.x < p_sun) {
-        Sun s = b_scene.p.sun;
-        vec3 t;
-        vec3 b;
-        make_frame(s.direction_cos.xyz, t, b);
-        ls.wi = to_world(sample_cone(u.yz, s.direction_cos.w), t, b, s.direction_cos.xyz);
-        ls.radiance = s.radiance_enabled.rgb;
-        ls.pdf = sun_pdf();
-        return true;
-    }
-    if (count == 0u) {
-        return false;
-    }
-    float u_pick = p_sun > 0.0 ? (u.x - p_sun) / (1.0 - p_sun) : u.x;
-    uint index = pick_light(min(u_pick, 0.99999994), count);
+    ls.light = index;
     Light light = b_lights.l[index];
-    float selection = b_light_table.e[index].pdf * (1.0 - p_sun);
     if (light.kind == LIGHT_TRIANGLE) {
-        float su = sqrt(u.y);
-        vec2 bary = vec2(1.0 - su, u.z * su);
+        float su = sqrt(u.x);
+        vec2 bary = vec2(1.0 - su, u.y * su);
         vec3 q = bary.x * light.p0.xyz + bary.y * light.p1.xyz + (1.0 - bary.x - bary.y) * light.p2.xyz;
         vec3 front = triangle_front_normal(light);
         vec3 d = q - p;
@@ -154,7 +158,7 @@ bool sample_light(vec3 p, vec3 u, out LightSample ls) {
         vec3 t;
         vec3 b;
         make_frame(axis, t, b);
-        vec3 local = sample_cone(u.yz, cos_max);
+        vec3 local = sample_cone(u, cos_max);
         ls.wi = to_world(local, t, b, axis);
         // Distance to the first intersection with the sphere along wi.
         float proj = d * local.z;
@@ -183,6 +187,82 @@ bool sample_light(vec3 p, vec3 u, out LightSample ls) {
         return falloff > 0.0;
     }
     return false;
+}
+
+// Offsets of the resampling candidates' random numbers: the R3 sequence (Roberts 2018), so that a
+// pixel's candidates spread over the table rather than repeat.
+const vec3 CANDIDATE_STEP = vec3(0.8191725134, 0.6710436067, 0.5497004779);
+
+// Samples a light as seen from p for next-event estimation. u.x picks the sun or the light table,
+// u.yz place the point, u.w resamples. With more than one light in the table, LIGHT_CANDIDATES
+// candidates are drawn from the table and one is kept in proportion to the radiance it brings to
+// p unshadowed over its pdf (resampled importance sampling, Talbot et al. 2005): a light that
+// does not reach p (a spot aimed elsewhere, a triangle facing away) is not kept while another
+// does. `ls.weight` is then the unbiased contribution weight sum(w) / (M * target) in place of
+// 1 / pdf, and `ls.pdf` stays the table's pdf, which MIS weighs on every side (the weights of
+// all strategies still sum to one).
+bool sample_light(vec3 p, vec4 u, out LightSample ls) {
+    ls.delta = false;
+    ls.dist = T_INFINITY;
+    ls.radiance = vec3(0.0);
+    ls.pdf = 0.0;
+    ls.weight = 0.0;
+    ls.wi = vec3(0.0, 1.0, 0.0);
+    ls.light = SUN_LIGHT;
+    float p_sun = sun_selection();
+    uint count = b_scene.p.counts0.w;
+    if (u.x < p_sun) {
+        Sun s = b_scene.p.sun;
+        vec3 t;
+        vec3 b;
+        make_frame(s.direction_cos.xyz, t, b);
+        ls.wi = to_world(sample_cone(u.yz, s.direction_cos.w), t, b, s.direction_cos.xyz);
+        ls.radiance = s.radiance_enabled.rgb;
+        ls.pdf = sun_pdf();
+        ls.weight = 1.0 / ls.pdf;
+        return true;
+    }
+    if (count == 0u) {
+        return false;
+    }
+    float u_pick = p_sun > 0.0 ? (u.x - p_sun) / (1.0 - p_sun) : u.x;
+    float not_sun = 1.0 - p_sun;
+    if (count == 1u || LIGHT_CANDIDATES <= 1u) {
+        uint index = pick_light(min(u_pick, 0.99999994), count);
+        bool ok = sample_table_light(p, index, b_light_table.e[index].pdf * not_sun, u.yz, ls);
+        ls.weight = ls.pdf > 0.0 ? 1.0 / ls.pdf : 0.0;
+        return ok;
+    }
+    float w_sum = 0.0;
+    float r = u.w;
+    bool found = false;
+    for (uint k = 0u; k < LIGHT_CANDIDATES; ++k) {
+        vec3 uk = fract(vec3(u_pick, u.yz) + float(k) * CANDIDATE_STEP);
+        uint index = pick_light(min(uk.x, 0.99999994), count);
+        LightSample c;
+        if (!sample_table_light(p, index, b_light_table.e[index].pdf * not_sun, uk.yz, c) || !(c.pdf > 0.0)) {
+            continue;
+        }
+        float w = max3(c.radiance) / c.pdf;
+        if (!(w > 0.0) || isinf(w)) {
+            continue;
+        }
+        w_sum += w;
+        // Streaming selection with one uniform number, rescaled after each decision.
+        float keep = w / w_sum;
+        if (r < keep) {
+            ls = c;
+            found = true;
+            r /= keep;
+        } else {
+            r = (r - keep) / (1.0 - keep);
+        }
+    }
+    if (!found) {
+        return false;
+    }
+    ls.weight = w_sum / (float(LIGHT_CANDIDATES) * max3(ls.radiance));
+    return true;
 }
 
 #endif

@@ -45,7 +45,7 @@ PathResult trace_path(vec3 o, vec3 d, inout uint rng, uint max_depth, uint rr_de
         if (depth + 1u >= max_depth) {
             break;
         }
-        BsdfParams m = material_params(s.material, s.uv);
+        BsdfParams m = material_params(s.material, s.uv, s.color);
         if (depth == 0u) {
             r.first_albedo = demodulation_albedo(m);
         }
@@ -53,7 +53,7 @@ PathResult trace_path(vec3 o, vec3 d, inout uint rng, uint max_depth, uint rr_de
         vec3 b;
         make_frame(s.ns, t, b);
         vec3 wo = to_local(-d, t, b, s.ns);
-        vec3 u_light = vec3(rng_next(rng), rng_next2(rng));
+        vec4 u_light = vec4(rng_next(rng), rng_next2(rng), rng_side(rng));
         vec3 u_bsdf = vec3(rng_next2(rng), rng_next(rng));
         if (!bsdf_is_delta(m)) {
             LightSample ls;
@@ -66,7 +66,7 @@ PathResult trace_path(vec3 o, vec3 d, inout uint rng, uint max_depth, uint rr_de
                     rays += 1u;
                     if (!trace_occluded(origin, ls.wi, t_max)) {
                         float w = ls.delta ? 1.0 : power_heuristic(ls.pdf, bsdf_pdf);
-                        r.radiance += beta * f * ls.radiance * (w / ls.pdf);
+                        r.radiance += beta * f * ls.radiance * (w * ls.weight);
                     }
                 }
             }

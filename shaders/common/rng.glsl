@@ -21,6 +21,13 @@ float rng_next(inout uint state) {
     return float(word >> 8u) * (1.0 / 16777216.0);
 }
 
+// A uniform float in [0, 1) from a hash of the state that leaves the stream as it is: a number a
+// sampling decision can use without shifting every draw after it (so that paths that do not
+// need it keep their random numbers).
+float rng_side(uint state) {
+    return float(pcg_hash(pcg_hash(state ^ 0x9e3779b9u)) >> 8u) * (1.0 / 16777216.0);
+}
+
 vec2 rng_next2(inout uint state) {
     float a = rng_next(state);
     return vec2(a, rng_next(state));

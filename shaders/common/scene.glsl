@@ -1,7 +1,7 @@
 // The scene buffers, mirroring lucid_engine::scene::gpu (std430). Bound by name: b_vertices,
 // b_indices, b_blas, b_tlas, b_instances, b_spheres, b_materials, b_lights, b_light_table,
-// b_texels, b_textures, b_scene, b_triangle_ids, b_triangles. Bindings 0-11, 13 and 14 (12 is the
-// frame constants); passes use 16 and up for their own resources.
+// b_texels, b_textures, b_scene, b_triangle_ids, b_triangles, b_vertex_colors. Bindings 0-11 and
+// 13-15 (12 is the frame constants); passes use 16 and up for their own resources.
 #ifndef LUCID_SCENE_GLSL
 #define LUCID_SCENE_GLSL
 
@@ -25,7 +25,8 @@ struct Sphere { vec4 center_radius; uint material; uint scene_sphere; uint pad0;
 struct Material {
     vec3 base_color; uint kind;
     vec3 emission; float alpha;
-    float ior; uint texture; uint flags; uint pad;
+    float ior; uint texture; uint flags; uint metal_roughness;
+    float metallic; uint pad0; uint pad1; uint pad2;
 };
 struct Light { uint kind; uint index; uint instance; uint pad; vec4 p0; vec4 p1; vec4 p2; vec4 emission; };
 struct LightTableEntry { float threshold; uint alias; float pdf; float cdf; };
@@ -75,6 +76,14 @@ layout(set = 0, binding = 13, std430) readonly buffer TriangleIds { uvec2 t[]; }
 // Per triangle (in b_indices order), nine floats: first vertex, p1 - p0, p2 - p0 (what ray
 // intersection reads, contiguous).
 layout(set = 0, binding = 14, std430) readonly buffer Triangles { float t[]; } b_triangles;
+// Per vertex (as b_vertices), when the scene has vertex colours (HAS_VERTEX_COLORS in surface.glsl):
+// RGB as half floats, packHalf2x16(r, g) and packHalf2x16(b, 0). One unread element otherwise.
+layout(set = 0, binding = 15, std430) readonly buffer VertexColors { uvec2 c[]; } b_vertex_colors;
+
+vec3 vertex_color(uint index) {
+    uvec2 c = b_vertex_colors.c[index];
+    return vec3(unpackHalf2x16(c.x), unpackHalf2x16(c.y).x);
+}
 
 vec3 vertex_position(uint index) {
     Vertex v = b_vertices.v[index];

@@ -4,12 +4,14 @@
 #define LUCID_SURFACE_GLSL
 
 layout(constant_id = 107) const bool HAS_TEXTURES = true;
+layout(constant_id = 110) const bool HAS_VERTEX_COLORS = true;
 
 struct Surface {
     vec3 p;
     vec3 ng;        // geometric normal, on the side of the shading normal (the "front")
     vec3 ns;        // shading normal
     vec2 uv;
+    vec3 color;     // interpolated vertex colour (white without HAS_VERTEX_COLORS)
     uint material;
     uint object_id; // scene instance, or 0x80000000 | sphere
     // Emitting-triangle data for MIS (world vertices); unused for spheres.
@@ -35,6 +37,7 @@ Surface surface_at(Hit hit, vec3 origin, vec3 dir) {
         s.uv = vec2(atan(n.z, n.x) * (0.5 * INV_PI) + 0.5, acos(clamp(n.y, -1.0, 1.0)) * INV_PI);
         s.material = sp.material;
         s.object_id = 0x80000000u | sp.scene_sphere;
+        s.color = vec3(1.0);
         return s;
     }
     uint i0 = b_indices.i[3u * hit.primitive];
@@ -66,6 +69,11 @@ Surface surface_at(Hit hit, vec3 origin, vec3 dir) {
     } else {
         s.uv = vec2(0.0);
     }
+    if (HAS_VERTEX_COLORS) {
+        s.color = b.x * vertex_color(i0) + b.y * vertex_color(i1) + b.z * vertex_color(i2);
+    } else {
+        s.color = vec3(1.0);
+    }
     if (flattened) {
         uvec2 ids = b_triangle_ids.t[hit.primitive];
         s.material = ids.x;
@@ -77,7 +85,9 @@ Surface surface_at(Hit hit, vec3 origin, vec3 dir) {
     return s;
 }
 
-BsdfParams material_params(uint material, vec2 uv) {
+// The BSDF of `material` at texture coordinates `uv` with vertex colour `vertex_color` (white when
+// the scene has none), which multiplies the base colour.
+BsdfParams material_params(uint material, vec2 uv, vec3 vertex_color) {
     Material m = b_materials.m[material];
     BsdfParams p;
     p.kind = m.kind;
@@ -85,9 +95,24 @@ BsdfParams material_params(uint material, vec2 uv) {
     if (HAS_TEXTURES && m.texture != 0xffffffffu) {
         p.color *= sample_texture(m.texture, uv).rgb;
     }
+    if (HAS_VERTEX_COLORS) {
+        p.color *= vertex_color;
+    }
     p.alpha = max(m.alpha, 1e-4);
     p.ior = m.ior;
     p.smooth_lobe = (m.flags & MATERIAL_FLAG_SMOOTH) != 0u;
+    if (HAS_TEXTURES && m.kind == MATERIAL_CONDUCTOR && m.metal_roughness != 0xffffffffu) {
+        // glTF's metallic-roughness texture: roughness in G (alpha scales by its square), metal
+        // in B; a texel less than half metal is diffuse.
+        vec4 mr = sample_texture(m.metal_roughness, uv);
+        float alpha = m.alpha * mr.g * mr.g;
+        p.alpha = max(alpha, 1e-4);
+        p.smooth_lobe = alpha < 1e-3;
+        if (m.metallic * mr.b < 0.5) {
+            p.kind = MATERIAL_DIFFUSE;
+            p.smooth_lobe = false;
+        }
+    }
     return p;
 }
 

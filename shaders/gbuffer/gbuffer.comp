@@ -51,7 +51,7 @@ void main() {
         return;
     }
     Surface s = surface_at(hit, origin, dir);
-    BsdfParams m = material_params(s.material, s.uv);
+    BsdfParams m = material_params(s.material, s.uv, s.color);
     vec3 n = dot(s.ns, dir) > 0.0 ? -s.ns : s.ns;
     float depth = dot(s.p - cam.position_aperture.xyz, cam.forward.xyz);
     imageStore(u_depth, pixel, vec4(depth));

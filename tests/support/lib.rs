@@ -46,5 +46,6 @@ pub fn assert_no_validation_messages(ctx: &Context) {
 }
 
 pub mod bdpt_stats;
+pub mod gltf;
 pub mod render;
 pub mod svgf;

@@ -23,6 +23,8 @@ pub struct SceneFeatures {
     pub spheres: bool,
     /// Some used material has a base-colour texture.
     pub textures: bool,
+    /// Some placed mesh has vertex colours.
+    pub vertex_colors: bool,
     /// The environment is not black.
     pub environment: bool,
     /// A sun is present.
@@ -41,6 +43,10 @@ impl SceneFeatures {
             delta_lights: !scene.punctual_lights.is_empty(),
             ..Default::default()
         };
+        f.vertex_colors = scene
+            .instances
+            .iter()
+            .any(|i| !scene.meshes[i.mesh as usize].colors.is_empty());
         let used = (0..scene.instances.len())
             .map(|i| scene.instance_material(i))
             .chain(scene.spheres.iter().map(|s| s.material));
@@ -48,6 +54,11 @@ impl SceneFeatures {
             let Some(m) = scene.materials.get(id as usize) else {
                 continue;
             };
+            // A metallic-roughness texture can make a conductor's texels diffuse.
+            let textured_metal =
+                m.kind == MaterialKind::Conductor && m.metallic_roughness_texture.is_some();
+            f.diffuse |= textured_metal;
+            f.textures |= textured_metal;
             match m.kind {
                 MaterialKind::Diffuse => f.diffuse = true,
                 MaterialKind::Conductor => f.conductor = true,
@@ -75,6 +86,7 @@ impl SceneFeatures {
             ("HAS_EMISSIVE", self.emissive),
             ("HAS_SPHERES", self.spheres),
             ("HAS_TEXTURES", self.textures),
+            ("HAS_VERTEX_COLORS", self.vertex_colors),
             ("HAS_ENVIRONMENT", self.environment),
             ("HAS_SUN", self.sun),
             ("HAS_DELTA_LIGHTS", self.delta_lights),

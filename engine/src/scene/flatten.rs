@@ -61,14 +61,20 @@ impl FlatScene {
                 positions: Vec::new(),
                 normals: Vec::new(),
                 uvs: Vec::new(),
+                colors: Vec::new(),
                 indices: Vec::new(),
                 material: 0,
             };
+            let colored = merge.iter().any(|&i| {
+                !scene.meshes[scene.instances[i].mesh as usize]
+                    .colors
+                    .is_empty()
+            });
             for &i in &merge {
                 placement[i] = Placement::Merged {
                     first_triangle: mesh.indices.len() as u32,
                 };
-                append_instance(&mut mesh, scene, i);
+                append_instance(&mut mesh, scene, i, colored);
                 let triangles = scene.meshes[scene.instances[i].mesh as usize].indices.len();
                 let material = scene.instance_material(i);
                 merged_ids.extend(std::iter::repeat_n([material, i as u32], triangles));
@@ -124,8 +130,8 @@ impl FlatScene {
 }
 
 /// Appends instance `i` of `scene` to `mesh` in world space (positions and normals transformed,
-/// missing UVs zero).
-fn append_instance(mesh: &mut Mesh, scene: &Scene, i: usize) {
+/// missing UVs zero; with `colored`, vertex colours too, missing ones white).
+fn append_instance(mesh: &mut Mesh, scene: &Scene, i: usize, colored: bool) {
     let inst = &scene.instances[i];
     let source = &scene.meshes[inst.mesh as usize];
     let base = mesh.positions.len() as u32;
@@ -147,6 +153,14 @@ fn append_instance(mesh: &mut Mesh, scene: &Scene, i: usize) {
             glam::Vec2::ZERO,
             source.positions.len(),
         ));
+    }
+    if colored {
+        if source.colors.len() == source.positions.len() {
+            mesh.colors.extend_from_slice(&source.colors);
+        } else {
+            mesh.colors
+                .extend(std::iter::repeat_n(Vec3::ONE, source.positions.len()));
+        }
     }
     mesh.indices
         .extend(source.indices.iter().map(|&t| t + base));

@@ -5,11 +5,23 @@
 //!
 //! Point and spot lights are delta lights: a path can never hit them, so
 //! they contribute only through next-event estimation. NEE picks them from
-//! the power-based light distribution like any area light and evaluates
+//! the light distribution like any area light and evaluates
 //! `intensity / distance²` (times the spot falloff) with a pdf of the
 //! selection probability alone.
+//!
+//! Units are radiometric (W/sr, W/m², W/(m²·sr)) per RGB channel. glTF's
+//! photometric units convert with [`LUMENS_PER_WATT`]: an RGB value of 1 on
+//! every channel is 683 lumens per watt's worth, so a white point light of
+//! `I` candela has a radiant intensity of `I / 683` W/sr per channel, and a
+//! coloured one `colour × I / 683` (the convention of Blender's glTF
+//! exporter and of three.js and Filament, which multiply the colour by the
+//! intensity; its luminous intensity is then `I × luminance(colour)`).
 
 use glam::Vec3;
+
+/// Luminous efficacy (lm/W) that turns photometric light units into Lucid's radiometric RGB:
+/// the maximum efficacy, that of 555 nm light, which the SI's definition of the candela uses.
+pub const LUMENS_PER_WATT: f32 = 683.0;
 
 /// A point or spot light (from `KHR_lights_punctual`).
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -37,11 +49,13 @@ pub enum PunctualLight {
 }
 
 impl PunctualLight {
-    /// Total emitted power (W, luminance-weighted RGB).
+    /// Total emitted power (W) on the strongest channel (see
+    /// [`super::light_list::selection_power`]).
     pub fn power(&self) -> f32 {
+        let strength = super::light_list::selection_power;
         match *self {
             PunctualLight::Point { intensity, .. } => {
-                4.0 * std::f32::consts::PI * luminance(intensity)
+                4.0 * std::f32::consts::PI * strength(intensity)
             }
             PunctualLight::Spot {
                 intensity,
@@ -51,7 +65,7 @@ impl PunctualLight {
             } => {
                 // Solid angle of the cone at the mean of the two angles.
                 let cos_mid = (0.5 * (inner_angle + outer_angle)).cos();
-                2.0 * std::f32::consts::PI * (1.0 - cos_mid) * luminance(intensity)
+                2.0 * std::f32::consts::PI * (1.0 - cos_mid) * strength(intensity)
             }
         }
     }
@@ -95,6 +109,15 @@ pub enum Environment {
 }
 
 impl Environment {
+    /// The neutral sky a scene without any light gets (glTF import): a pale, nearly white
+    /// gradient of radiance about 1 above the horizon and a grey ground, so that a white
+    /// Lambertian surface facing up comes out at about its albedo.
+    pub const NEUTRAL_SKY: Environment = Environment::Sky {
+        zenith: Vec3::new(0.8, 0.85, 0.95),
+        horizon: Vec3::new(1.0, 1.0, 1.0),
+        ground: Vec3::new(0.3, 0.28, 0.25),
+    };
+
     /// Radiance arriving from unit direction `dir` (i.e. seen looking
     /// along `dir`).
     pub fn radiance(&self, dir: Vec3) -> Vec3 {

@@ -35,6 +35,12 @@ pub struct Material {
     pub base_color_texture: Option<u32>,
     /// GGX roughness `alpha` (= perceptual roughness squared) in `[0, 1]`.
     pub alpha: f32,
+    /// Optional metallic-roughness texture (linear; glTF's layout: roughness in G, metalness in
+    /// B). On a conductor it scales the roughness by G (`alpha` by G²) and makes the texel
+    /// diffuse where `metallic * B < 0.5`; other kinds ignore it.
+    pub metallic_roughness_texture: Option<u32>,
+    /// Metallic factor in `[0, 1]` (used with `metallic_roughness_texture`).
+    pub metallic: f32,
     /// Index of refraction (dielectrics), `>= 1`.
     pub ior: f32,
     /// Emitted radiance, linear RGB, `>= 0`.
@@ -49,6 +55,12 @@ impl Material {
             base_color,
             base_color_texture: None,
             alpha: 0.0,
+            metallic_roughness_texture: None,
+            metallic: if kind == MaterialKind::Conductor {
+                1.0
+            } else {
+                0.0
+            },
             ior: 1.5,
             emission: Vec3::ZERO,
         }
@@ -114,7 +126,8 @@ impl Material {
         let finite = self.base_color.is_finite()
             && self.emission.is_finite()
             && self.alpha.is_finite()
-            && self.ior.is_finite();
+            && self.ior.is_finite()
+            && self.metallic.is_finite();
         if !finite {
             return Err(reject(
                 "parameters must be finite (found NaN or infinity)".into(),
@@ -138,6 +151,7 @@ impl Material {
             ));
             self.base_color = clamped;
         }
+        self.metallic = self.metallic.clamp(0.0, 1.0);
         let alpha = self.alpha.clamp(0.0, 1.0);
         if alpha != self.alpha {
             warnings.push(format!(

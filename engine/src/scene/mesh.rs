@@ -16,6 +16,9 @@ pub struct Mesh {
     pub normals: Vec<Vec3>,
     /// Texture coordinates, one per vertex, or empty.
     pub uvs: Vec<Vec2>,
+    /// Vertex colours (linear RGB in `[0, 1]`, multiplying the material's base colour), one per
+    /// vertex, or empty (white).
+    pub colors: Vec<Vec3>,
     /// Triangles as vertex index triples.
     pub indices: Vec<UVec3>,
     /// Index into `Scene::materials`.
@@ -59,8 +62,39 @@ impl Mesh {
             .collect();
     }
 
-    /// Checks attribute counts, index ranges and that positions, normals
-    /// and UVs are finite.
+    /// Gives every triangle its own three vertices with the triangle's (flat) normal, as glTF
+    /// requires of a mesh without normals; UVs and colours are copied to the new vertices. A
+    /// degenerate triangle gets `+Y`.
+    pub fn make_flat(&mut self) {
+        fn corners<T: Copy>(indices: &[UVec3], v: &[T]) -> Vec<T> {
+            if v.is_empty() {
+                return Vec::new();
+            }
+            indices
+                .iter()
+                .flat_map(|i| i.to_array().map(|k| v[k as usize]))
+                .collect()
+        }
+        let positions = corners(&self.indices, &self.positions);
+        let uvs = corners(&self.indices, &self.uvs);
+        let colors = corners(&self.indices, &self.colors);
+        self.normals = positions
+            .chunks_exact(3)
+            .flat_map(|t| {
+                let n = (t[1] - t[0]).cross(t[2] - t[0]).try_normalize();
+                [n.unwrap_or(Vec3::Y); 3]
+            })
+            .collect();
+        self.indices = (0..self.indices.len() as u32)
+            .map(|t| UVec3::new(3 * t, 3 * t + 1, 3 * t + 2))
+            .collect();
+        self.positions = positions;
+        self.uvs = uvs;
+        self.colors = colors;
+    }
+
+    /// Checks attribute counts, index ranges and that positions, normals,
+    /// UVs and colours are finite (colours also in `[0, 1]`).
     pub fn validate(&self) -> Result<(), SceneError> {
         let fail = |reason: String| {
             Err(SceneError::InvalidMesh {
@@ -84,6 +118,20 @@ impl Mesh {
         }
         if self.normals.iter().any(|n| !n.is_finite()) || self.uvs.iter().any(|u| !u.is_finite()) {
             return fail("normals and uvs must be finite".into());
+        }
+        if !self.colors.is_empty() && self.colors.len() != nv {
+            return fail(format!(
+                "{} colours for {} positions",
+                self.colors.len(),
+                nv
+            ));
+        }
+        if let Some(c) = self
+            .colors
+            .iter()
+            .position(|c| !(c.is_finite() && c.min_element() >= 0.0 && c.max_element() <= 1.0))
+        {
+            return fail(format!("colour {c} is not finite or outside [0, 1]"));
         }
         if let Some(t) = self
             .indices

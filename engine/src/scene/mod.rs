@@ -30,8 +30,10 @@ pub use features::SceneFeatures;
 pub use flatten::{FlatScene, Placement};
 pub use gltf_import::{load_gltf, load_gltf_slice};
 pub use instance::Instance;
-pub use light::{luminance, Environment, PunctualLight, Sun};
-pub use light_list::{LightDistribution, LightEntry, LightSource};
+pub use light::{luminance, Environment, PunctualLight, Sun, LUMENS_PER_WATT};
+pub use light_list::{
+    selection_power, LightDistribution, LightEntry, LightSource, Selection, UNIFORM_SELECTION,
+};
 pub use material::{Material, MaterialKind, SMOOTH_ALPHA};
 pub use mesh::Mesh;
 pub use model::{AnalyticRadiance, Scene};

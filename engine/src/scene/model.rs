@@ -36,6 +36,9 @@ pub struct Scene {
     /// Non-fatal problems found while building or importing (for example
     /// clamped material parameters or a scene without any light).
     pub warnings: Vec<String>,
+    /// What an importer supplied because the input lacked it (a default camera or sky), for the
+    /// user to know why the image looks as it does.
+    pub notes: Vec<String>,
 }
 
 /// Closed-form pixel values of a furnace-like scene (see
@@ -65,6 +68,7 @@ impl Scene {
             camera: Camera::look_at(Vec3::ZERO, Vec3::NEG_Z, Vec3::Y, 45.0),
             camera_path: None,
             warnings: Vec::new(),
+            notes: Vec::new(),
         }
     }
 
@@ -185,7 +189,10 @@ impl Scene {
             self.warnings.extend(w);
         }
         for m in &self.materials {
-            if let Some(t) = m.base_color_texture {
+            for t in [m.base_color_texture, m.metallic_roughness_texture]
+                .into_iter()
+                .flatten()
+            {
                 if t as usize >= self.textures.len() {
                     return invalid(format!("material `{}` uses missing texture {t}", m.name));
                 }
@@ -306,6 +313,7 @@ impl Scene {
             h.bytes(bytemuck::cast_slice(&m.positions));
             h.bytes(bytemuck::cast_slice(&m.normals));
             h.bytes(bytemuck::cast_slice(&m.uvs));
+            h.bytes(bytemuck::cast_slice(&m.colors));
             h.bytes(bytemuck::cast_slice(&m.indices));
             h.u32(m.material);
         }
@@ -326,6 +334,8 @@ impl Scene {
             h.bytes(bytemuck::cast_slice(&[m.base_color, m.emission]));
             h.bytes(bytemuck::cast_slice(&[m.alpha, m.ior]));
             h.u32(m.base_color_texture.map_or(u32::MAX, |t| t));
+            h.u32(m.metallic_roughness_texture.map_or(u32::MAX, |t| t));
+            h.bytes(bytemuck::cast_slice(&[m.metallic]));
         }
         for t in &self.textures {
             h.u32(t.width);

@@ -80,6 +80,11 @@ impl Specialization {
         self
     }
 
+    /// The value set for `name`, if any.
+    pub fn get(&self, name: &str) -> Option<SpecValue> {
+        self.values.iter().find(|(n, _)| n == name).map(|(_, v)| *v)
+    }
+
     /// The values set, in the order they were set.
     pub fn values(&self) -> &[(String, SpecValue)] {
         &self.values

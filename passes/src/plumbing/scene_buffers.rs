@@ -11,7 +11,7 @@ use lucid_engine::{Context, Result};
 use std::sync::Arc;
 
 /// The names of the scene buffers in the shaders, in [`SceneBuffers::buffers`] order.
-const NAMES: [&str; 14] = [
+const NAMES: [&str; 15] = [
     "b_vertices",
     "b_indices",
     "b_blas",
@@ -26,11 +26,12 @@ const NAMES: [&str; 14] = [
     "b_scene",
     "b_triangle_ids",
     "b_triangles",
+    "b_vertex_colors",
 ];
 
 /// Device-local copies of a packed scene.
 pub struct SceneBuffers {
-    buffers: [Arc<Buffer>; 14],
+    buffers: [Arc<Buffer>; 15],
     /// The features the scene uses (drive shader specialization).
     pub features: SceneFeatures,
 }
@@ -66,6 +67,7 @@ impl SceneBuffers {
                 upload(ctx, NAMES[11], std::slice::from_ref(&gpu.params))?,
                 upload(ctx, NAMES[12], triangle_ids)?,
                 upload(ctx, NAMES[13], &gpu.triangles)?,
+                upload(ctx, NAMES[14], &gpu.vertex_colors)?,
             ],
             features: gpu.features,
         })
@@ -104,7 +106,7 @@ impl SceneBuffers {
 /// The scene buffers of one frame's graph.
 #[derive(Clone, Copy, Debug)]
 pub struct SceneHandles {
-    handles: [BufferHandle; 14],
+    handles: [BufferHandle; 15],
 }
 
 impl SceneHandles {
@@ -134,6 +136,7 @@ pub fn specialization(gpu: &GpuScene) -> Specialization {
         "HAS_DELTA_LIGHTS",
         "HAS_ENVIRONMENT",
         "HAS_TEXTURES",
+        "HAS_VERTEX_COLORS",
     ]
     .into_iter()
     .fold(traversal_specialization(gpu), |spec, name| {

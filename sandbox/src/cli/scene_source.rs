@@ -4,7 +4,8 @@ use anyhow::{bail, Context as _};
 use lucid_engine::scene::{builtin, load_gltf, Scene};
 use std::path::Path;
 
-/// Loads the scene `arg` names: a built-in scene, or a glTF file. Warnings go to stderr.
+/// Loads the scene `arg` names: a built-in scene, or a glTF file. Warnings and notes (what the
+/// importer supplied, e.g. a camera) go to stderr.
 pub fn load(arg: &str) -> anyhow::Result<Scene> {
     let lower = arg.to_lowercase();
     let scene = if lower.ends_with(".gltf") || lower.ends_with(".glb") {
@@ -23,6 +24,9 @@ pub fn load(arg: &str) -> anyhow::Result<Scene> {
     };
     for warning in &scene.warnings {
         eprintln!("warning: {warning}");
+    }
+    for note in &scene.notes {
+        eprintln!("note: {note}");
     }
     Ok(scene)
 }

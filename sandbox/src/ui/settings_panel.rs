@@ -47,6 +47,9 @@ fn scene(ui: &mut egui::Ui, state: &mut AppState, requests: &mut Requests) {
             for warning in &info.warnings {
                 ui.colored_label(egui::Color32::YELLOW, warning);
             }
+            for note in &info.notes {
+                ui.label(note);
+            }
             ui.label("Features:");
             ui.indent("features", |ui| {
                 for (name, used) in feature_list(&info.features) {
@@ -61,7 +64,7 @@ fn scene(ui: &mut egui::Ui, state: &mut AppState, requests: &mut Requests) {
 }
 
 /// The scene features with their names, in a fixed order.
-fn feature_list(f: &SceneFeatures) -> [(&'static str, bool); 10] {
+fn feature_list(f: &SceneFeatures) -> [(&'static str, bool); 11] {
     [
         ("diffuse", f.diffuse),
         ("conductor", f.conductor),
@@ -70,6 +73,7 @@ fn feature_list(f: &SceneFeatures) -> [(&'static str, bool); 10] {
         ("emissive", f.emissive),
         ("spheres", f.spheres),
         ("textures", f.textures),
+        ("vertex colours", f.vertex_colors),
         ("environment", f.environment),
         ("sun", f.sun),
         ("point/spot lights", f.delta_lights),
@@ -166,7 +170,7 @@ fn camera(ui: &mut egui::Ui, state: &mut AppState, requests: &mut Requests) {
             .prefix("speed: ")
             .suffix(" /s"),
     );
-    ui.label("WASD move, Q/E down/up, right mouse look, wheel speed");
+    ui.label("WASD move, Q/E down/up, right mouse look, wheel speed, F frames the scene");
     let stored = state.bookmarks.stored_keys();
     ui.label(if stored.is_empty() {
         "bookmarks: Shift+1..9 stores, 1..9 recalls".to_string()

@@ -85,6 +85,7 @@ pub fn displaced_sphere(name: &str, material: u32, radius: f32, n: u32) -> Mesh 
         positions,
         normals,
         uvs,
+        colors: Vec::new(),
         indices,
         material,
     }

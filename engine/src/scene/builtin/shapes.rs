@@ -26,6 +26,7 @@ impl MeshBuilder {
             positions: self.positions,
             normals: self.normals,
             uvs: self.uvs,
+            colors: Vec::new(),
             indices: self.indices,
             material,
         }

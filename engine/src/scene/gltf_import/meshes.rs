@@ -1,10 +1,12 @@
 //! glTF mesh primitives to Lucid meshes.
 
 use glam::{UVec3, Vec2, Vec3};
+use gltf::accessor::Dimensions;
 use gltf::mesh::Mode;
 use gltf::{Primitive, Semantic};
 
 use super::accessor::{read_floats, read_indices};
+use super::unsupported::{Feature, Unsupported};
 use crate::scene::{Mesh, Scene};
 
 /// The largest coordinate magnitude of world-space geometry: squared distances (the bounds'
@@ -12,14 +14,15 @@ use crate::scene::{Mesh, Scene};
 pub const MAX_COORDINATE: f32 = 1e18;
 
 /// Converts one triangle, triangle-strip or triangle-fan primitive into a
-/// scene mesh and returns its id, or `None` (with a warning) for points and
-/// lines.
+/// scene mesh and returns its id, or `None` (noted in `unsupported`) for points and
+/// lines. Reads POSITION, NORMAL (flat normals without it, as the spec requires), `TEXCOORD_0`
+/// and `COLOR_0`.
 pub fn primitive(
     scene: &mut Scene,
-    mesh: &gltf::Mesh,
-    prim: &Primitive,
+    (mesh, prim): (&gltf::Mesh, &Primitive),
     buffers: &[Vec<u8>],
     material: u32,
+    unsupported: &mut Unsupported,
 ) -> Result<Option<u32>, String> {
     let name = format!(
         "{}/{}",
@@ -31,12 +34,15 @@ pub fn primitive(
         prim.mode(),
         Mode::Triangles | Mode::TriangleStrip | Mode::TriangleFan
     ) {
-        scene.warnings.push(format!(
-            "mesh `{name}`: {:?} primitives are not supported (only triangles, triangle strips \
-             and triangle fans); skipped",
-            prim.mode()
-        ));
+        unsupported.note(Feature::PointsAndLines, "primitives", || {
+            format!("mesh `{name}` ({:?})", prim.mode())
+        });
         return Ok(None);
+    }
+    if prim.morph_targets().next().is_some() {
+        unsupported.note(Feature::MorphTargets, "primitives", || {
+            format!("mesh `{name}`")
+        });
     }
     let ctx = |e: String| format!("mesh `{name}`: {e}");
     let pos = prim
@@ -65,7 +71,12 @@ pub fn primitive(
         Some(a) => read_floats::<2>(&a, buffers, true).map_err(ctx)?,
         None => Vec::new(),
     };
-    if (!normals.is_empty() && normals.len() != nv) || (!uvs.is_empty() && uvs.len() != nv) {
+    let colors = match prim.get(&Semantic::Colors(0)) {
+        Some(a) => read_colors(&a, buffers).map_err(ctx)?,
+        None => Vec::new(),
+    };
+    let counts = [normals.len(), uvs.len(), colors.len()];
+    if counts.iter().any(|&n| n != 0 && n != nv) {
         return Err(ctx("attribute counts differ from the POSITION count".into()));
     }
     let flat = match prim.indices() {
@@ -86,13 +97,41 @@ pub fn primitive(
             .map(|n| Vec3::from(n).try_normalize().unwrap_or(Vec3::Y))
             .collect(),
         uvs: uvs.into_iter().map(Vec2::from).collect(),
+        colors,
         indices,
         material,
     };
     if m.normals.is_empty() {
-        m.compute_normals();
+        // glTF 2.0, meshes: "When normals are not specified, client implementations MUST
+        // calculate flat normals".
+        m.make_flat();
     }
     Ok(Some(scene.add_mesh(m)))
+}
+
+/// Reads a `COLOR_0` accessor: RGB or RGBA, float or normalized `u8`/`u16`, as linear RGB in
+/// `[0, 1]` (alpha, which would scale opacity, is dropped; floats are clamped).
+fn read_colors(a: &gltf::Accessor, buffers: &[Vec<u8>]) -> Result<Vec<Vec3>, String> {
+    let rgb: Vec<Vec3> = match a.dimensions() {
+        Dimensions::Vec3 => read_floats::<3>(a, buffers, true)?
+            .into_iter()
+            .map(Vec3::from)
+            .collect(),
+        Dimensions::Vec4 => read_floats::<4>(a, buffers, true)?
+            .into_iter()
+            .map(|c| Vec3::new(c[0], c[1], c[2]))
+            .collect(),
+        d => {
+            return Err(format!(
+                "COLOR_0 (accessor {}) must be VEC3 or VEC4, found {d:?}",
+                a.index()
+            ))
+        }
+    };
+    Ok(rgb
+        .into_iter()
+        .map(|c| c.clamp(Vec3::ZERO, Vec3::ONE))
+        .collect())
 }
 
 /// The triangles of a triangle list, strip or fan (glTF 2.0, primitive topology: strip triangle `i` is

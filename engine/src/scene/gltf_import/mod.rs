@@ -6,34 +6,41 @@
 //! than trusting the `gltf` crate's loaders, and each failure becomes a
 //! [`SceneError::Gltf`] naming the file and the problem. Required
 //! extensions other than [`SUPPORTED_EXTENSIONS`] are rejected by name. A
-//! scene without any light is accepted with a warning in
-//! `Scene::warnings`.
+//! scene without any light (no emissive surface, punctual light or sun) gets
+//! [`Environment::NEUTRAL_SKY`], and a note in `Scene::notes` says so.
 //!
 //! What is imported: triangle, strip and fan primitives (positions, normals, `TEXCOORD_0`,
 //! indices) as meshes, the default scene's node hierarchy as instances
-//! with world transforms, the first perspective camera, materials (see
+//! with world transforms, the first perspective camera (without one, [`Camera::framing`] frames
+//! the scene's bounds and a note in `Scene::notes` says so), materials (see
 //! [`materials`]) with base-colour textures, and `KHR_lights_punctual`
 //! point and spot lights (the first directional light becomes the sun).
-//! Punctual intensities are used as radiometric values as given.
+//! Light intensities are photometric, as the extension specifies: candela for
+//! point and spot lights, lux for directional ones; they become radiometric
+//! values through [`crate::scene::LUMENS_PER_WATT`] (see [`crate::scene::PunctualLight`]).
 
 mod accessor;
 mod container;
 pub mod materials;
 mod meshes;
 mod nodes;
+mod unsupported;
 mod uri;
 
 use std::collections::HashMap;
 use std::path::Path;
 
-use glam::Vec3;
 use gltf::buffer::Source;
 use gltf::json::mesh::Semantic;
 use gltf::json::validation::Checked;
 
-use super::{Camera, Scene, SceneError};
+use super::{Camera, Environment, Scene, SceneError};
 use materials::MaterialImporter;
 use nodes::NodeImporter;
+use unsupported::{Feature, Unsupported};
+
+/// Vertical field of view of the camera that frames a file without one.
+pub const DEFAULT_VFOV_DEGREES: f32 = 45.0;
 
 /// Extensions the importer understands (and so accepts as required).
 pub const SUPPORTED_EXTENSIONS: [&str; 4] = [
@@ -153,8 +160,17 @@ fn import(bytes: &[u8], base: Option<&Path>, label: &str) -> Result<Scene, Strin
         mesh_cache: HashMap::new(),
         material_cache: HashMap::new(),
         camera_found: false,
+        unsupported: Unsupported::default(),
     };
     importer.walk(&mut scene, gscene.nodes().collect())?;
+    if doc.animations().next().is_some() {
+        importer
+            .unsupported
+            .note(Feature::Animations, "animations", || {
+                format!("{} animations", doc.animations().count())
+            });
+    }
+    scene.warnings.extend(importer.unsupported.warnings(label));
     if scene.instances.is_empty() {
         let skipped = if scene.warnings.is_empty() {
             String::new()
@@ -167,10 +183,16 @@ fn import(bytes: &[u8], base: Option<&Path>, label: &str) -> Result<Scene, Strin
         ));
     }
     if !importer.camera_found {
-        let b = scene.bounds();
-        let radius = b.extent().length().max(1e-3) * 0.5;
-        let c = b.center();
-        scene.camera = Camera::look_at(c + Vec3::new(0.0, 0.0, 2.5 * radius), c, Vec3::Y, 45.0);
+        scene.camera = Camera::framing(&scene.bounds(), DEFAULT_VFOV_DEGREES);
+        scene.notes.push(format!(
+            "no camera in {label}: framing the scene's bounds from a three-quarter view"
+        ));
+    }
+    if !scene.has_light() {
+        scene.environment = Environment::NEUTRAL_SKY;
+        scene.notes.push(format!(
+            "no light in {label}: lighting it with a neutral default sky"
+        ));
     }
     scene.validate().map_err(|e| e.to_string())?;
     Ok(scene)

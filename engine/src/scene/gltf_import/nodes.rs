@@ -11,7 +11,8 @@ use gltf::{Document, Node};
 
 use super::materials::MaterialImporter;
 use super::meshes::{self, MAX_COORDINATE};
-use crate::scene::{Camera, PunctualLight, Scene, Sun};
+use super::unsupported::{Feature, Unsupported};
+use crate::scene::{Camera, PunctualLight, Scene, Sun, LUMENS_PER_WATT};
 
 /// Walks one glTF scene into a Lucid scene.
 pub struct NodeImporter<'a> {
@@ -27,6 +28,8 @@ pub struct NodeImporter<'a> {
     pub material_cache: HashMap<Option<usize>, u32>,
     /// Whether a camera was found.
     pub camera_found: bool,
+    /// What the file uses that is not rendered.
+    pub unsupported: Unsupported,
 }
 
 impl NodeImporter<'_> {
@@ -65,6 +68,10 @@ impl NodeImporter<'_> {
 
     fn visit(&mut self, scene: &mut Scene, node: &Node, world: &Mat4) -> Result<(), String> {
         let i = node.index();
+        if node.skin().is_some() {
+            self.unsupported
+                .note(Feature::Skins, "nodes", || format!("node {i}"));
+        }
         if let Some(mesh) = node.mesh() {
             let affine = Affine3A::from_mat4(*world);
             if affine.matrix3.determinant().abs() < 1e-30 {
@@ -76,7 +83,13 @@ impl NodeImporter<'_> {
                     Some(&id) => id,
                     None => {
                         let material = self.material(scene, prim.material().index())?;
-                        let id = meshes::primitive(scene, &mesh, &prim, self.buffers, material)?;
+                        let id = meshes::primitive(
+                            scene,
+                            (&mesh, &prim),
+                            self.buffers,
+                            material,
+                            &mut self.unsupported,
+                        )?;
                         self.mesh_cache.insert(key, id);
                         id
                     }
@@ -108,10 +121,12 @@ impl NodeImporter<'_> {
                     self.camera_found = true;
                 }
                 Projection::Perspective(_) => {}
-                Projection::Orthographic(_) => scene.warnings.push(format!(
-                    "camera {}: orthographic cameras are not supported; ignored",
-                    cam.index()
-                )),
+                Projection::Orthographic(_) => {
+                    self.unsupported
+                        .note(Feature::OrthographicCamera, "cameras", || {
+                            format!("camera {}", cam.index())
+                        })
+                }
             }
         }
         self.light(scene, i, world)
@@ -122,7 +137,7 @@ impl NodeImporter<'_> {
             return Ok(m);
         }
         let id = match index {
-            Some(k) => self.materials.import(scene, k)?,
+            Some(k) => self.materials.import(scene, k, &mut self.unsupported)?,
             None => {
                 scene.add_material(crate::scene::Material::diffuse("default", Vec3::splat(0.8)))
             }
@@ -147,7 +162,12 @@ impl NodeImporter<'_> {
             .and_then(|e| e.khr_lights_punctual.as_ref())
             .and_then(|l| l.lights.get(index))
             .ok_or_else(|| format!("node {node}: light {index} does not exist"))?;
-        let color = Vec3::from(light.color) * light.intensity;
+        // Candela (point, spot) and lux (directional) to W/sr and W/m² per channel.
+        let color = Vec3::from(light.color) * light.intensity / LUMENS_PER_WATT;
+        if light.range.is_some() {
+            self.unsupported
+                .note(Feature::LightRange, "lights", || format!("light {index}"));
+        }
         let position = world.w_axis.truncate();
         let axis = world.transform_vector3(Vec3::NEG_Z).normalize_or_zero();
         if !color.is_finite() || color.min_element() < 0.0 || axis == Vec3::ZERO {
@@ -182,9 +202,10 @@ impl NodeImporter<'_> {
             }
             Checked::Valid(LightType::Directional) => {
                 if scene.sun.is_some() {
-                    scene.warnings.push(format!(
-                        "light {index}: only one directional light is supported; ignored"
-                    ));
+                    self.unsupported
+                        .note(Feature::ExtraDirectionalLight, "lights", || {
+                            format!("light {index}")
+                        });
                 } else {
                     scene.sun = Some(Sun {
                         direction: -axis,

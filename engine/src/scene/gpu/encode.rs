@@ -35,6 +35,14 @@ pub fn encode_uv(uv: Vec2) -> u32 {
     f16::from_f32(uv.x).to_bits() as u32 | ((f16::from_f32(uv.y).to_bits() as u32) << 16)
 }
 
+/// A linear RGB colour as three half floats, `[packHalf2x16(r, g), packHalf2x16(b, 0)]`.
+pub fn encode_color(c: Vec3) -> [u32; 2] {
+    [
+        encode_uv(Vec2::new(c.x, c.y)),
+        encode_uv(Vec2::new(c.z, 0.0)),
+    ]
+}
+
 fn sign(v: Vec2) -> Vec2 {
     Vec2::new(
         if v.x >= 0.0 { 1.0 } else { -1.0 },
@@ -57,5 +65,9 @@ mod tests {
         }
         assert!(decode_normal(encode_normal(Vec3::NEG_Z)).abs_diff_eq(Vec3::NEG_Z, 1e-4));
         assert_eq!(encode_uv(Vec2::new(1.0, 0.5)), 0x3c00 | (0x3800 << 16));
+        assert_eq!(
+            encode_color(Vec3::new(1.0, 0.5, 1.0)),
+            [0x3c00 | (0x3800 << 16), 0x3c00]
+        );
     }
 }

@@ -58,8 +58,8 @@ pub fn apply_flattening(gpu: &mut GpuScene, flat: &FlatScene, original: &Scene, 
         };
         gpu.triangle_base[mesh] + inverse_orders[mesh][t as usize]
     };
-    let (lights, table, power) = gpu.pack_lights(original, &instance_slots, &triangle);
-    gpu.set_lights(original, lights, table, power);
+    let (lights, table, light) = gpu.pack_lights(original, &instance_slots, &triangle);
+    gpu.set_lights(original, lights, table, light);
 }
 
 /// Gives the merged instance its kind and the separate ones their original scene instance.

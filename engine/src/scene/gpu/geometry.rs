@@ -3,7 +3,7 @@
 use glam::Vec2;
 
 use super::bvh_pack::{pack_tree, GpuBvhNode};
-use super::encode::{encode_normal, encode_uv};
+use super::encode::{encode_color, encode_normal, encode_uv};
 use super::layout::{GpuSphere, GpuTriangle, GpuVertex};
 use crate::scene::{Bvh, Scene};
 
@@ -11,6 +11,9 @@ use crate::scene::{Bvh, Scene};
 pub struct PackedGeometry {
     /// All mesh vertices, mesh after mesh.
     pub vertices: Vec<GpuVertex>,
+    /// The vertex colour of every vertex of `vertices` (white where a mesh has none) when some
+    /// mesh has vertex colours, else empty: RGB as half floats, `[r | g << 16, b]`.
+    pub vertex_colors: Vec<[u32; 2]>,
     /// Triangle vertex indices (absolute), each mesh's triangles in its
     /// BLAS leaf order.
     pub indices: Vec<u32>,
@@ -29,8 +32,10 @@ pub struct PackedGeometry {
 /// Packs all meshes and spheres of `scene` using the BLAS leaf orders of `bvh`.
 pub fn pack(scene: &Scene, bvh: &Bvh) -> PackedGeometry {
     let vertex_total: usize = scene.meshes.iter().map(|m| m.positions.len()).sum();
+    let colored = scene.meshes.iter().any(|m| !m.colors.is_empty());
     let mut out = PackedGeometry {
         vertices: Vec::with_capacity(vertex_total),
+        vertex_colors: Vec::new(),
         indices: Vec::with_capacity(scene.unique_triangle_count() * 3),
         triangles: Vec::with_capacity(scene.unique_triangle_count()),
         blas_nodes: Vec::with_capacity(bvh.blases.iter().map(|b| b.nodes.len() / 2).sum()),
@@ -46,6 +51,12 @@ pub fn pack(scene: &Scene, bvh: &Bvh) -> PackedGeometry {
                 normal: encode_normal(mesh.normals[i]),
                 uv: encode_uv(mesh.uvs.get(i).copied().unwrap_or(Vec2::ZERO)),
             }));
+        if colored {
+            out.vertex_colors.extend(
+                (0..mesh.positions.len())
+                    .map(|i| encode_color(mesh.colors.get(i).copied().unwrap_or(glam::Vec3::ONE))),
+            );
+        }
         let tri_base = (out.indices.len() / 3) as u32;
         out.triangle_base.push(tri_base);
         out.indices.extend(

@@ -93,14 +93,15 @@ pub mod material_kind {
     pub const DIELECTRIC: u32 = 2;
 }
 
-/// A material, 48 bytes.
+/// A material, 64 bytes.
 /// ```glsl
 /// struct Material {
 ///     vec3  base_color; uint kind;    // kind: 0 diffuse, 1 conductor, 2 dielectric
 ///     vec3  emission;   float alpha;  // GGX alpha
 ///     float ior; uint texture;        // ~0u = no base-colour texture
 ///     uint  flags;                    // bit 0 emissive, bit 1 smooth (alpha < 1e-3)
-///     uint  pad;
+///     uint  metal_roughness;          // ~0u = no metallic-roughness texture (G roughness, B metal)
+///     float metallic; uint pad0, pad1, pad2; // metallic factor
 /// };
 /// ```
 #[repr(C)]
@@ -120,8 +121,13 @@ pub struct GpuMaterial {
     pub texture: u32,
     /// Bit 0: emissive; bit 1: smooth.
     pub flags: u32,
-    /// Padding to 48 bytes.
-    pub pad: u32,
+    /// Metallic-roughness texture record index or `u32::MAX`.
+    pub metal_roughness: u32,
+    /// Metallic factor (with a metallic-roughness texture, a texel is metal where
+    /// `metallic * B >= 0.5`).
+    pub metallic: f32,
+    /// Padding to 64 bytes.
+    pub pad: [u32; 3],
 }
 
 /// Light kinds as stored in [`GpuLight::kind`].
@@ -284,7 +290,7 @@ pub struct GpuSun {
 ///     Camera camera; Environment environment; Sun sun;
 ///     uvec4 counts0;  // triangles, instances, spheres, lights
 ///     uvec4 counts1;  // materials, textures, tlas root word, blas nodes
-///     vec4  light;    // total NEE light power, 0, 0, 0
+///     vec4  light;    // total NEE light power, uniform selection, power scale, 0
 /// };
 /// ```
 #[repr(C)]
@@ -301,9 +307,10 @@ pub struct GpuSceneParams {
     /// Materials, textures, the TLAS root's child word (`bvh_pack::EMPTY` without instances),
     /// BLAS nodes.
     pub counts1: [u32; 4],
-    /// Total power of the light table (x). A BSDF-sampled hit on an
-    /// emitter has selection probability `power / total`, with power
-    /// computed as in `LightDistribution`, so no reverse lookup is needed.
+    /// Total power of the light table (x), and the selection constants `uniform` (y) and
+    /// `power_scale` (z) of [`crate::scene::Selection`]: a BSDF-sampled hit on an emitter has
+    /// selection probability `power * power_scale + uniform`, with power computed as in
+    /// `LightDistribution`, so no reverse lookup is needed.
     pub light: [f32; 4],
 }
 
@@ -317,7 +324,7 @@ mod tests {
         assert_eq!(size_of::<GpuVertex>(), 20);
         assert_eq!(size_of::<GpuInstance>(), 112);
         assert_eq!(size_of::<GpuSphere>(), 32);
-        assert_eq!(size_of::<GpuMaterial>(), 48);
+        assert_eq!(size_of::<GpuMaterial>(), 64);
         assert_eq!(size_of::<GpuLight>(), 80);
         assert_eq!(size_of::<GpuAliasEntry>(), 16);
         assert_eq!(size_of::<GpuTextureRecord>(), 16);

@@ -3,7 +3,8 @@
 //!
 //! Buffers and how they reference each other:
 //! - `vertices` ([`GpuVertex`], 20 B) and `indices` (3 × `u32` per
-//!   triangle, absolute vertex indices). Each mesh's triangles are stored
+//!   triangle, absolute vertex indices); `vertex_colors` (8 B per vertex) only when a mesh has
+//!   vertex colours. Each mesh's triangles are stored
 //!   in its BLAS leaf order, so a BLAS leaf `(first, count)` is directly a
 //!   global triangle range.
 //! - `blas_nodes` / `tlas_nodes` ([`GpuBvhNode`], 64 B, see [`bvh_pack`]):
@@ -13,8 +14,8 @@
 //! - `instances` ([`GpuInstance`]): transforms, BLAS root, material.
 //! - `spheres` ([`GpuSphere`]) in sphere-BLAS leaf order.
 //! - `materials`, `textures` (records into the flat `texels` word buffer).
-//! - `lights` + `light_table`: the NEE light list with its power-based
-//!   alias table / CDF.
+//! - `lights` + `light_table`: the NEE light list with its alias table / CDF
+//!   (power and uniform selection, see [`crate::scene::LightDistribution`]).
 //! - `params`: camera, environment, sun, counts.
 
 pub mod bvh_pack;
@@ -25,7 +26,7 @@ mod layout;
 mod params;
 
 pub use bvh_pack::GpuBvhNode;
-pub use encode::{decode_normal, encode_normal, encode_uv};
+pub use encode::{decode_normal, encode_color, encode_normal, encode_uv};
 pub use flat::{apply_flattening, pack_flat, INSTANCE_FLATTENED};
 pub use layout::{
     light_kind, material_kind, texture_format, GpuAliasEntry, GpuCamera, GpuEnvironment,
@@ -52,6 +53,9 @@ pub const INSTANCE_SPHERES: u32 = 1;
 pub struct GpuScene {
     /// Mesh vertices.
     pub vertices: Vec<GpuVertex>,
+    /// Vertex colours, one per vertex (`[packHalf2x16(r, g), packHalf2x16(b, 0)]`), when some
+    /// mesh has them; else empty (and `HAS_VERTEX_COLORS` off).
+    pub vertex_colors: Vec<[u32; 2]>,
     /// Triangle vertex indices, three per triangle.
     pub indices: Vec<u32>,
     /// Triangles for ray intersection (first vertex and edges), in the order of `indices`.
@@ -100,6 +104,7 @@ impl GpuScene {
         let (texels, textures) = params::textures(scene);
         Self {
             vertices: geo.vertices,
+            vertex_colors: geo.vertex_colors,
             indices: geo.indices,
             triangles: geo.triangles,
             blas_nodes: geo.blas_nodes,
@@ -132,8 +137,8 @@ impl GpuScene {
             let mesh = scene.instances[instance as usize].mesh as usize;
             self.triangle_base[mesh] + inverse_orders[mesh][t as usize]
         };
-        let (lights, table, power) = self.pack_lights(scene, &gpu_of_instance, &triangle);
-        self.set_lights(scene, lights, table, power);
+        let (lights, table, light) = self.pack_lights(scene, &gpu_of_instance, &triangle);
+        self.set_lights(scene, lights, table, light);
     }
 
     /// Packs the TLAS and the instances of `scene` (in TLAS leaf order); returns the GPU instance
@@ -177,7 +182,7 @@ impl GpuScene {
         scene: &Scene,
         instance: &[u32],
         triangle: &dyn Fn(u32, u32) -> u32,
-    ) -> (Vec<GpuLight>, Vec<GpuAliasEntry>, f32) {
+    ) -> (Vec<GpuLight>, Vec<GpuAliasEntry>, [f32; 4]) {
         let mut gpu_of_sphere = vec![u32::MAX; scene.spheres.len()];
         for (slot, s) in self.spheres.iter().enumerate() {
             gpu_of_sphere[s.scene_sphere as usize] = slot as u32;
@@ -192,17 +197,23 @@ impl GpuScene {
                 sphere: &gpu_of_sphere,
             },
         );
-        (lights, table, dist.total_power())
+        let light = [
+            dist.total_power(),
+            dist.selection.uniform,
+            dist.selection.power_scale,
+            0.0,
+        ];
+        (lights, table, light)
     }
 
     /// Stores the lights and packs the params (camera, environment and sun of `scene`, counts,
-    /// total light power).
+    /// `light`: total light power and the selection constants, see [`GpuSceneParams::light`]).
     fn set_lights(
         &mut self,
         scene: &Scene,
         lights: Vec<GpuLight>,
         table: Vec<GpuAliasEntry>,
-        total_power: f32,
+        light: [f32; 4],
     ) {
         self.lights = lights;
         self.light_table = table;
@@ -222,7 +233,7 @@ impl GpuScene {
                 self.tlas_root,
                 self.blas_nodes.len() as u32,
             ],
-            light: [total_power, 0.0, 0.0, 0.0],
+            light,
         };
     }
 
@@ -236,6 +247,7 @@ impl GpuScene {
     /// Bytes of vertices and indices.
     pub fn geometry_bytes(&self) -> usize {
         self.vertices.len() * size_of::<GpuVertex>()
+            + self.vertex_colors.len() * 8
             + self.indices.len() * 4
             + self.triangles.len() * size_of::<GpuTriangle>()
             + self.spheres.len() * size_of::<GpuSphere>()

@@ -28,7 +28,9 @@ pub fn materials(scene: &Scene) -> Vec<GpuMaterial> {
             texture: m.base_color_texture.unwrap_or(u32::MAX),
             flags: u32::from(m.is_emissive())
                 | (u32::from(m.alpha < crate::scene::SMOOTH_ALPHA) << 1),
-            pad: 0,
+            metal_roughness: m.metallic_roughness_texture.unwrap_or(u32::MAX),
+            metallic: m.metallic,
+            pad: [0; 3],
         })
         .collect()
 }

@@ -25,7 +25,7 @@ use crate::light_transport::{sample_batches, Frame, Images, Outputs};
 use crate::plumbing::scene_buffers::SceneHandles;
 use crate::shaders::bdpt::{CAMERA, LIGHT};
 use lucid_engine::graph::{Access, BufferHandle, PassContext, RenderGraph};
-use lucid_engine::shader::Specialization;
+use lucid_engine::shader::{SpecValue, Specialization};
 use lucid_engine::EngineError;
 
 /// The multiple-importance-sampling heuristic combining the strategies.
@@ -95,6 +95,12 @@ pub fn add_bdpt(
         "bdpt.cache_lengths",
         params.lengths_bytes(),
     );
+    let colored = spec.get("HAS_VERTEX_COLORS") == Some(SpecValue::Bool(true));
+    let colors = pass.create_buffer(
+        "b_lvc_colors",
+        "bdpt.cache_colors",
+        params.color_bytes(colored),
+    );
     let splat = pass.read_write("b_splat", splat);
     let stats = pass.read_write("b_stats", stats);
     pass.specialization(&spec)
@@ -107,6 +113,7 @@ pub fn add_bdpt(
     pass.read("b_frame", frame_constants)
         .read("b_lvc", cache)
         .read("b_lvc_lengths", lengths)
+        .read("b_lvc_colors", colors)
         .read("b_splat", splat);
     let stats = pass.read_write("b_stats", stats);
     let images = Images::create(&mut pass, "bdpt", (width, height), surface);

@@ -73,6 +73,16 @@ impl Params {
             .max(LIGHT_VERTEX_BYTES)
     }
 
+    /// Bytes of the cached vertices' vertex colours (8 per vertex, beside the cache) when the
+    /// scene has vertex colours (`colored`), else one unread element.
+    pub fn color_bytes(&self, colored: bool) -> u64 {
+        if colored {
+            (u64::from(self.light_paths) * u64::from(self.path_vertices) * 8).max(8)
+        } else {
+            8
+        }
+    }
+
     /// Bytes of the buffer of light subpath lengths (never empty).
     pub fn lengths_bytes(&self) -> u64 {
         u64::from(self.light_paths).max(1) * 4

@@ -1,0 +1,318 @@
+//! Small glTF 2.0 files written by the tests themselves: a [`Doc`] collects accessors (one
+//! embedded base64 buffer), meshes, materials, nodes, lights and cameras and writes the JSON, and
+//! a few shapes ([`plane`], [`cube`]) give the geometry.
+
+use lucid_engine::scene::{load_gltf_slice, Scene};
+
+/// glTF component types.
+pub mod component {
+    /// `UNSIGNED_BYTE`.
+    pub const U8: u32 = 5121;
+    /// `UNSIGNED_SHORT`.
+    pub const U16: u32 = 5123;
+    /// `UNSIGNED_INT`.
+    pub const U32: u32 = 5125;
+    /// `FLOAT`.
+    pub const F32: u32 = 5126;
+}
+
+/// A glTF document being written. Every node is a root of the one scene.
+#[derive(Clone, Debug, Default)]
+pub struct Doc {
+    bin: Vec<u8>,
+    views: Vec<String>,
+    accessors: Vec<String>,
+    meshes: Vec<String>,
+    materials: Vec<String>,
+    nodes: Vec<String>,
+    lights: Vec<String>,
+    cameras: Vec<String>,
+    extensions_used: Vec<String>,
+    members: Vec<String>,
+}
+
+fn type_name(components: usize) -> &'static str {
+    match components {
+        1 => "SCALAR",
+        2 => "VEC2",
+        3 => "VEC3",
+        4 => "VEC4",
+        _ => panic!("{components} components"),
+    }
+}
+
+impl Doc {
+    /// An empty document.
+    pub fn new() -> Self {
+        Self::default()
+    }
+
+    /// Adds an accessor over `bytes` (`count` elements of `components` components of type
+    /// `component`); returns its index. POSITION accessors get the min and max the spec requires.
+    pub fn accessor(
+        &mut self,
+        bytes: &[u8],
+        component: u32,
+        components: usize,
+        count: usize,
+        normalized: bool,
+    ) -> usize {
+        while self.bin.len() % 4 != 0 {
+            self.bin.push(0);
+        }
+        self.views.push(format!(
+            r#"{{"buffer": 0, "byteOffset": {}, "byteLength": {}}}"#,
+            self.bin.len(),
+            bytes.len()
+        ));
+        self.bin.extend_from_slice(bytes);
+        self.accessors.push(format!(
+            r#"{{"bufferView": {}, "componentType": {component}, "count": {count}, "type": "{}", "normalized": {normalized}}}"#,
+            self.views.len() - 1,
+            type_name(components)
+        ));
+        self.accessors.len() - 1
+    }
+
+    /// A float accessor of `N`-component elements.
+    pub fn floats<const N: usize>(&mut self, values: &[[f32; N]]) -> usize {
+        let bytes: Vec<u8> = values
+            .iter()
+            .flatten()
+            .flat_map(|x| x.to_le_bytes())
+            .collect();
+        let a = self.accessor(&bytes, component::F32, N, values.len(), false);
+        if N == 3 {
+            let (mut lo, mut hi) = ([f32::INFINITY; 3], [f32::NEG_INFINITY; 3]);
+            for v in values {
+                for k in 0..3 {
+                    lo[k] = lo[k].min(v[k]);
+                    hi[k] = hi[k].max(v[k]);
+                }
+            }
+            let last = self.accessors.last_mut().expect("just added");
+            last.pop();
+            last.push_str(&format!(r#", "min": {lo:?}, "max": {hi:?}}}"#));
+        }
+        a
+    }
+
+    /// A normalized unsigned-byte accessor of `N`-component elements.
+    pub fn unorm8<const N: usize>(&mut self, values: &[[u8; N]]) -> usize {
+        let bytes: Vec<u8> = values.iter().flatten().copied().collect();
+        self.accessor(&bytes, component::U8, N, values.len(), true)
+    }
+
+    /// A normalized unsigned-short accessor of `N`-component elements.
+    pub fn unorm16<const N: usize>(&mut self, values: &[[u16; N]]) -> usize {
+        let bytes: Vec<u8> = values
+            .iter()
+            .flatten()
+            .flat_map(|x| x.to_le_bytes())
+            .collect();
+        self.accessor(&bytes, component::U16, N, values.len(), true)
+    }
+
+    /// An index accessor (`u32`).
+    pub fn indices(&mut self, indices: &[u32]) -> usize {
+        let bytes: Vec<u8> = indices.iter().flat_map(|x| x.to_le_bytes()).collect();
+        self.accessor(&bytes, component::U32, 1, indices.len(), false)
+    }
+
+    /// Adds a material (its JSON object); returns its index.
+    pub fn material(&mut self, json: &str) -> usize {
+        self.materials.push(json.to_string());
+        self.materials.len() - 1
+    }
+
+    /// Adds a mesh (its JSON object); returns its index.
+    pub fn mesh_json(&mut self, json: &str) -> usize {
+        self.meshes.push(json.to_string());
+        self.meshes.len() - 1
+    }
+
+    /// Adds a camera (its JSON object) on a node with `transform`.
+    pub fn camera_json(&mut self, json: &str, transform: &str) -> usize {
+        self.cameras.push(json.to_string());
+        let sep = if transform.is_empty() { "" } else { ", " };
+        self.node(&format!(
+            r#"{{{transform}{sep}"camera": {}}}"#,
+            self.cameras.len() - 1
+        ))
+    }
+
+    /// Adds a top-level member the other methods do not write (e.g. `"textures": [...]`).
+    pub fn member(&mut self, json: &str) {
+        self.members.push(json.to_string());
+    }
+
+    /// Adds a mesh of one triangle primitive with `attributes` (semantic, accessor); returns its
+    /// index.
+    pub fn mesh(
+        &mut self,
+        attributes: &[(&str, usize)],
+        indices: Option<usize>,
+        material: Option<usize>,
+    ) -> usize {
+        let attributes: Vec<String> = attributes
+            .iter()
+            .map(|(name, a)| format!(r#""{name}": {a}"#))
+            .collect();
+        let mut primitive = format!(r#"{{"attributes": {{{}}}"#, attributes.join(", "));
+        if let Some(i) = indices {
+            primitive.push_str(&format!(r#", "indices": {i}"#));
+        }
+        if let Some(m) = material {
+            primitive.push_str(&format!(r#", "material": {m}"#));
+        }
+        primitive.push('}');
+        self.meshes
+            .push(format!(r#"{{"primitives": [{primitive}]}}"#));
+        self.meshes.len() - 1
+    }
+
+    /// Adds a root node (its JSON object, e.g. `{"mesh": 0}`); returns its index.
+    pub fn node(&mut self, json: &str) -> usize {
+        self.nodes.push(json.to_string());
+        self.nodes.len() - 1
+    }
+
+    /// Adds a `KHR_lights_punctual` light (its JSON object) on a node with `transform` (JSON
+    /// members such as `"translation": [0, 1, 0]`, possibly empty).
+    pub fn light(&mut self, json: &str, transform: &str) -> usize {
+        self.uses("KHR_lights_punctual");
+        self.lights.push(json.to_string());
+        let sep = if transform.is_empty() { "" } else { ", " };
+        self.node(&format!(
+            r#"{{{transform}{sep}"extensions": {{"KHR_lights_punctual": {{"light": {}}}}}}}"#,
+            self.lights.len() - 1
+        ))
+    }
+
+    /// Adds a perspective camera on a node with `transform`.
+    pub fn camera(&mut self, yfov: f32, transform: &str) -> usize {
+        self.camera_json(
+            &format!(
+                r#"{{"type": "perspective", "perspective": {{"yfov": {yfov}, "znear": 0.01}}}}"#
+            ),
+            transform,
+        )
+    }
+
+    /// Lists `name` in `extensionsUsed`.
+    pub fn uses(&mut self, name: &str) {
+        if !self.extensions_used.iter().any(|e| e == name) {
+            self.extensions_used.push(name.to_string());
+        }
+    }
+
+    /// The glTF JSON, the buffer embedded as a base64 data URI.
+    pub fn json(&self) -> String {
+        let mut top = vec![r#""asset": {"version": "2.0"}"#.to_string()];
+        let list = |items: &[String]| items.join(",\n    ");
+        let roots: Vec<String> = (0..self.nodes.len()).map(|i| i.to_string()).collect();
+        top.push(format!(
+            r#""scene": 0, "scenes": [{{"nodes": [{}]}}]"#,
+            roots.join(", ")
+        ));
+        top.push(format!(r#""nodes": [{}]"#, list(&self.nodes)));
+        for (name, items) in [
+            ("meshes", &self.meshes),
+            ("materials", &self.materials),
+            ("cameras", &self.cameras),
+            ("accessors", &self.accessors),
+            ("bufferViews", &self.views),
+        ] {
+            if !items.is_empty() {
+                top.push(format!(r#""{name}": [{}]"#, list(items)));
+            }
+        }
+        if !self.bin.is_empty() {
+            top.push(format!(
+                r#""buffers": [{{"byteLength": {}, "uri": "data:application/octet-stream;base64,{}"}}]"#,
+                self.bin.len(),
+                base64(&self.bin)
+            ));
+        }
+        if !self.lights.is_empty() {
+            top.push(format!(
+                r#""extensions": {{"KHR_lights_punctual": {{"lights": [{}]}}}}"#,
+                list(&self.lights)
+            ));
+        }
+        top.extend(self.members.iter().cloned());
+        if !self.extensions_used.is_empty() {
+            let used: Vec<String> = self
+                .extensions_used
+                .iter()
+                .map(|e| format!("\"{e}\""))
+                .collect();
+            top.push(format!(r#""extensionsUsed": [{}]"#, used.join(", ")));
+        }
+        format!("{{\n  {}\n}}\n", top.join(",\n  "))
+    }
+
+    /// Imports the document as `label` (panics with the error if it does not load).
+    pub fn load(&self, label: &str) -> Scene {
+        load_gltf_slice(self.json().as_bytes(), None, label)
+            .unwrap_or_else(|e| panic!("{label}: {e}\n{}", self.json()))
+    }
+}
+
+/// Standard base64 with padding.
+pub fn base64(bytes: &[u8]) -> String {
+    const A: &[u8; 64] = b"ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
+    let mut s = String::new();
+    for c in bytes.chunks(3) {
+        let n = (c[0] as u32) << 16
+            | (*c.get(1).unwrap_or(&0) as u32) << 8
+            | *c.get(2).unwrap_or(&0) as u32;
+        for k in 0..4 {
+            if k <= c.len() {
+                s.push(A[(n >> (18 - 6 * k) & 63) as usize] as char);
+            } else {
+                s.push('=');
+            }
+        }
+    }
+    s
+}
+
+/// Positions and indices of a square of side `2 * half` in the plane y = 0, centred on the
+/// origin, facing +Y (counter-clockwise seen from above).
+pub fn plane(half: f32) -> (Vec<[f32; 3]>, Vec<u32>) {
+    (
+        vec![
+            [-half, 0.0, -half],
+            [-half, 0.0, half],
+            [half, 0.0, half],
+            [half, 0.0, -half],
+        ],
+        vec![0, 1, 2, 0, 2, 3],
+    )
+}
+
+/// Positions and indices of the cube [-half, half]³ with 8 shared corners (so smooth normals
+/// would average across faces), outward counter-clockwise winding.
+pub fn cube(half: f32) -> (Vec<[f32; 3]>, Vec<u32>) {
+    let positions = (0..8)
+        .map(|i| {
+            let s = |bit: u32| if i & bit == 0 { -half } else { half };
+            [s(1), s(2), s(4)]
+        })
+        .collect();
+    // Corner i has x = bit 0, y = bit 1, z = bit 2.
+    let quads: [[u32; 4]; 6] = [
+        [1, 3, 7, 5], // +x
+        [0, 4, 6, 2], // -x
+        [2, 6, 7, 3], // +y
+        [0, 1, 5, 4], // -y
+        [4, 5, 7, 6], // +z
+        [0, 2, 3, 1], // -z
+    ];
+    let indices = quads
+        .iter()
+        .flat_map(|q| [q[0], q[1], q[2], q[0], q[2], q[3]])
+        .collect();
+    (positions, indices)
+}
