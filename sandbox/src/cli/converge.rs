@@ -223,7 +223,8 @@ impl Config {
 pub struct Row {
     /// Frames accumulated (1 for the first).
     pub frame: u32,
-    /// GPU milliseconds of all frames up to and including this one.
+    /// GPU milliseconds of all frames up to and including this one (wall milliseconds on a device
+    /// without timestamps: the JSON's `time` says which).
     pub gpu_ms: f64,
     /// `1 / SSIM - 1`.
     pub dssim: f64,
@@ -640,6 +641,8 @@ impl Summary<'_> {
             "reference_spp": args.reference_spp.get(),
             "budget_ms": args.budget_ms,
             "max_frames": args.max_frames,
+            "warmup": args.warmup,
+            "reference": "path tracing, no denoiser, seed xor 0x9e3779b9, 16 samples per frame accumulated",
             "time": time,
             "exposure": args.exposure,
             "notes": self.notes,
