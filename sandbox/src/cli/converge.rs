@@ -416,7 +416,7 @@ pub fn run(args: &ConvergeArgs) -> anyhow::Result<()> {
         &args.out.join("converge.json"),
         serde_json::to_string_pretty(&json)?.as_bytes(),
     )?;
-    write_charts(&args.out, &results, clock)?;
+    write_charts(&args.out, &results, clock, |m| summary.target(m))?;
     if args.json {
         println!("{}", serde_json::to_string_pretty(&json)?);
     } else {
@@ -728,7 +728,12 @@ fn speed_accuracy(results: &[ConfigResult], metric: Metric) -> Vec<(f64, f64)> {
 }
 
 /// `error_vs_time_<metric>.png/.svg` and `speed_vs_accuracy.png/.svg`.
-fn write_charts(out: &Path, results: &[ConfigResult], clock: Clock) -> anyhow::Result<()> {
+fn write_charts(
+    out: &Path,
+    results: &[ConfigResult],
+    clock: Clock,
+    target: impl Fn(Metric) -> f64,
+) -> anyhow::Result<()> {
     let time = match clock {
         Clock::Gpu => "GPU time",
         Clock::Wall => "wall time",
@@ -749,6 +754,7 @@ fn write_charts(out: &Path, results: &[ConfigResult], clock: Clock) -> anyhow::R
             &format!("{} against {time}", metric.label()),
             &format!("{time} (ms, accumulated)"),
             metric.label(),
+            target(metric),
             &series,
         )?;
         let name = format!("error_vs_time_{}", metric.name());

@@ -42,11 +42,13 @@ pub struct Panel {
     pub front: Vec<usize>,
 }
 
-/// Error against time, log-log, a line (with a dot per measurement) per series.
+/// Error against time, log-log, a line (with a dot per measurement) per series, and the error
+/// `target` (what "converged" means) as a dashed line.
 pub fn error_vs_time(
     title: &str,
     x_label: &str,
     y_label: &str,
+    target: f64,
     series: &[Series],
 ) -> anyhow::Result<Chart> {
     render(
@@ -54,6 +56,7 @@ pub fn error_vs_time(
             title,
             x_label,
             y_label,
+            target,
             series,
         },
         (960, 640),
@@ -195,6 +198,7 @@ struct ErrorVsTime<'a> {
     title: &'a str,
     x_label: &'a str,
     y_label: &'a str,
+    target: f64,
     series: &'a [Series],
 }
 
@@ -206,13 +210,14 @@ impl Figure for ErrorVsTime<'_> {
         root.fill(&WHITE)?;
         let all = || self.series.iter().flat_map(|s| s.points.iter().copied());
         let x = log_range(all().map(|p| p.0), 1.2);
-        let y = log_range(all().map(|p| p.1), 1.2);
+        let axis_x = x.clone();
+        let y = log_range(all().map(|p| p.1).chain([self.target]), 1.2);
         let mut chart = ChartBuilder::on(root)
             .caption(self.title, (FONT, 22))
             .margin(16)
             .x_label_area_size(44)
             .y_label_area_size(64)
-            .build_cartesian_2d(log_axis(x), log_axis(y))?;
+            .build_cartesian_2d(log_axis(axis_x), log_axis(y))?;
         chart
             .configure_mesh()
             .x_desc(self.x_label)
@@ -222,6 +227,18 @@ impl Figure for ErrorVsTime<'_> {
             .label_style((FONT, 14))
             .axis_desc_style((FONT, 15))
             .draw()?;
+        if drawable(&(x.start, self.target)) {
+            let grey = RGBColor(110, 110, 110);
+            chart
+                .draw_series(DashedLineSeries::new(
+                    [(x.start, self.target), (x.end, self.target)],
+                    8,
+                    6,
+                    grey.stroke_width(1),
+                ))?
+                .label(format!("target {}", self.target))
+                .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 20, y)], grey));
+        }
         for (i, series) in self.series.iter().enumerate() {
             let color = Palette99::pick(i).to_rgba();
             let points: Vec<(f64, f64)> = series.points.iter().copied().filter(drawable).collect();
@@ -324,9 +341,10 @@ mod tests {
                 points: vec![(1.5, 0.1), (3.0, 0.0), (5.0, f64::NAN)],
             },
         ];
-        let chart = error_vs_time("DSSIM", "GPU time (ms)", "DSSIM", &series).unwrap();
+        let chart = error_vs_time("DSSIM", "GPU time (ms)", "DSSIM", 0.1, &series).unwrap();
         assert!(chart.png.starts_with(b"\x89PNG"));
         assert!(chart.svg.contains("<svg") && chart.svg.contains("pt/svgf/1"));
+        assert!(chart.svg.contains("target 0.1"));
         let panel = Panel {
             title: "final DSSIM (red: Pareto front)".into(),
             y_label: "DSSIM".into(),
@@ -336,7 +354,7 @@ mod tests {
         let chart = speed_vs_accuracy("GPU time per frame (ms)", &[panel]).unwrap();
         assert!(chart.png.starts_with(b"\x89PNG"));
         assert!(chart.svg.contains("Pareto front") && chart.svg.contains("\nb\n"));
-        let empty = error_vs_time("none", "x", "y", &[]).unwrap();
+        let empty = error_vs_time("none", "x", "y", f64::NAN, &[]).unwrap();
         assert!(empty.png.starts_with(b"\x89PNG"));
     }
 
