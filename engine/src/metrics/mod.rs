@@ -19,6 +19,6 @@ mod temporal;
 pub use error::MetricsError;
 pub use flip::{flip, FlipResult, DEFAULT_PIXELS_PER_DEGREE};
 pub use pixelwise::{max_abs_error, mean_per_channel, mse, psnr, rel_mse, DEFAULT_REL_MSE_EPSILON};
-pub use sequence::{evaluate_sequence, FrameMetrics, SequenceMetrics};
+pub use sequence::{evaluate_frame, evaluate_sequence, FrameMetrics, SequenceMetrics};
 pub use ssim::{dssim, ssim, SsimMode};
 pub use temporal::{temporal_instability, TemporalInstability};

@@ -28,6 +28,33 @@ pub struct SequenceMetrics {
     pub mean: FrameMetrics,
 }
 
+/// Compares one frame with its reference as [`evaluate_sequence`] compares each frame: relative MSE
+/// of the linear images, SSIM (and DSSIM) of the display-encoded images, FLIP of the tone-mapped
+/// images, `display` mapping linear to display. Temporal instability is 0: one frame has no step.
+pub fn evaluate_frame(
+    test: &ImageData,
+    reference: &ImageData,
+    display: &PngEncoding,
+) -> Result<FrameMetrics, MetricsError> {
+    let s = ssim(
+        &display.to_display(test),
+        &display.to_display(reference),
+        SsimMode::Luminance,
+    )?;
+    Ok(FrameMetrics {
+        rel_mse: rel_mse(test, reference, DEFAULT_REL_MSE_EPSILON)?,
+        ssim: s,
+        dssim: dssim(s),
+        flip: flip(
+            &display.tone_map(test),
+            &display.tone_map(reference),
+            DEFAULT_PIXELS_PER_DEGREE,
+        )?
+        .mean,
+        temporal_instability: 0.0,
+    })
+}
+
 /// Compares `test` with `reference` frame by frame; `display` maps linear frames to the display
 /// for SSIM and FLIP. Needs at least two frames of equal sizes and a reference that is not black.
 pub fn evaluate_sequence(
@@ -41,24 +68,11 @@ pub fn evaluate_sequence(
         .zip(reference)
         .enumerate()
         .map(|(i, (t, r))| {
-            let s = ssim(
-                &display.to_display(t),
-                &display.to_display(r),
-                SsimMode::Luminance,
-            )?;
             Ok(FrameMetrics {
-                rel_mse: rel_mse(t, r, DEFAULT_REL_MSE_EPSILON)?,
-                ssim: s,
-                dssim: dssim(s),
-                flip: flip(
-                    &display.tone_map(t),
-                    &display.tone_map(r),
-                    DEFAULT_PIXELS_PER_DEGREE,
-                )?
-                .mean,
                 temporal_instability: i
                     .checked_sub(1)
                     .map_or(0.0, |pair| instability.per_pair[pair]),
+                ..evaluate_frame(t, r, display)?
             })
         })
         .collect::<Result<Vec<_>, MetricsError>>()?;
@@ -102,6 +116,21 @@ mod tests {
         assert_eq!(m.frames[0].temporal_instability, 0.0);
         assert!((m.frames[1].temporal_instability - 0.4).abs() < 1e-6);
         assert!(m.mean.rel_mse > 0.0 && m.mean.flip > 0.0);
+    }
+
+    #[test]
+    fn a_frame_alone_is_evaluated_as_in_its_sequence() {
+        let reference = [frame(0.5), frame(0.5)];
+        let test = [frame(0.4), frame(0.6)];
+        let m = evaluate_sequence(&test, &reference, &PngEncoding::default()).unwrap();
+        let alone = evaluate_frame(&test[1], &reference[1], &PngEncoding::default()).unwrap();
+        assert_eq!(
+            alone,
+            FrameMetrics {
+                temporal_instability: 0.0,
+                ..m.frames[1]
+            }
+        );
     }
 
     #[test]

@@ -15,9 +15,30 @@ pub fn finite_f32(
     }
 }
 
+/// Parses a finite `f64` from `min` to `max` (inclusive), for options that are written out again
+/// (an error target in a report: `0.1` stays `0.1`, not `0.10000000149011612`).
+pub fn finite_f64(
+    min: f64,
+    max: f64,
+) -> impl Fn(&str) -> Result<f64, String> + Clone + Send + Sync + 'static {
+    move |text| match text.trim().parse::<f64>() {
+        Ok(v) if v.is_finite() && (min..=max).contains(&v) => Ok(v),
+        _ => Err(format!("must be a finite number from {min} to {max}")),
+    }
+}
+
 #[cfg(test)]
 mod tests {
-    use super::finite_f32;
+    use super::{finite_f32, finite_f64};
+
+    #[test]
+    fn finite_f64_keeps_the_written_value() {
+        let parse = finite_f64(0.0, 1e6);
+        assert_eq!(parse("0.1"), Ok(0.1));
+        for bad in ["NaN", "inf", "-0.5", "2e6", ""] {
+            assert!(parse(bad).is_err(), "{bad}");
+        }
+    }
 
     #[test]
     fn only_finite_numbers_in_range_pass() {

@@ -1,6 +1,8 @@
 //! The `lucid` subcommands.
 
 mod bench;
+mod converge;
+mod converge_chart;
 mod dataset;
 mod evaluate;
 mod float_range;
@@ -49,6 +51,9 @@ enum Command {
     Sequence(sequence::SequenceArgs),
     /// Metrics of rendered sequences against their reference, as CSV and an SVG plot.
     Evaluate(evaluate::EvaluateArgs),
+    /// Error against GPU time as samples accumulate, per algorithm, denoiser and samples per
+    /// pixel, against a many-sample reference: CSV, JSON and charts (Pareto front included).
+    Converge(converge::ConvergeArgs),
     /// Render the learned denoiser's training data (inputs and references along camera paths).
     Dataset(dataset::DatasetArgs),
     /// Render many frames with everything changing and check that memory stays flat.
@@ -68,6 +73,7 @@ pub fn run(cli: Cli) -> anyhow::Result<()> {
         Command::Bench(args) => bench::run(&args),
         Command::Sequence(args) => sequence::run(&args),
         Command::Evaluate(args) => evaluate::run(&args),
+        Command::Converge(args) => converge::run(&args),
         Command::Dataset(args) => dataset::run(&args),
         Command::Soak(args) => soak::run(&args),
     }

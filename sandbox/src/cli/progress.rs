@@ -32,13 +32,19 @@ impl Progress {
 
     /// One more step done.
     pub fn inc(&self) {
-        let done = self.done.get() + 1;
+        self.inc_by(1);
+    }
+
+    /// `steps` more steps done (work that ended early skips the steps it did not need).
+    pub fn inc_by(&self, steps: u64) {
+        let before = self.done.get();
+        let done = before + steps;
         self.done.set(done);
         match &self.bar {
-            Some(bar) => bar.inc(1),
+            Some(bar) => bar.inc(steps),
             None => {
                 let step = (self.total / 10).max(1);
-                if done % step == 0 {
+                if steps > 0 && done / step > before / step {
                     eprintln!("{done}/{} {}", self.total, self.unit);
                 }
             }

@@ -98,7 +98,7 @@ impl Method {
 }
 
 /// Samples per pixel per frame of the reference renders (more are accumulated over frames).
-const REFERENCE_SPP_PER_FRAME: SamplesPerPixel = SamplesPerPixel::new(16).unwrap();
+pub(super) const REFERENCE_SPP_PER_FRAME: SamplesPerPixel = SamplesPerPixel::new(16).unwrap();
 
 /// Renders every sequence and writes the evaluation.
 pub fn run(args: &SequenceArgs) -> anyhow::Result<()> {

@@ -1,0 +1,379 @@
+//! The charts of `lucid converge`, drawn with `plotters` as PNG (bitmap backend, encoded by
+//! `image`) and SVG: error against time (log-log, a line per configuration) and speed against
+//! accuracy (a point per configuration, the Pareto front connected).
+
+use anyhow::anyhow;
+use image::codecs::png::PngEncoder;
+use image::{ExtendedColorType, ImageEncoder};
+use plotters::coord::combinators::WithKeyPoints;
+use plotters::coord::Shift;
+use plotters::prelude::*;
+use std::sync::OnceLock;
+
+/// The font every label uses: egui's Ubuntu Light, registered with plotters once (no system
+/// fonts are looked up).
+const FONT: &str = "sans-serif";
+
+/// A chart as PNG bytes and SVG text.
+pub struct Chart {
+    /// The PNG file's bytes.
+    pub png: Vec<u8>,
+    /// The SVG document.
+    pub svg: String,
+}
+
+/// One line of [`error_vs_time`]: a configuration's (time, error) measurements.
+pub struct Series {
+    /// The configuration, in the legend.
+    pub name: String,
+    /// (cumulative time in ms, error), by increasing time.
+    pub points: Vec<(f64, f64)>,
+}
+
+/// One panel of [`speed_vs_accuracy`]: a metric's points and Pareto front.
+pub struct Panel {
+    /// The panel's caption.
+    pub title: String,
+    /// The error axis's label.
+    pub y_label: String,
+    /// Per configuration, its name and (time per frame, final error).
+    pub points: Vec<(String, (f64, f64))>,
+    /// Indices into `points` of the Pareto front, by increasing time.
+    pub front: Vec<usize>,
+}
+
+/// Error against time, log-log, a line (with a dot per measurement) per series, and the error
+/// `target` (what "converged" means) as a dashed line.
+pub fn error_vs_time(
+    title: &str,
+    x_label: &str,
+    y_label: &str,
+    target: f64,
+    series: &[Series],
+) -> anyhow::Result<Chart> {
+    render(
+        &ErrorVsTime {
+            title,
+            x_label,
+            y_label,
+            target,
+            series,
+        },
+        (960, 640),
+    )
+}
+
+/// One log-log panel per metric: a point per configuration, labelled, and the Pareto front
+/// drawn as a red line through larger red points (the panel's title says so).
+pub fn speed_vs_accuracy(x_label: &str, panels: &[Panel]) -> anyhow::Result<Chart> {
+    let width = 520 * panels.len().max(1) as u32;
+    render(&SpeedVsAccuracy { x_label, panels }, (width, 520))
+}
+
+/// Something plotters draws, onto any backend.
+trait Figure {
+    fn draw<DB: DrawingBackend>(
+        &self,
+        root: &DrawingArea<DB, Shift>,
+    ) -> Result<(), DrawingAreaErrorKind<DB::ErrorType>>;
+}
+
+/// Draws `figure` at `size` as SVG and as PNG.
+fn render(figure: &impl Figure, (width, height): (u32, u32)) -> anyhow::Result<Chart> {
+    register_font()?;
+    let mut svg = String::new();
+    {
+        let root = SVGBackend::with_string(&mut svg, (width, height)).into_drawing_area();
+        figure
+            .draw(&root)
+            .and_then(|()| root.present())
+            .map_err(|e| anyhow!("drawing the SVG chart: {e}"))?;
+    }
+    let mut rgb = vec![255u8; width as usize * height as usize * 3];
+    {
+        let root = BitMapBackend::with_buffer(&mut rgb, (width, height)).into_drawing_area();
+        figure
+            .draw(&root)
+            .and_then(|()| root.present())
+            .map_err(|e| anyhow!("drawing the PNG chart: {e}"))?;
+    }
+    let mut png = Vec::new();
+    PngEncoder::new(&mut png).write_image(&rgb, width, height, ExtendedColorType::Rgb8)?;
+    Ok(Chart { png, svg })
+}
+
+/// Registers [`FONT`] with plotters (once per process).
+fn register_font() -> anyhow::Result<()> {
+    static REGISTERED: OnceLock<bool> = OnceLock::new();
+    let ok = *REGISTERED.get_or_init(|| {
+        plotters::style::register_font(FONT, FontStyle::Normal, epaint_default_fonts::UBUNTU_LIGHT)
+            .is_ok()
+    });
+    if ok {
+        Ok(())
+    } else {
+        Err(anyhow!("the charts' font could not be loaded"))
+    }
+}
+
+/// A log axis's range covering the positive finite `values`, with a margin of `margin` (a
+/// factor) above.
+fn log_range(values: impl Iterator<Item = f64>, margin: f64) -> std::ops::Range<f64> {
+    let (lo, hi) = values
+        .filter(|v| v.is_finite() && *v > 0.0)
+        .fold((f64::INFINITY, 0.0f64), |(lo, hi), v| {
+            (lo.min(v), hi.max(v))
+        });
+    if !lo.is_finite() {
+        return 1e-3..1.0;
+    }
+    let (lo, hi) = if hi / lo < 1.5 {
+        (lo / 1.5, hi * 1.5)
+    } else {
+        (lo, hi)
+    };
+    lo / 1.2..hi * margin
+}
+
+/// A log axis over `range` with labelled ticks at 1, 2 and 5 times powers of ten (every integer
+/// multiple when that gives fewer than three) and grid lines at every integer multiple: plotters'
+/// own log axis labels only whole powers of ten, none at all on a range within a decade.
+fn log_axis(range: std::ops::Range<f64>) -> WithKeyPoints<LogCoord<f64>> {
+    let (bold, light) = log_ticks(&range);
+    range
+        .log_scale()
+        .with_key_points(bold)
+        .with_light_points(light)
+}
+
+/// The labelled and the grid-only ticks of [`log_axis`].
+fn log_ticks(range: &std::ops::Range<f64>) -> (Vec<f64>, Vec<f64>) {
+    let multiples = |factors: &[u32]| -> Vec<f64> {
+        let (first, last) = (
+            range.start.log10().floor() as i32,
+            range.end.log10().ceil() as i32,
+        );
+        (first..=last)
+            .flat_map(|k| factors.iter().map(move |&m| f64::from(m) * 10f64.powi(k)))
+            .filter(|v| range.contains(v))
+            .collect()
+    };
+    let every: Vec<u32> = (1..=9).collect();
+    let mut bold = multiples(&[1, 2, 5]);
+    if bold.len() < 3 {
+        bold = multiples(&every);
+    }
+    let light = multiples(&every)
+        .into_iter()
+        .filter(|v| !bold.contains(v))
+        .collect();
+    (bold, light)
+}
+
+/// Whether a point can be drawn on log-log axes.
+fn drawable(&(x, y): &(f64, f64)) -> bool {
+    x.is_finite() && y.is_finite() && x > 0.0 && y > 0.0
+}
+
+/// A tick label: about two significant digits, whatever the decade.
+fn tick(v: &f64) -> String {
+    let a = v.abs();
+    if a == 0.0 {
+        "0".to_string()
+    } else if a >= 100.0 {
+        format!("{v:.0}")
+    } else if a >= 1e-4 {
+        let decimals = (1.0 - a.log10().floor()).clamp(0.0, 6.0) as usize;
+        let text = format!("{v:.decimals$}");
+        match text.contains('.') {
+            true => text.trim_end_matches('0').trim_end_matches('.').to_string(),
+            false => text,
+        }
+    } else {
+        format!("{v:.0e}")
+    }
+}
+
+struct ErrorVsTime<'a> {
+    title: &'a str,
+    x_label: &'a str,
+    y_label: &'a str,
+    target: f64,
+    series: &'a [Series],
+}
+
+impl Figure for ErrorVsTime<'_> {
+    fn draw<DB: DrawingBackend>(
+        &self,
+        root: &DrawingArea<DB, Shift>,
+    ) -> Result<(), DrawingAreaErrorKind<DB::ErrorType>> {
+        root.fill(&WHITE)?;
+        let all = || self.series.iter().flat_map(|s| s.points.iter().copied());
+        let x = log_range(all().map(|p| p.0), 1.2);
+        let axis_x = x.clone();
+        let y = log_range(all().map(|p| p.1).chain([self.target]), 1.2);
+        let mut chart = ChartBuilder::on(root)
+            .caption(self.title, (FONT, 22))
+            .margin(16)
+            .x_label_area_size(44)
+            .y_label_area_size(64)
+            .build_cartesian_2d(log_axis(axis_x), log_axis(y))?;
+        chart
+            .configure_mesh()
+            .x_desc(self.x_label)
+            .y_desc(self.y_label)
+            .x_label_formatter(&tick)
+            .y_label_formatter(&tick)
+            .label_style((FONT, 14))
+            .axis_desc_style((FONT, 15))
+            .draw()?;
+        if drawable(&(x.start, self.target)) {
+            let grey = RGBColor(110, 110, 110);
+            chart
+                .draw_series(DashedLineSeries::new(
+                    [(x.start, self.target), (x.end, self.target)],
+                    8,
+                    6,
+                    grey.stroke_width(1),
+                ))?
+                .label(format!("target {}", self.target))
+                .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 20, y)], grey));
+        }
+        for (i, series) in self.series.iter().enumerate() {
+            let color = Palette99::pick(i).to_rgba();
+            let points: Vec<(f64, f64)> = series.points.iter().copied().filter(drawable).collect();
+            chart
+                .draw_series(LineSeries::new(points.clone(), color.stroke_width(2)))?
+                .label(series.name.clone())
+                .legend(move |(x, y)| {
+                    PathElement::new(vec![(x, y), (x + 20, y)], color.stroke_width(2))
+                });
+            chart.draw_series(points.iter().map(|&p| Circle::new(p, 3, color.filled())))?;
+        }
+        chart
+            .configure_series_labels()
+            .position(SeriesLabelPosition::UpperRight)
+            .background_style(WHITE.mix(0.85))
+            .border_style(BLACK)
+            .label_font((FONT, 13))
+            .draw()?;
+        Ok(())
+    }
+}
+
+struct SpeedVsAccuracy<'a> {
+    x_label: &'a str,
+    panels: &'a [Panel],
+}
+
+impl Figure for SpeedVsAccuracy<'_> {
+    fn draw<DB: DrawingBackend>(
+        &self,
+        root: &DrawingArea<DB, Shift>,
+    ) -> Result<(), DrawingAreaErrorKind<DB::ErrorType>> {
+        root.fill(&WHITE)?;
+        let areas = root.split_evenly((1, self.panels.len().max(1)));
+        for (panel, area) in self.panels.iter().zip(&areas) {
+            // Room on the right and above for the points' names.
+            let x = log_range(panel.points.iter().map(|(_, p)| p.0), 2.0);
+            let y = log_range(panel.points.iter().map(|(_, p)| p.1), 1.3);
+            let mut chart = ChartBuilder::on(area)
+                .caption(&panel.title, (FONT, 20))
+                .margin(16)
+                .x_label_area_size(44)
+                .y_label_area_size(64)
+                .build_cartesian_2d(log_axis(x), log_axis(y))?;
+            chart
+                .configure_mesh()
+                .x_desc(self.x_label)
+                .y_desc(panel.y_label.as_str())
+                .x_label_formatter(&tick)
+                .y_label_formatter(&tick)
+                .label_style((FONT, 13))
+                .axis_desc_style((FONT, 14))
+                .draw()?;
+            let front: Vec<(f64, f64)> = panel
+                .front
+                .iter()
+                .filter_map(|&i| panel.points.get(i).map(|(_, p)| *p))
+                .filter(drawable)
+                .collect();
+            chart.draw_series(LineSeries::new(front, RED.stroke_width(2)))?;
+            let others = panel
+                .points
+                .iter()
+                .enumerate()
+                .filter(|(i, (_, p))| !panel.front.contains(i) && drawable(p));
+            chart.draw_series(others.map(|(_, (name, p))| {
+                EmptyElement::at(*p)
+                    + Circle::new((0, 0), 4, BLUE.mix(0.7).filled())
+                    + Text::new(name.clone(), (6, -14), (FONT, 12).into_font())
+            }))?;
+            let on_front = panel
+                .front
+                .iter()
+                .filter_map(|&i| panel.points.get(i))
+                .filter(|(_, p)| drawable(p));
+            chart.draw_series(on_front.map(|(name, p)| {
+                EmptyElement::at(*p)
+                    + Circle::new((0, 0), 6, RED.filled())
+                    + Text::new(name.clone(), (7, -16), (FONT, 13).into_font())
+            }))?;
+        }
+        Ok(())
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn charts_render_as_png_and_svg() {
+        let series = [
+            Series {
+                name: "pt/none/1".into(),
+                points: vec![(1.0, 0.5), (2.0, 0.3), (4.0, 0.2)],
+            },
+            // A single point, a zero and a NaN are drawn (or left out) without failing.
+            Series {
+                name: "pt/svgf/1".into(),
+                points: vec![(1.5, 0.1), (3.0, 0.0), (5.0, f64::NAN)],
+            },
+        ];
+        let chart = error_vs_time("DSSIM", "GPU time (ms)", "DSSIM", 0.1, &series).unwrap();
+        assert!(chart.png.starts_with(b"\x89PNG"));
+        assert!(chart.svg.contains("<svg") && chart.svg.contains("pt/svgf/1"));
+        assert!(chart.svg.contains("target 0.1"));
+        let panel = Panel {
+            title: "final DSSIM (red: Pareto front)".into(),
+            y_label: "DSSIM".into(),
+            points: vec![("a".into(), (1.0, 0.5)), ("b".into(), (2.0, 0.1))],
+            front: vec![0, 1],
+        };
+        let chart = speed_vs_accuracy("GPU time per frame (ms)", &[panel]).unwrap();
+        assert!(chart.png.starts_with(b"\x89PNG"));
+        assert!(chart.svg.contains("Pareto front") && chart.svg.contains("\nb\n"));
+        let empty = error_vs_time("none", "x", "y", f64::NAN, &[]).unwrap();
+        assert!(empty.png.starts_with(b"\x89PNG"));
+    }
+
+    #[test]
+    fn log_axes_label_one_two_five_or_every_multiple_in_a_narrow_range() {
+        let (bold, light) = log_ticks(&(0.03..3.0));
+        assert_eq!(bold, [0.05, 0.1, 0.2, 0.5, 1.0, 2.0]);
+        assert!(light.contains(&0.04) && !light.contains(&0.1));
+        let (narrow, _) = log_ticks(&(0.15..0.45));
+        assert_eq!(narrow, [0.2, 0.30000000000000004, 0.4]);
+    }
+
+    #[test]
+    fn ticks_are_short() {
+        assert_eq!(tick(&250.0), "250");
+        assert_eq!(tick(&2.5), "2.5");
+        assert_eq!(tick(&0.0123), "0.012");
+        assert_eq!(tick(&3e-6), "3e-6");
+        assert_eq!(tick(&0.8), "0.8");
+        assert_eq!(tick(&1.0), "1");
+    }
+}

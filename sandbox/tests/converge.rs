@@ -1,0 +1,257 @@
+//! `lucid converge` on the machine's device (lavapipe in CI), tiny: its files, its numbers, and
+//! clear errors for bad input.
+
+use std::collections::BTreeMap;
+use std::path::{Path, PathBuf};
+use std::process::{Command, Output};
+
+fn lucid(args: &[&str]) -> Output {
+    Command::new(env!("CARGO_BIN_EXE_lucid"))
+        .args(args)
+        .env("LUCID_VALIDATION", "1")
+        .output()
+        .expect("run lucid")
+}
+
+fn temp(name: &str) -> PathBuf {
+    std::env::temp_dir().join(format!("lucid-converge-{}-{name}", std::process::id()))
+}
+
+fn stderr(o: &Output) -> String {
+    String::from_utf8_lossy(&o.stderr).into_owned()
+}
+
+const METRICS: [&str; 3] = ["dssim", "flip", "rel_mse"];
+
+/// Equal but for serde_json's parsing, which may be one unit in the last place off.
+fn same(json: Option<f64>, csv: Option<f64>) -> bool {
+    match (json, csv) {
+        (Some(a), Some(b)) => (a - b).abs() <= 1e-12 * b.abs().max(1e-300),
+        (a, b) => a == b,
+    }
+}
+
+/// One CSV row.
+#[derive(Debug)]
+struct Row {
+    frame: u32,
+    gpu_ms: f64,
+    errors: BTreeMap<&'static str, f64>,
+}
+
+/// The CSV's rows per configuration, checking its header and per-row consistency.
+fn read_csv(path: &Path) -> BTreeMap<String, Vec<Row>> {
+    let text = std::fs::read_to_string(path).unwrap();
+    let mut lines = text.lines();
+    assert_eq!(
+        lines.next(),
+        Some("config,algo,denoiser,spp,frame,gpu_ms,dssim,flip,rel_mse")
+    );
+    let mut configs: BTreeMap<String, Vec<Row>> = BTreeMap::new();
+    for line in lines {
+        let f: Vec<&str> = line.split(',').collect();
+        assert_eq!(f.len(), 9, "{line}");
+        assert_eq!(f[0], format!("{}/{}/{}", f[1], f[2], f[3]), "{line}");
+        let number = |i: usize| f[i].parse::<f64>().unwrap();
+        let errors = METRICS
+            .iter()
+            .enumerate()
+            .map(|(k, &m)| (m, number(6 + k)))
+            .collect();
+        configs.entry(f[0].to_string()).or_default().push(Row {
+            frame: f[4].parse().unwrap(),
+            gpu_ms: number(5),
+            errors,
+        });
+    }
+    configs
+}
+
+#[test]
+fn converge_writes_errors_that_fall_as_samples_accumulate_and_charts() {
+    let dir = temp("run");
+    let out = lucid(&[
+        "converge",
+        "--scene",
+        "cornell-box",
+        "--size",
+        "32x32",
+        "--algos",
+        "pt",
+        "--denoisers",
+        "none,svgf",
+        "--spp",
+        "1,2",
+        "--max-frames",
+        "4",
+        "--budget-ms",
+        "1000000",
+        // relMSE divides by the reference: a 16-sample one has dark pixels where it is lit.
+        "--reference-spp",
+        "64",
+        "--target-flip",
+        "1",
+        "--out",
+        dir.to_str().unwrap(),
+        "--json",
+    ]);
+    let err = stderr(&out);
+    assert!(out.status.success(), "{err}");
+    assert!(!err.contains("VUID"), "validation messages: {err}");
+    let printed: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+    let json: serde_json::Value =
+        serde_json::from_slice(&std::fs::read(dir.join("converge.json")).unwrap()).unwrap();
+    assert_eq!(printed, json, "--json prints what converge.json holds");
+    assert_eq!(json["scene"], "cornell-box");
+    assert_eq!(json["size"], serde_json::json!([32, 32]));
+    assert!(json["device"].as_str().is_some_and(|d| !d.is_empty()));
+    assert!(json["command"].as_str().unwrap().contains("converge"));
+
+    let csv = read_csv(&dir.join("converge.csv"));
+    let names: Vec<&str> = csv.keys().map(String::as_str).collect();
+    assert_eq!(names, ["pt/none/1", "pt/none/2", "pt/svgf/1", "pt/svgf/2"]);
+    for (config, rows) in &csv {
+        // 4 frames, each measured (1, 2, 3 and 4 are all on the geometric schedule).
+        let frames: Vec<u32> = rows.iter().map(|r| r.frame).collect();
+        assert_eq!(frames, [1, 2, 3, 4], "{config}");
+        assert!(rows[0].gpu_ms > 0.0, "{config}");
+        assert!(
+            rows.windows(2).all(|w| w[1].gpu_ms > w[0].gpu_ms),
+            "{config}: GPU time accumulates: {rows:?}"
+        );
+        for row in rows {
+            for (metric, value) in &row.errors {
+                assert!(
+                    value.is_finite() && *value >= 0.0,
+                    "{config} {metric}: {row:?}"
+                );
+            }
+        }
+    }
+    // Without a denoiser, accumulating samples brings every error down.
+    for config in ["pt/none/1", "pt/none/2"] {
+        let rows = &csv[config];
+        let (first, last) = (&rows[0], &rows[rows.len() - 1]);
+        for metric in METRICS {
+            assert!(
+                last.errors[metric] < first.errors[metric],
+                "{config}: {metric} must fall from {} (1 frame) to {} (4 frames)",
+                first.errors[metric],
+                last.errors[metric]
+            );
+        }
+    }
+
+    // The JSON's times to converge are those of the CSV's rows.
+    let targets = &json["targets"];
+    assert_eq!(targets["flip"], 1.0);
+    assert_eq!(targets["dssim"], 0.1);
+    assert_eq!(targets["rel_mse"], 0.01);
+    let configurations = json["configurations"].as_array().unwrap();
+    assert_eq!(configurations.len(), 4);
+    for c in configurations {
+        let name = c["config"].as_str().unwrap();
+        let rows = &csv[name];
+        assert_eq!(c["frames"], 4);
+        assert_eq!(c["rows"].as_array().unwrap().len(), rows.len());
+        for metric in METRICS {
+            let target = targets[metric].as_f64().unwrap();
+            let expected = rows
+                .iter()
+                .find(|r| r.errors[metric] < target)
+                .map(|r| r.gpu_ms);
+            let time = c["time_to_converge_ms"][metric].as_f64();
+            assert!(
+                same(time, expected),
+                "{name} {metric}: {time:?} {expected:?}"
+            );
+            let last = Some(rows[rows.len() - 1].errors[metric]);
+            let end = c["final"][metric].as_f64();
+            assert!(same(end, last), "{name} {metric}: {end:?} {last:?}");
+        }
+        // FLIP is below 1 from the first frame on.
+        let flip = c["time_to_converge_ms"]["flip"].as_f64();
+        assert!(same(flip, Some(rows[0].gpu_ms)), "{name}: {flip:?}");
+        let per_frame = c["gpu_ms_per_frame"].as_f64().unwrap();
+        assert!((per_frame * 4.0 - rows[3].gpu_ms).abs() < 1e-9 * rows[3].gpu_ms.max(1.0));
+    }
+    for metric in METRICS {
+        let front = json["pareto_front"][metric].as_array().unwrap();
+        assert!(!front.is_empty(), "{metric}: a front of at least one point");
+    }
+
+    let mut charts: Vec<String> = METRICS
+        .iter()
+        .map(|m| format!("error_vs_time_{m}"))
+        .collect();
+    charts.push("speed_vs_accuracy".into());
+    for chart in charts {
+        let png = std::fs::read(dir.join(format!("{chart}.png"))).unwrap();
+        assert!(png.starts_with(b"\x89PNG"), "{chart}.png");
+        let image = image::load_from_memory(&png).unwrap();
+        assert!(image.width() >= 400 && image.height() >= 300, "{chart}.png");
+        let svg = std::fs::read_to_string(dir.join(format!("{chart}.svg"))).unwrap();
+        assert!(
+            svg.contains("<svg") && svg.contains("pt/svgf/2"),
+            "{chart}.svg"
+        );
+    }
+    std::fs::remove_dir_all(&dir).unwrap();
+}
+
+/// Fails at once with one line naming the problem, without panicking.
+fn assert_clear_failure(args: &[&str], expect: &str) {
+    let mut full = vec!["converge", "--size", "8x8"];
+    full.extend_from_slice(args);
+    let started = std::time::Instant::now();
+    let out = lucid(&full);
+    let err = stderr(&out);
+    assert!(!out.status.success(), "{full:?} must fail");
+    assert!(
+        err.contains(expect),
+        "{full:?}: expected {expect:?} in {err:?}"
+    );
+    assert!(!err.contains("panicked"), "{full:?} panicked: {err}");
+    assert!(
+        !err.contains("reference:"),
+        "{full:?} rendered first: {err}"
+    );
+    assert!(
+        started.elapsed().as_secs_f64() < 5.0,
+        "{full:?} was slow to fail"
+    );
+}
+
+#[test]
+fn converge_refuses_bad_lists_and_targets_clearly() {
+    assert_clear_failure(
+        &["--algos", "pt,mlt"],
+        "unknown algorithm \"mlt\" (expected pt, bdpt)",
+    );
+    assert_clear_failure(
+        &["--denoisers", "oidn"],
+        "unknown denoiser \"oidn\" (expected none, svgf, neural)",
+    );
+    assert_clear_failure(&["--algos", ""], "the list is empty");
+    assert_clear_failure(&["--denoisers", "none,"], "an empty denoiser");
+    assert_clear_failure(&["--spp", "1,0"], "\"0\" is not a sample count");
+    assert_clear_failure(&["--spp", "2,2"], "listed twice");
+    for value in ["NaN", "inf", "-inf", "-0.1"] {
+        for option in ["--target-dssim", "--target-flip", "--target-relmse"] {
+            assert_clear_failure(&[&format!("{option}={value}")], "must be a finite number");
+        }
+        assert_clear_failure(
+            &[&format!("--budget-ms={value}")],
+            "must be a finite number",
+        );
+    }
+    assert_clear_failure(&["--max-frames", "0"], "--max-frames");
+    let plain = temp("plain-file");
+    std::fs::write(&plain, b"not a folder").unwrap();
+    let under_file = plain.join("out");
+    assert_clear_failure(
+        &["--out", under_file.to_str().unwrap()],
+        "cannot create the folder",
+    );
+    std::fs::remove_file(&plain).unwrap();
+}
