@@ -12,7 +12,8 @@
 //!    20 half-precision channels.
 //! 3. **Network**: 3x3 convolutions at full, half and quarter resolution with skip connections
 //!    ([`LAYERS`]), fused bias and ReLU, average pooling down and nearest upsampling up (read in
-//!    place by the next convolution).
+//!    place by the next convolution); on the tensor cores where the device has them, else portable
+//!    compute ([`InferencePath`]).
 //! 4. **Output**: the network's log radiance blended with the reprojected history by a learned
 //!    per-pixel weight (only where the mask allows), kept as the next frame's history, and
 //!    re-modulated by albedo plus emission.
@@ -271,10 +272,9 @@ fn tensor_bytes(channels: u32, (width, height): (u32, u32)) -> u64 {
     u64::from(channels) * u64::from(width) * u64::from(height) * 2
 }
 
-/// Adds convolution `index` of [`LAYERS`] over `in0` (upsampled when smaller than `in1` or, without
-/// it, when the layer runs at a larger size: only decoders upsample, and they have a skip input),
-/// then `in1`. Returns its output and, when `pool`, the output 2x2 average-pooled (fused into the
-/// convolution on the tensor-core path).
+/// Adds convolution `index` of [`LAYERS`] over `in0` then `in1` (the skip connection), at `in1`'s
+/// size (`in0` upsampled when smaller) or, without `in1`, at `in0`'s. Returns its output and, when
+/// `pool`, the output 2x2 average-pooled (fused into the convolution on the tensor-core path).
 fn add_conv(
     g: &mut RenderGraph,
     network: &Network,
