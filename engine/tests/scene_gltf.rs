@@ -144,24 +144,6 @@ fn write_png(path: &Path) {
     img.save(path).unwrap();
 }
 
-fn base64(bytes: &[u8]) -> String {
-    const A: &[u8; 64] = b"ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
-    let mut s = String::new();
-    for c in bytes.chunks(3) {
-        let n = (c[0] as u32) << 16
-            | (*c.get(1).unwrap_or(&0) as u32) << 8
-            | *c.get(2).unwrap_or(&0) as u32;
-        for k in 0..4 {
-            if k <= c.len() {
-                s.push(A[(n >> (18 - 6 * k) & 63) as usize] as char);
-            } else {
-                s.push('=');
-            }
-        }
-    }
-    s
-}
-
 #[test]
 fn imports_textures_from_files_and_data_uris() {
     let dir = temp_dir("texture");
@@ -176,7 +158,7 @@ fn imports_textures_from_files_and_data_uris() {
     let extra = format!(
         r#""textures": [{{"source": 0}}, {{"source": 1}}],
         "images": [{{"uri": "albedo.png"}}, {{"uri": "data:image/png;base64,{}"}}],"#,
-        base64(&png)
+        base64::encode(&png)
     );
     let file = dir.join("tex.gltf");
     std::fs::write(&file, quad_doc("quad.bin", &materials, &extra)).unwrap();

@@ -1,24 +1,10 @@
 //! The `lucid` command line on the machine's device (lavapipe in CI): listings, headless renders of
 //! each algorithm and denoiser, and clear one-line errors with a non-zero exit for bad input.
 
-use std::path::PathBuf;
-use std::process::{Command, Output};
+use std::process::Command;
 
-fn lucid(args: &[&str]) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_lucid"))
-        .args(args)
-        .env("LUCID_VALIDATION", "1")
-        .output()
-        .expect("run lucid")
-}
-
-fn temp(name: &str) -> PathBuf {
-    std::env::temp_dir().join(format!("lucid-cli-{}-{name}", std::process::id()))
-}
-
-fn stderr(o: &Output) -> String {
-    String::from_utf8_lossy(&o.stderr).into_owned()
-}
+mod run_lucid;
+use run_lucid::{lucid, stderr, temp};
 
 #[test]
 fn scenes_lists_every_builtin_scene() {

@@ -2,24 +2,10 @@
 //! clear errors for bad input.
 
 use std::collections::BTreeMap;
-use std::path::{Path, PathBuf};
-use std::process::{Command, Output};
+use std::path::Path;
 
-fn lucid(args: &[&str]) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_lucid"))
-        .args(args)
-        .env("LUCID_VALIDATION", "1")
-        .output()
-        .expect("run lucid")
-}
-
-fn temp(name: &str) -> PathBuf {
-    std::env::temp_dir().join(format!("lucid-converge-{}-{name}", std::process::id()))
-}
-
-fn stderr(o: &Output) -> String {
-    String::from_utf8_lossy(&o.stderr).into_owned()
-}
+mod run_lucid;
+use run_lucid::{lucid, stderr, temp};
 
 const METRICS: [&str; 3] = ["dssim", "flip", "rel_mse"];
 

@@ -231,7 +231,7 @@ impl Doc {
             top.push(format!(
                 r#""buffers": [{{"byteLength": {}, "uri": "data:application/octet-stream;base64,{}"}}]"#,
                 self.bin.len(),
-                base64(&self.bin)
+                base64::encode(&self.bin)
             ));
         }
         if !self.lights.is_empty() {
@@ -257,25 +257,6 @@ impl Doc {
         load_gltf_slice(self.json().as_bytes(), None, label)
             .unwrap_or_else(|e| panic!("{label}: {e}\n{}", self.json()))
     }
-}
-
-/// Standard base64 with padding.
-pub fn base64(bytes: &[u8]) -> String {
-    const A: &[u8; 64] = b"ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
-    let mut s = String::new();
-    for c in bytes.chunks(3) {
-        let n = (c[0] as u32) << 16
-            | (*c.get(1).unwrap_or(&0) as u32) << 8
-            | *c.get(2).unwrap_or(&0) as u32;
-        for k in 0..4 {
-            if k <= c.len() {
-                s.push(A[(n >> (18 - 6 * k) & 63) as usize] as char);
-            } else {
-                s.push('=');
-            }
-        }
-    }
-    s
 }
 
 /// Positions and indices of a square of side `2 * half` in the plane y = 0, centred on the

@@ -3,7 +3,7 @@
 use lucid_engine::capture::ImageData;
 use lucid_engine::graph::{ImageHandle, RenderGraph};
 use lucid_engine::scene::{builtin, Scene};
-use lucid_passes::renderer::{FrameImages, Renderer, Settings};
+use lucid_passes::renderer::{Algorithm, FrameImages, Renderer, SamplesPerPixel, Settings};
 
 /// Builds a built-in scene, panicking with the error if it cannot.
 pub fn scene(name: &str) -> Scene {
@@ -50,4 +50,22 @@ pub fn frame_images<const N: usize>(
     let ids = pick(&images).map(|image| g.readback(image));
     let outputs = crate::run(renderer.executor_mut(), g);
     ids.map(|id| outputs.image(id).expect("read-back image"))
+}
+
+/// One frame of `spp` samples per pixel of `scene` at `size` x `size` with `algorithm` and
+/// `max_depth` (other settings default); the HDR image.
+pub fn render_once(
+    scene: Scene,
+    algorithm: Algorithm,
+    spp: u32,
+    max_depth: u32,
+    size: u32,
+) -> ImageData {
+    let settings = Settings {
+        algorithm,
+        samples_per_pixel: SamplesPerPixel::new(spp).expect("at least one sample"),
+        max_depth,
+        ..Settings::default()
+    };
+    render_accumulated(scene, (size, size), settings, 1)
 }

@@ -4,25 +4,15 @@
 use glam::{Quat, Vec3};
 use lucid_engine::capture::ImageData;
 use lucid_engine::scene::{LightDistribution, Scene, LUMENS_PER_WATT};
-use lucid_passes::renderer::{Algorithm, SamplesPerPixel, Settings};
+use lucid_passes::renderer::Algorithm;
 use lucid_tests::gltf::{plane, Doc};
-use lucid_tests::render::render_accumulated;
+use lucid_tests::render::render_once;
 
 const ALBEDO: f32 = 0.8;
 
+/// One frame of direct light only: the closed forms below are for one bounce.
 fn render(scene: Scene, algorithm: Algorithm, spp: u32, size: u32) -> ImageData {
-    render_accumulated(
-        scene,
-        (size, size),
-        Settings {
-            algorithm,
-            samples_per_pixel: SamplesPerPixel::new(spp).unwrap(),
-            // Direct light only: the closed forms below are for one bounce.
-            max_depth: 2,
-            ..Settings::default()
-        },
-        1,
-    )
+    render_once(scene, algorithm, spp, 2, size)
 }
 
 /// glTF `rotation` of a node whose -Z axis (where lights shine and cameras look) points along

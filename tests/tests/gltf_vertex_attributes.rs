@@ -5,27 +5,13 @@ use glam::{Quat, Vec3};
 use lucid_engine::capture::ImageData;
 use lucid_engine::scene::gpu::GpuScene;
 use lucid_engine::scene::{Bvh, Scene};
-use lucid_passes::renderer::{Algorithm, SamplesPerPixel, Settings};
+use lucid_passes::renderer::Algorithm;
 use lucid_tests::gltf::{cube, plane, Doc};
-use lucid_tests::render::render_accumulated;
+use lucid_tests::render::render_once as render;
 
 const GREY: &str =
     r#"{"pbrMetallicRoughness": {"baseColorFactor": [0.5, 0.5, 0.5, 1], "metallicFactor": 0}}"#;
 const WHITE: &str = r#"{"pbrMetallicRoughness": {"metallicFactor": 0}}"#;
-
-fn render(scene: Scene, algorithm: Algorithm, spp: u32, max_depth: u32, size: u32) -> ImageData {
-    render_accumulated(
-        scene,
-        (size, size),
-        Settings {
-            algorithm,
-            samples_per_pixel: SamplesPerPixel::new(spp).unwrap(),
-            max_depth,
-            ..Settings::default()
-        },
-        1,
-    )
-}
 
 /// A grey cube of 8 shared corners (optionally with `normals`) under a directional light from
 /// `towards_sun`, no camera.
