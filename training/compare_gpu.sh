@@ -51,7 +51,7 @@ data=$(realpath -m "$data")
 init=${INIT:+$(realpath "$INIT")}
 "$here/dataset_gpu.sh" "$data"
 echo "dataset: $(( $(date +%s) - start )) s, $(du -sh "$data" | cut -f1)"
-cp "$data/index.json" "$out/dataset.json"
+(cd "$here" && python3 -c "import json, sys; from data import dataset_folders; json.dump([json.load(open(f / 'index.json')) for f in dataset_folders(sys.argv[1])], open(sys.argv[2], 'w'), indent=1)" "$data" "$out/dataset.json")
 minutes=${MINUTES:-$(python3 -c "print(round(max(0.1, min(6.0, ($budget - $reserve - ($(date +%s) - $start)) / 60)), 2))")}
 work=$(mktemp -d "${TMPDIR:-/tmp}/lucid-compare.XXXXXX")
 cd "$here"

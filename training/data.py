@@ -1,5 +1,6 @@
 """Reads what `lucid dataset` writes: `index.json` and one safetensors file per camera-path
-sequence, holding `record` [T, RECORD_SIZE, H, W] and `reference` [T, 3, H, W] in float16."""
+sequence, holding `record` [T, RECORD_SIZE, H, W] and `reference` [T, 3, H, W] in float16; or a
+folder of such datasets (`shard-K/`, as `dataset_gpu.sh` renders them in parallel), read as one."""
 
 import json
 from pathlib import Path
@@ -10,22 +11,34 @@ from safetensors.torch import load_file
 from model import RECORD_SIZE
 
 
+def dataset_folders(root):
+    """The datasets under `root`: itself when it holds an `index.json`, else its `shard-*` folders."""
+    root = Path(root)
+    if (root / "index.json").exists():
+        return [root]
+    shards = sorted(p for p in root.glob("shard-*") if (p / "index.json").exists())
+    if not shards:
+        raise ValueError(f"{root}: neither an index.json nor shard-*/index.json")
+    return shards
+
+
 def load_split(root, split, device):
     """The sequences of `split` ("train" or "validation") as a list of dicts with `record`,
     `reference` (float16 on `device`) and `name`."""
-    root = Path(root)
-    index = json.loads((root / "index.json").read_text())
     out = []
-    for entry in index["sequences"]:
-        if entry["split"] != split:
-            continue
-        tensors = load_file(str(root / entry["file"]))
-        record, reference = tensors["record"], tensors["reference"]
-        if record.shape[1] != RECORD_SIZE:
-            raise ValueError(f"{entry['file']}: record has {record.shape[1]} channels, expected {RECORD_SIZE}")
-        out.append({"name": entry["file"], "record": record.to(device), "reference": reference.to(device)})
+    for folder in dataset_folders(root):
+        index = json.loads((folder / "index.json").read_text())
+        for entry in index["sequences"]:
+            if entry["split"] != split:
+                continue
+            tensors = load_file(str(folder / entry["file"]))
+            record, reference = tensors["record"], tensors["reference"]
+            name = f"{folder.name}/{entry['file']}"
+            if record.shape[1] != RECORD_SIZE:
+                raise ValueError(f"{name}: record has {record.shape[1]} channels, expected {RECORD_SIZE}")
+            out.append({"name": name, "record": record.to(device), "reference": reference.to(device)})
     if not out:
-        raise ValueError(f"{root}/index.json lists no '{split}' sequences")
+        raise ValueError(f"{root}: no '{split}' sequences")
     return out
 
 

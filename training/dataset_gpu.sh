@@ -1,14 +1,28 @@
 #!/usr/bin/env bash
-# The training dataset, rendered with `lucid dataset` unless DATA_DIR/index.json exists already:
+# The training dataset, rendered with `lucid dataset` unless DATA_DIR holds one already:
 #   training/dataset_gpu.sh DATA_DIR
-# (about 2 minutes and 3.2 GB on an H100). train_gpu.sh and compare_gpu.sh call it. LUCID names the
-# lucid binary (default target/release/lucid, relative to the current directory); ROOMS, the
-# procedural training rooms (32); FRAMES, the frames of a sequence (16); SEQUENCES, the sequences of
-# a scene (2).
+# SHARDS (default 1) `lucid dataset` processes run at once, each into DATA_DIR/shard-K with seed K
+# (rooms random-room-<1000 K + i>): shard 0 with the built-in scenes and the validation rooms, the
+# others with procedural training rooms only (`data.py` reads the shards as one dataset). LUCID
+# names the lucid binary (default target/release/lucid, relative to the current directory); ROOMS,
+# the procedural training rooms of a shard (32); FRAMES, the frames of a sequence (16); SEQUENCES,
+# the sequences of a scene (2). train_gpu.sh and compare_gpu.sh call it.
 set -euo pipefail
 data=${1:?usage: training/dataset_gpu.sh DATA_DIR}
-if [ ! -f "$data/index.json" ]; then
-  lucid=$(realpath "${LUCID:-target/release/lucid}")
-  "$lucid" dataset --out "$data" --size 256x256 --frames "${FRAMES:-16}" --rooms "${ROOMS:-32}" \
-    --validation-rooms 4 --sequences "${SEQUENCES:-2}" --reference-spp 256
+if [ -f "$data/index.json" ] || [ -f "$data/shard-0/index.json" ]; then
+  exit 0
 fi
+lucid=$(realpath "${LUCID:-target/release/lucid}")
+shards=${SHARDS:-1}
+pids=()
+for ((k = 0; k < shards; k++)); do
+  if [ "$k" -eq 0 ]; then extra=(--validation-rooms 4); else extra=(--validation-rooms 0 --no-builtin); fi
+  dest=$data
+  if [ "$shards" -gt 1 ]; then dest=$data/shard-$k; fi
+  "$lucid" dataset --out "$dest" --size 256x256 --frames "${FRAMES:-16}" --rooms "${ROOMS:-32}" \
+    --sequences "${SEQUENCES:-2}" --reference-spp 256 --seed "$k" "${extra[@]}" &
+  pids+=($!)
+done
+for pid in "${pids[@]}"; do
+  wait "$pid"
+done

@@ -1,6 +1,6 @@
-"""A kernel-predicting variant of the recurrent denoiser (format `lucid-kpn-experimental`), to
-measure against the direct-predicting `model.RecurrentDenoiser`. Training only: the Vulkan
-inference does not implement it.
+"""The kernel-predicting decoder of the recurrent denoiser (format `lucid-rae-v3` with `decoder`
+metadata `kernel`), measured against the direct-predicting `model.RecurrentDenoiser`; the Vulkan
+inference runs both (`shaders/neural/kernel_*.comp` for this one).
 
 Everything but the output layer is `model.py`'s: the input features, the reprojected history, the
 U-Net convolutions of `model.LAYERS` up to `dec0`, the temporal blend with the warped history and
@@ -28,6 +28,9 @@ the recurrent state. The output layer `out` is replaced by `KernelOutput`:
 
 Export (`export_tensors`): the layers of `model.LAYERS` under their names (`out` with its
 25 + 1 + (outputs - 3) channels) plus `out_half` and `out_quarter`, float32.
+
+With `fp16_storage` the heads' outputs are rounded to half precision, as the shaders store them;
+the filtered scales stay float32, as the shaders keep them.
 """
 
 import torch
@@ -36,7 +39,6 @@ import torch.nn.functional as F
 
 from model import LAYERS, RecurrentDenoiser, half, pool, split_record
 
-KERNEL_FORMAT = "lucid-kpn-experimental"
 KERNEL = 5
 TAPS = KERNEL * KERNEL
 _OUT = {name: (cin, cout) for name, cin, cout in LAYERS}["out"]
@@ -90,9 +92,9 @@ class KernelOutput(nn.Module):
         r2 = pool(r1)
         f1 = half(pool(d0), fp16)
         f2 = half(pool(f1), fp16)
-        o0 = self.heads["out"](d0)
-        o1 = self.heads["out_half"](f1)
-        o2 = self.heads["out_quarter"](f2)
+        o0 = half(self.heads["out"](d0), fp16)
+        o1 = half(self.heads["out_half"](f1), fp16)
+        o2 = half(self.heads["out_quarter"](f2), fp16)
         y2 = apply_kernel(half(torch.log1p(r2), fp16), o2)
         y1 = apply_kernel(half(torch.log1p(r1), fp16), o1[:, :TAPS])
         y1 = combine(y1, y2, torch.sigmoid(o1[:, TAPS : TAPS + 1].float()))

@@ -1,10 +1,11 @@
-"""Writes the parity fixture `tests/references/neural_parity.safetensors`: two consecutive frames of
-per-pixel records and what `model.py` computes from them with the committed weights (half-precision
-storage emulated): the denoised radiance (`expected`), and the running mean with its length
-(`accum`) and the second moment of luminance (`moment`), which `tests/neural_parity.rs` checks the
-Vulkan inference against.
+"""Writes a parity fixture (`tests/references/neural_parity*.safetensors`): two consecutive frames
+of per-pixel records and what `model.py` (or `kernel_model.py`, as the weights' `decoder` metadata
+says) computes from them with the given weights (half-precision storage emulated): the denoised
+radiance (`expected`), the running mean with its length (`accum`), the second moment of luminance
+(`moment`) and the range-compressed running mean with its second moment (`robust`), which
+`tests/neural_parity.rs` checks the Vulkan inference against.
 
-    python3 make_parity.py --weights ../passes/src/denoise/neural/lucid-rae-v2.safetensors \
+    python3 make_parity.py --weights ../passes/src/denoise/neural/lucid-rae-v3.safetensors \
         [--data DATASET_DIR | --records FIXTURE] --out ../tests/references/neural_parity.safetensors
 
 With `--data`, the frames are a 32x24 crop of the first validation sequence's first two frames;
@@ -21,7 +22,9 @@ from pathlib import Path
 import torch
 from safetensors.torch import load_file, save_file
 
-from model import RECORD_SIZE, RecurrentDenoiser, load_weights
+from data import dataset_folders
+from model import RECORD_SIZE
+from train import build_model, load_weights
 
 W, H = 32, 24
 
@@ -53,9 +56,10 @@ def synthetic():
 
 
 def from_dataset(root):
-    index = json.loads((Path(root) / "index.json").read_text())
+    folder = dataset_folders(root)[0]
+    index = json.loads((folder / "index.json").read_text())
     entry = next(e for e in index["sequences"] if e["split"] == "validation")
-    rec = load_file(str(Path(root) / entry["file"]))["record"][:2].float()
+    rec = load_file(str(folder / entry["file"]))["record"][:2].float()
     _, _, h, w = rec.shape
     y0, x0 = (h - H) // 2 // 4 * 4, (w - W) // 2 // 4 * 4
     return rec[:, :, y0 : y0 + H, x0 : x0 + W].contiguous()
@@ -69,8 +73,9 @@ def main():
     group.add_argument("--records", help="reuse the records of this parity fixture")
     ap.add_argument("--out", required=True)
     args = ap.parse_args()
-    model = RecurrentDenoiser()
-    load_weights(model, load_file(args.weights))
+    decoder = safe_open_metadata(args.weights).get("decoder", "direct")
+    model = build_model(decoder)
+    load_weights(model, args.weights)
     if args.data:
         record, source = from_dataset(args.data), args.data
     elif args.records:
@@ -79,16 +84,18 @@ def main():
         source = safe_open_metadata(args.records).get("source", args.records)
     else:
         record, source = synthetic(), "synthetic"
-    expected, accum, moment, state = [], [], [], None
+    expected, accum, moment, robust, state = [], [], [], [], None
     with torch.no_grad():
         for t in range(record.shape[0]):
             y, state = model.step(record[t : t + 1], state, fp16_storage=True)
             expected.append(y[0])
             accum.append(state["accum"][0])
             moment.append(state["moment"][0])
-    tensors = {"record": record, "expected": expected, "accum": accum, "moment": moment}
+            robust.append(state["robust"][0])
+    tensors = {"record": record, "expected": expected, "accum": accum, "moment": moment, "robust": robust}
     tensors = {k: (torch.stack(v) if isinstance(v, list) else v).contiguous() for k, v in tensors.items()}
-    save_file(tensors, args.out, metadata={"weights": Path(args.weights).name, "source": source})
+    metadata = {"weights": Path(args.weights).name, "decoder": decoder, "source": source}
+    save_file(tensors, args.out, metadata=metadata)
     reprojected = (tensors["accum"][-1, 3] > 1.0).float().mean().item()
     print(f"{args.out}: {W}x{H}, {record.shape[0]} frames, from {source}; running mean reprojected at {reprojected:.0%}")
 

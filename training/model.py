@@ -1,9 +1,11 @@
-"""Lucid's recurrent denoising autoencoder (format `lucid-rae-v2`), the PyTorch twin of the Vulkan
-inference in `passes/src/denoise/neural/` and `shaders/neural/`.
+"""Lucid's recurrent denoising autoencoder (format `lucid-rae-v3`, direct-predicting decoder), the
+PyTorch twin of the Vulkan inference in `passes/src/denoise/neural/` and `shaders/neural/`;
+`kernel_model.py` holds its kernel-predicting decoder.
 
 Everything the shaders compute is defined here, in the same order and with the same arithmetic:
-the input features (with last frame's output and the running mean of the noisy radiance warped by
-the motion vectors and masked where reprojection fails), the U-Net of 3x3 convolutions, and the
+the input features (with last frame's output and two running means of the noisy radiance, one of
+it and one of it range-compressed against fireflies, warped by the motion vectors and masked where
+reprojection fails), the U-Net of 3x3 convolutions, and the
 output (a blend of the network's prediction with the warped history, re-modulated by albedo plus
 emission). With
 `fp16_storage=True` every tensor the shaders store in half precision is rounded to it here too,
@@ -16,7 +18,9 @@ import torch
 import torch.nn as nn
 import torch.nn.functional as F
 
-FORMAT = "lucid-rae-v2"
+FORMAT = "lucid-rae-v3"
+# The decoders a v3 file may hold (its `decoder` metadata): this file's and `kernel_model.py`'s.
+DECODERS = ("direct", "kernel")
 
 # The per-pixel inputs of a frame, in the order the dataset and the parity fixture store them.
 RECORD_CHANNELS = {
@@ -30,10 +34,7 @@ RECORD_CHANNELS = {
 }
 RECORD_SIZE = sum(RECORD_CHANNELS.values())
 
-FEATURES = 20  # a multiple of 4: the shaders pack 4 half-precision channels per uvec2
-# The input channels of `lucid-rae-v1` that mean something (its 16th was a zero); v2 keeps them
-# first, in the same order (see `load_weights`).
-V1_FEATURES = 15
+FEATURES = 24  # a multiple of 4: the shaders pack 4 half-precision channels per uvec2
 # (name, input channels, output channels): the convolutions, in execution order.
 LAYERS = [
     ("enc0", FEATURES, 32),
@@ -130,31 +131,59 @@ def luminance(rgb):
     return rgb[:, 0:1] * LUMINANCE[0] + rgb[:, 1:2] * LUMINANCE[1] + rgb[:, 2:3] * LUMINANCE[2]
 
 
-def accumulate(demodulated, warped_accum, warped_moment, mask):
-    """This frame's running mean of the noisy demodulated radiance, as SVGF's temporal pass keeps
-    it: where reprojection holds (`mask`), the history length n = min(n' + 1, N_MAX) of the
-    warped length n', the mean and the second moment of luminance move towards this frame's
-    values by 1/n; elsewhere n = 1 and they are this frame's. Returns (accum [B,4,H,W]: mean rgb
-    and n; moment [B,1,H,W])."""
+def compress(rgb):
+    """Range compression against fireflies: rgb / (1 + luminance), whose luminance stays below 1
+    however bright a sample is (Karis's weighting)."""
+    return rgb / (1.0 + luminance(rgb))
+
+
+def expand(rgb):
+    """The inverse of `compress` (the luminance's distance to 1 kept at least 1e-3)."""
+    return rgb / torch.clamp(1.0 - luminance(rgb), min=EXPAND_MIN)
+
+
+# The smallest 1 - luminance `expand` divides by: compressed means map back to at most 1000.
+EXPAND_MIN = 1e-3
+
+
+def accumulate(demodulated, warped_accum, warped_moment, warped_robust, mask):
+    """This frame's running means of the noisy demodulated radiance, as SVGF's temporal pass keeps
+    them: where reprojection holds (`mask`), the history length n = min(n' + 1, N_MAX) of the
+    warped length n', and every mean moves towards this frame's value by 1/n; elsewhere n = 1 and
+    they are this frame's. Two means: of the radiance (with the second moment of its luminance)
+    and, robust to fireflies, of the radiance range-compressed by `compress` (with the second
+    moment of the compressed luminance). Returns (accum [B,4,H,W]: mean rgb and n; moment
+    [B,1,H,W]; robust [B,4,H,W]: compressed mean rgb and second moment)."""
     current = demodulated.clamp_min(0.0)
     lum = luminance(current)
+    squeezed = compress(current)
+    squeezed_lum = luminance(squeezed)
     ok = mask > 0.0
     n = torch.where(ok, torch.clamp(warped_accum[:, 3:4] + 1.0, max=N_MAX), torch.ones_like(mask))
     alpha = 1.0 / n
-    prev_mean = warped_accum[:, 0:3]
-    mean = torch.where(ok, prev_mean + (current - prev_mean) * alpha, current)
-    moment = torch.where(ok, warped_moment + (lum * lum - warped_moment) * alpha, lum * lum)
-    return torch.cat([mean, n], 1), moment
+
+    def toward(prev, value):
+        return torch.where(ok, prev + (value - prev) * alpha, value)
+
+    mean = toward(warped_accum[:, 0:3], current)
+    moment = toward(warped_moment, lum * lum)
+    robust = toward(warped_robust, torch.cat([squeezed, squeezed_lum * squeezed_lum], 1))
+    return torch.cat([mean, n], 1), moment, robust
 
 
-def features(rec, warped, mask, accum, moment):
-    """The network's 20 input channels for one frame: 15 as in `lucid-rae-v1` (log radiance,
+def features(rec, warped, mask, accum, moment, robust):
+    """The network's 24 input channels for one frame: 15 as in `lucid-rae-v1` (log radiance,
     albedo, normal, roughness, log depth, warped output, mask), then log(1 + running mean) (3),
     its history length / N_MAX and log(1 + the standard deviation of luminance over it; 0 from
-    one sample)."""
+    one sample) as in v2, then log(1 + the robust mean expanded back) (3) and the standard
+    deviation of the compressed luminance (0 from one sample)."""
     mean, n = accum[:, 0:3], accum[:, 3:4]
     mean_lum = luminance(mean)
-    variance = torch.where(n > 1.0, (moment - mean_lum * mean_lum).clamp_min(0.0), torch.zeros_like(n))
+    zero = torch.zeros_like(n)
+    variance = torch.where(n > 1.0, (moment - mean_lum * mean_lum).clamp_min(0.0), zero)
+    robust_mean = robust[:, 0:3]
+    robust_lum = luminance(robust_mean)
+    robust_variance = torch.where(n > 1.0, (robust[:, 3:4] - robust_lum * robust_lum).clamp_min(0.0), zero)
     return torch.cat(
         [
             torch.log1p(rec["demodulated"].clamp_min(0.0)),
@@ -167,6 +196,8 @@ def features(rec, warped, mask, accum, moment):
             torch.log1p(mean),
             n / N_MAX,
             torch.log1p(torch.sqrt(variance)),
+            torch.log1p(expand(robust_mean)),
+            torch.sqrt(robust_variance),
         ],
         dim=1,
     )
@@ -192,21 +223,26 @@ class RecurrentDenoiser(nn.Module):
     def step(self, record, state, fp16_storage=False):
         """One frame. `record` [B,RECORD_SIZE,H,W]; `state` None (no history) or the dict returned
         by the previous step (`output`: log radiance [B,3], `surface`: depth and normal [B,4],
-        `accum`: running mean and its length [B,4], `moment`: second moment of luminance [B,1]).
+        `accum`: running mean and its length [B,4], `moment`: second moment of luminance [B,1],
+        `robust`: the compressed running mean and its second moment [B,4]).
         Returns (radiance [B,3,H,W], new state)."""
         rec = split_record(record)
         if state is None:
             zero = torch.zeros_like(rec["depth"])
             warped, mask = torch.zeros_like(rec["demodulated"]), zero
             warped_accum, warped_moment = torch.zeros_like(record[:, 0:4]), zero
+            warped_robust = torch.zeros_like(record[:, 0:4])
         else:
-            # One warp (the same taps and mask) for the output and the running mean.
-            history = torch.cat([state["output"], state["accum"], state["moment"]], 1)
+            # One warp (the same taps and mask) for the output and the running means.
+            history = torch.cat([state["output"], state["accum"], state["moment"], state["robust"]], 1)
             history, mask = warp_history(history, state["surface"], rec["motion"], rec["normal"], rec["depth"])
-            warped, warped_accum, warped_moment = history[:, 0:3], history[:, 3:7], history[:, 7:8]
+            warped, warped_accum = history[:, 0:3], history[:, 3:7]
+            warped_moment, warped_robust = history[:, 7:8], history[:, 8:12]
         # The accumulation depends on the records only (no weights): no gradient through it.
-        accum, moment = accumulate(rec["demodulated"], warped_accum.detach(), warped_moment.detach(), mask)
-        x = half(features(rec, warped, mask, accum, moment), fp16_storage)
+        accum, moment, robust = accumulate(
+            rec["demodulated"], warped_accum.detach(), warped_moment.detach(), warped_robust.detach(), mask
+        )
+        x = half(features(rec, warped, mask, accum, moment, robust), fp16_storage)
         warped, mask = x[:, 11:14], x[:, 14:15]  # as the output pass reads them: stored
         c = self.convs
         r = lambda t: half(F.relu(t), fp16_storage)  # noqa: E731
@@ -222,7 +258,8 @@ class RecurrentDenoiser(nn.Module):
         log_out = half(log_out, fp16_storage)
         radiance = torch.expm1(log_out) * rec["albedo"] + rec["emission"]
         surface = torch.cat([rec["depth"], rec["normal"]], 1)
-        return radiance, {"output": log_out, "surface": surface, "accum": accum, "moment": moment}
+        state = {"output": log_out, "surface": surface, "accum": accum, "moment": moment, "robust": robust}
+        return radiance, state
 
     def forward(self, records, fp16_storage=False):
         """A sequence [B,T,RECORD_SIZE,H,W] from no history; returns [B,T,3,H,W]."""
@@ -231,26 +268,6 @@ class RecurrentDenoiser(nn.Module):
             y, state = self.step(records[:, t], state, fp16_storage)
             outs.append(y)
         return torch.stack(outs, 1)
-
-
-def load_weights(model, tensors, grow_input=False):
-    """Copies `<layer>.weight`/`.bias` from `tensors` (a dict, e.g. safetensors' `load_file`) into
-    `model`. With `grow_input`, an `enc0.weight` of `lucid-rae-v1` (16 inputs: `V1_FEATURES`
-    meaningful ones and a zero channel) is accepted: its first `V1_FEATURES` input channels are
-    copied, the weights of the new inputs set to zero, so that the model computes what v1 did
-    until it is trained further."""
-    with torch.no_grad():
-        for name, _, _ in LAYERS:
-            weight = tensors[f"{name}.weight"]
-            target = model.convs[name].weight
-            if name == "enc0" and grow_input and weight.shape[1] != target.shape[1]:
-                if weight.shape[1] != V1_FEATURES + 1:
-                    raise ValueError(f"enc0.weight has {weight.shape[1]} inputs: neither {FEATURES} nor v1's 16")
-                grown = torch.zeros_like(target)
-                grown[:, :V1_FEATURES] = weight[:, :V1_FEATURES]
-                weight = grown
-            target.copy_(weight)
-            model.convs[name].bias.copy_(tensors[f"{name}.bias"])
 
 
 def export_tensors(model):

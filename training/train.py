@@ -3,8 +3,8 @@
     python3 train.py --data DIR --minutes 6 --out weights.safetensors --log train.json [--init W]
         [--model direct|kernel] [--loss l1grad|l1msssim] [--burn-in K]
 
-`--model kernel` trains `kernel_model.KernelDenoiser` (exported as `lucid-kpn-experimental`, which
-the renderer does not load); `--loss` picks a loss of `losses.py`; `--burn-in K` runs the first K
+`--model kernel` trains `kernel_model.KernelDenoiser` (both export as `lucid-rae-v3`, the decoder
+named in the file's `decoder` metadata; the renderer runs either); `--loss` picks a loss of `losses.py`; `--burn-in K` runs the first K
 frames of each window without gradients and without loss, so that the recurrent state has warmed
 up when the loss starts.
 """
@@ -20,12 +20,12 @@ import torch.nn as nn
 from safetensors.torch import load_file, save_file
 
 from data import load_split, sample_batch
-from kernel_model import KERNEL_FORMAT, KernelDenoiser, kernel_layers
+from kernel_model import KernelDenoiser, kernel_layers
 from kernel_model import export_tensors as kernel_export_tensors
 from losses import DEFAULT_WEIGHTS, LOSSES, TERM_NAMES, display_ssim, log_tonemap, loss_fn, relmse, temporal_l1
-from model import FORMAT, LAYERS, RECORD_SIZE, RecurrentDenoiser, export_tensors
+from model import DECODERS, FORMAT, LAYERS, RECORD_SIZE, RecurrentDenoiser, export_tensors
 
-MODELS = ("direct", "kernel")
+MODELS = DECODERS
 
 
 def build_model(name):
@@ -42,12 +42,15 @@ def named_convs(model):
 def load_weights(model, path):
     """Copies the tensors of a file train.py wrote into `model`. The direct model needs all of its
     layers; the kernel model takes every layer whose shapes match (so direct weights start its
-    shared layers) and starts the others afresh."""
+    shared layers) and starts the others afresh. A `lucid-rae-v2` file's first layer, which has
+    fewer inputs, starts the first layer with the new inputs' weights at zero."""
     tensors = load_file(path)
     loaded, skipped = [], []
     with torch.no_grad():
         for name, conv in named_convs(model).items():
             w, b = tensors.get(f"{name}.weight"), tensors.get(f"{name}.bias")
+            if name == "enc0" and w is not None and w.shape[1] < conv.weight.shape[1]:
+                w = torch.cat([w, w.new_zeros(w.shape[0], conv.weight.shape[1] - w.shape[1], 3, 3)], 1)
             if w is None or b is None or w.shape != conv.weight.shape or b.shape != conv.bias.shape:
                 skipped.append(name)
                 continue
@@ -188,11 +191,13 @@ def main():
     train_seconds = time.time() - start
     final = validate(model, val)
     if args.model == "kernel":
-        fmt, layers, tensors = KERNEL_FORMAT, kernel_layers(), kernel_export_tensors(model)
+        layers, tensors = kernel_layers(), kernel_export_tensors(model)
     else:
-        fmt, layers, tensors = FORMAT, LAYERS, export_tensors(model)
+        layers, tensors = LAYERS, export_tensors(model)
+    fmt = FORMAT
     meta = {
         "format": fmt,
+        "decoder": args.model,
         "layers": json.dumps(layers),
         "model": args.model,
         "loss": args.loss,

@@ -232,7 +232,7 @@ fn the_learned_denoiser_takes_weights_from_a_file_and_names_a_bad_one() {
     let out_path = out_file.to_str().unwrap();
     let weights = concat!(
         env!("CARGO_MANIFEST_DIR"),
-        "/../passes/src/denoise/neural/lucid-rae-v2.safetensors"
+        "/../passes/src/denoise/neural/lucid-rae-v3.safetensors"
     );
     let bad = temp("bad.safetensors");
     std::fs::write(&bad, b"not weights").unwrap();

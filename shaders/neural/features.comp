@@ -1,10 +1,12 @@
 #version 460
-// The learned denoiser's 20 input channels (training/model.py, `features`): log radiance, albedo,
+// The learned denoiser's 24 input channels (training/model.py, `features`): log radiance, albedo,
 // normal, roughness, log depth, last frame's output reprojected by the motion vectors where the
 // surface is the same (`warp_history`), the reprojection mask, then the running mean of the noisy
 // radiance (`accumulate`, reprojected with the same taps): log(1 + mean), its history length /
-// N_MAX and log(1 + the standard deviation of luminance). Also writes this frame's surface (depth,
-// normal), running mean and second moment for the next frame.
+// N_MAX and log(1 + the standard deviation of luminance), then the running mean of the radiance
+// range-compressed against fireflies (`compress`): log(1 + its mean expanded back) and the
+// standard deviation of its luminance. Also writes this frame's surface (depth, normal), running
+// means and second moments for the next frame.
 #include "common/image_coords.glsl"
 #include "common/math.glsl"
 #include "neural/record.glsl"
@@ -21,6 +23,8 @@ layout(set = 0, binding = 5, rgba32f) uniform readonly image2D u_prev_accum;
 layout(set = 0, binding = 6, rgba32f) uniform writeonly image2D u_accum;
 layout(set = 0, binding = 7, r32f) uniform readonly image2D u_prev_moment;
 layout(set = 0, binding = 8, r32f) uniform writeonly image2D u_moment;
+layout(set = 0, binding = 9, rgba32f) uniform readonly image2D u_prev_robust;
+layout(set = 0, binding = 10, rgba32f) uniform writeonly image2D u_robust;
 
 layout(push_constant) uniform Params {
     uint width;
@@ -33,6 +37,18 @@ const float NORMAL_COS = 0.9;
 const float MIN_WEIGHT = 0.01;
 // The longest history the running mean averages; after that it is an exponential moving average.
 const float N_MAX = 32.0;
+// The smallest 1 - luminance that `expand` divides by.
+const float EXPAND_MIN = 1e-3;
+
+// Range compression against fireflies (`compress`): the luminance stays below 1.
+vec3 compress(vec3 rgb) {
+    return rgb / (1.0 + luminance(rgb));
+}
+
+// The inverse of `compress` (`expand`).
+vec3 expand(vec3 rgb) {
+    return rgb / max(1.0 - luminance(rgb), EXPAND_MIN);
+}
 
 uvec2 size() {
     return uvec2(params.width, params.height);
@@ -56,10 +72,11 @@ void main() {
     vec3 motion = channel3(RECORD_MOTION, pixel);
     imageStore(u_surface, pixel, vec4(depth, normal));
 
-    // The output history, the running mean with its length, and the second moment, warped together.
+    // The output history, the running means with the length and the second moments, warped together.
     vec3 warped = vec3(0.0);
     vec4 warped_accum = vec4(0.0);
     float warped_moment = 0.0;
+    vec4 warped_robust = vec4(0.0);
     float weight_sum = 0.0;
     if (params.history_valid != 0u) {
         vec2 prev_pos = vec2(pixel) + motion.xy;
@@ -81,6 +98,7 @@ void main() {
                 warped += w * imageLoad(u_prev_output, ivec2(q)).rgb;
                 warped_accum += w * imageLoad(u_prev_accum, ivec2(q));
                 warped_moment += w * imageLoad(u_prev_moment, ivec2(q)).r;
+                warped_robust += w * imageLoad(u_prev_robust, ivec2(q));
                 weight_sum += w;
             }
         }
@@ -91,29 +109,38 @@ void main() {
         warped /= norm;
         warped_accum /= norm;
         warped_moment /= norm;
+        warped_robust /= norm;
         mask = 1.0;
     } else {
         warped = vec3(0.0);
     }
     vec3 demodulated = max(channel3(RECORD_DEMODULATED, pixel), vec3(0.0));
 
-    // The running mean (`accumulate`): this frame's values where nothing is reprojected.
+    // The running means (`accumulate`): this frame's values where nothing is reprojected.
     float lum = luminance(demodulated);
+    vec3 squeezed = compress(demodulated);
+    float squeezed_lum = luminance(squeezed);
     float n = 1.0;
     vec3 mean = demodulated;
     float moment = lum * lum;
+    vec4 robust = vec4(squeezed, squeezed_lum * squeezed_lum);
     if (mask > 0.0) {
         n = min(warped_accum.a + 1.0, N_MAX);
         float alpha = 1.0 / n;
         mean = warped_accum.rgb + (demodulated - warped_accum.rgb) * alpha;
         moment = warped_moment + (lum * lum - warped_moment) * alpha;
+        robust = warped_robust + (robust - warped_robust) * alpha;
     }
     imageStore(u_accum, pixel, vec4(mean, n));
     imageStore(u_moment, pixel, vec4(moment, 0.0, 0.0, 0.0));
+    imageStore(u_robust, pixel, robust);
     float mean_lum = luminance(mean);
     float variance = n > 1.0 ? max(moment - mean_lum * mean_lum, 0.0) : 0.0;
     vec3 log_mean = log(vec3(1.0) + mean);
     float log_std = log(1.0 + sqrt(variance));
+    float robust_lum = luminance(robust.rgb);
+    float robust_variance = n > 1.0 ? max(robust.a - robust_lum * robust_lum, 0.0) : 0.0;
+    vec3 log_robust = log(vec3(1.0) + expand(robust.rgb));
 
     vec3 albedo = channel3(RECORD_ALBEDO, pixel);
     float roughness = channel(RECORD_ROUGHNESS, pixel);
@@ -125,4 +152,5 @@ void main() {
     b_features.v[at + 2u] = pack_channels(vec4(normal.z, roughness, log_depth, warped.r));
     b_features.v[at + 3u] = pack_channels(vec4(warped.gb, mask, log_mean.r));
     b_features.v[at + 4u] = pack_channels(vec4(log_mean.gb, n / N_MAX, log_std));
+    b_features.v[at + 5u] = pack_channels(vec4(log_robust, sqrt(robust_variance)));
 }

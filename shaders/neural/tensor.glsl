@@ -5,7 +5,7 @@
 #define LUCID_NEURAL_TENSOR_GLSL
 
 // The network's input features (FEATURES in training/model.py and weights.rs) in groups of four.
-const uint FEATURE_GROUPS = 5u;
+const uint FEATURE_GROUPS = 6u;
 
 // The index of channels 4*c4..4*c4+3 of `pixel` in a tensor `width` wide with `channels4` groups.
 uint tensor_index(ivec2 pixel, uint width, uint channels4, uint c4) {

@@ -7,20 +7,23 @@
 //!    `lucid dataset` writes for training.
 //! 2. **Features**: log radiance, albedo, normal, roughness, log depth, last frame's output
 //!    reprojected by the motion vectors where depth and normal say the surface is the same, the
-//!    reprojection mask, and a running mean of the noisy radiance reprojected with the same taps
-//!    (as SVGF accumulates it: log mean, history length, log standard deviation of luminance):
-//!    20 half-precision channels.
+//!    reprojection mask, and two running means of the noisy radiance reprojected with the same
+//!    taps (as SVGF accumulates it: log mean, history length, log standard deviation of luminance;
+//!    and of the radiance range-compressed against fireflies): 24 half-precision channels.
 //! 3. **Network**: 3x3 convolutions at full, half and quarter resolution with skip connections
-//!    ([`LAYERS`]), fused bias and ReLU, average pooling down and nearest upsampling up (read in
+//!    ([`UNET`]), fused bias and ReLU, average pooling down and nearest upsampling up (read in
 //!    place by the next convolution); on the tensor cores where the device has them, else portable
 //!    compute ([`InferencePath`]).
-//! 4. **Output**: the network's log radiance blended with the reprojected history by a learned
+//! 4. **Decoder** ([`Decoder`]): either one output layer predicting log radiance directly, or
+//!    three predicting per-pixel 5x5 kernels that filter the noisy log radiance at full, half and
+//!    quarter resolution, composited coarse to fine (`shaders/neural/kernel_*.comp`).
+//! 5. **Output**: the predicted log radiance blended with the reprojected history by a learned
 //!    per-pixel weight (only where the mask allows), kept as the next frame's history, and
 //!    re-modulated by albedo plus emission.
 //!
-//! The history (last output, surface, running mean and second moment) is the render graph's keyed
-//! temporal images under a per-denoiser prefix, so two denoisers in one graph keep their own; a
-//! resize, a scene change or
+//! The history (last output, surface, running means and second moments) is the render graph's
+//! keyed temporal images under a per-denoiser prefix, so two denoisers in one graph keep their own;
+//! a resize, a scene change or
 //! [`Executor::reset_history`](lucid_engine::graph::Executor::reset_history) starts afresh.
 //! `training/model.py` is the reference of every step; `tests/neural_parity.rs` checks this
 //! implementation against it.
@@ -29,12 +32,17 @@ mod network;
 mod weights;
 
 pub use network::{InferencePath, Network};
-pub use weights::{Layer, NetworkWeights, WeightsError, BUILTIN, FEATURES, FORMAT, LAYERS};
+pub use weights::{
+    Decoder, Layer, NetworkWeights, WeightsError, BUILTIN, FEATURES, FORMAT, KERNEL_TAPS, UNET,
+};
 
 use crate::denoise::gbuffer::GBuffer;
 use crate::denoise::{DenoiseInputs, Denoised, FrameDenoiser, FrameInfo, TransportRequest};
 use crate::light_transport::SurfaceImages;
-use crate::shaders::neural::{CONV, CONV_COOP, FEATURES as FEATURES_SHADER, OUTPUT, POOL, RECORD};
+use crate::shaders::neural::{
+    CONV, CONV_COOP, FEATURES as FEATURES_SHADER, KERNEL_DETAIL, KERNEL_FILTER, KERNEL_RADIANCE,
+    OUTPUT, POOL, RECORD,
+};
 use lucid_engine::capture::ImageData;
 use lucid_engine::graph::{BufferHandle, ImageHandle, RenderGraph};
 use lucid_engine::memory::ImageDesc;
@@ -118,7 +126,7 @@ impl FrameDenoiser for NeuralDenoiser {
 
     fn reset_on_scene_change(&self) -> Vec<String> {
         let keys = HistoryKeys::new(&self.prefix);
-        vec![keys.output, keys.surface, keys.accum, keys.moment]
+        vec![keys.output, keys.surface, keys.accum, keys.moment, keys.robust]
     }
 }
 
@@ -148,6 +156,7 @@ struct HistoryKeys {
     surface: String,
     accum: String,
     moment: String,
+    robust: String,
 }
 
 impl HistoryKeys {
@@ -158,15 +167,16 @@ impl HistoryKeys {
             surface: key("surface"),
             accum: key("accum"),
             moment: key("moment"),
+            robust: key("robust"),
         }
     }
 }
 
 /// The network's weights in a frame's graph: float32 (biases, and the portable path's weights) and,
-/// on the tensor-core path, half precision with each layer's offset in uvec4s.
+/// on the tensor-core path, half precision (each layer's offset in uvec4s is the network's).
 struct WeightHandles {
     full: BufferHandle,
-    half: Option<(BufferHandle, [u32; LAYERS.len()])>,
+    half: Option<BufferHandle>,
 }
 
 /// What [`add_neural`] adds to the graph that callers read.
@@ -180,6 +190,9 @@ pub struct NeuralImages {
     /// This frame's running second moment of the demodulated radiance's luminance (`r32f`): the
     /// `<prefix>.moment` history as written this frame.
     pub moment: ImageHandle,
+    /// This frame's running mean of the range-compressed demodulated radiance (rgb) and the second
+    /// moment of its luminance (a), `rgba32f`: the `<prefix>.robust` history as written this frame.
+    pub robust: ImageHandle,
 }
 
 /// A half-precision activation tensor of the network.
@@ -192,8 +205,9 @@ struct Tensor {
 
 /// Adds the denoiser over the frame `record` (from [`add_record`], or uploaded by a test) at
 /// `width` x `height`, with its history under the keys `<prefix>.output`, `<prefix>.surface`,
-/// `<prefix>.accum` (running mean and its length) and `<prefix>.moment` (second moment of
-/// luminance); returns the denoised radiance and this frame's accumulation.
+/// `<prefix>.accum` (running mean and its length), `<prefix>.moment` (second moment of
+/// luminance) and `<prefix>.robust` (the range-compressed running mean and its second moment);
+/// returns the denoised radiance and this frame's accumulation.
 pub fn add_neural(
     g: &mut RenderGraph,
     network: &Network,
@@ -203,20 +217,26 @@ pub fn add_neural(
 ) -> NeuralImages {
     let weights = WeightHandles {
         full: g.import_buffer("neural.weights", network.buffer.clone()),
-        half: network.half.as_ref().map(|(buffer, offsets)| {
-            let handle = g.import_buffer("neural.half_weights", buffer.clone());
-            (handle, *offsets)
-        }),
+        half: network
+            .half
+            .as_ref()
+            .map(|(buffer, _)| g.import_buffer("neural.half_weights", buffer.clone())),
     };
     let keys = HistoryKeys::new(prefix);
     let output_history = g.temporal_image(&keys.output, ImageDesc::rgba16f(width, height));
     let surface_history = g.temporal_image(&keys.surface, ImageDesc::rgba32f(width, height));
     let accum_history = g.temporal_image(&keys.accum, ImageDesc::rgba32f(width, height));
     let moment_history = g.temporal_image(&keys.moment, ImageDesc::r32f(width, height));
+    let robust_history = g.temporal_image(&keys.robust, ImageDesc::rgba32f(width, height));
     let full = (width, height);
 
     let mut p = g.compute_pass(&format!("{prefix}.features"), &FEATURES_SHADER);
-    let prev = [output_history.prev, accum_history.prev, moment_history.prev];
+    let prev = [
+        output_history.prev,
+        accum_history.prev,
+        moment_history.prev,
+        robust_history.prev,
+    ];
     p.read("b_record", record)
         .read("u_prev_output", prev[0])
         .push_with(move |ctx| {
@@ -226,6 +246,7 @@ pub fn add_neural(
     p.history("u_prev_surface", "u_surface", surface_history);
     let accum = p.history("u_prev_accum", "u_accum", accum_history);
     let moment = p.history("u_prev_moment", "u_moment", moment_history);
+    let robust = p.history("u_prev_robust", "u_robust", robust_history);
     let features = Tensor {
         buffer: p.create_buffer(
             "b_features",
@@ -245,13 +266,26 @@ pub fn add_neural(
     let (e2, _) = conv(g, 2, p1.expect("pooled"), None, false);
     let (bottleneck, _) = conv(g, 3, e2, None, false);
     let (d1, _) = conv(g, 4, bottleneck, Some(e1), false);
-    let (d0, _) = conv(g, 5, d1, Some(e0), false);
+    let kernel = network.decoder == Decoder::Kernel;
+    let (d0, d0_pooled) = conv(g, 5, d1, Some(e0), kernel);
     let (net, _) = conv(g, 6, d0, None, false);
+    // The kernel decoder's full-scale filtered radiance and the half scale's detail.
+    let scales = d0_pooled.map(|f1| {
+        let f2 = add_pool(g, f1);
+        let (half_net, _) = conv(g, 7, f1, None, false);
+        let (quarter_net, _) = conv(g, 8, f2, None, false);
+        add_kernel_scales(g, record, features, [net, half_net, quarter_net])
+    });
 
     let mut p = g.compute_pass(&format!("{prefix}.output"), &OUTPUT);
+    let [filtered, detail] = scales.unwrap_or([net.buffer; 2]);
     p.read("b_record", record)
         .read("b_features", features.buffer)
         .read("b_net", net.buffer)
+        .read("b_filtered", filtered)
+        .read("b_detail", detail)
+        .specialize("KERNEL", kernel)
+        .specialize("NET_CHANNELS", net.channels)
         .push(&[width, height]);
     p.write("u_output", output_history.cur);
     let radiance = p.create_image(
@@ -264,7 +298,73 @@ pub fn add_neural(
         radiance,
         accum,
         moment,
+        robust,
     }
+}
+
+/// Adds the kernel decoder's filtering (`training/kernel_model.py`, `KernelOutput`) from its heads'
+/// outputs `[full, half, quarter]`: each scale's log radiance filtered by its per-pixel kernels,
+/// then the differences the coarser scales add (`kernel_detail.comp`). Returns the full scale's
+/// filtered radiance and the half scale's detail, which the output pass composites.
+fn add_kernel_scales(
+    g: &mut RenderGraph,
+    record: BufferHandle,
+    features: Tensor,
+    heads: [Tensor; 3],
+) -> [BufferHandle; 2] {
+    let sizes = heads.map(|t| t.size);
+    let vec4_bytes = |(w, h): (u32, u32)| u64::from(w) * u64::from(h) * 16;
+    let radiance: Vec<BufferHandle> = (1..3)
+        .map(|level| {
+            let mut p = g.compute_pass("neural.kernel_radiance", &KERNEL_RADIANCE);
+            p.read("b_record", record)
+                .specialize("LEVEL", level as u32)
+                .push(&[features.size.0, features.size.1]);
+            let out = p.create_buffer("b_out", "neural.kernel_radiance", vec4_bytes(sizes[level]));
+            p.dispatch([sizes[level].0, sizes[level].1, 1]);
+            out
+        })
+        .collect();
+    let filtered: Vec<BufferHandle> = (0..3)
+        .map(|level| {
+            let mut p = g.compute_pass("neural.kernel_filter", &KERNEL_FILTER);
+            p.read("b_logits", heads[level].buffer)
+                .read("b_features", features.buffer)
+                // The full scale reads the features; the others their pooled radiance.
+                .read("b_radiance", radiance[level.max(1) - 1])
+                .specialize("LOGIT_CHANNELS", heads[level].channels)
+                .specialize("FROM_FEATURES", level == 0)
+                .push(&[sizes[level].0, sizes[level].1]);
+            let out = p.create_buffer("b_out", "neural.kernel_filtered", vec4_bytes(sizes[level]));
+            p.dispatch([sizes[level].0, sizes[level].1, 1]);
+            out
+        })
+        .collect();
+    let detail = |g: &mut RenderGraph, level: usize, coarser: Option<BufferHandle>| {
+        let mut p = g.compute_pass("neural.kernel_detail", &KERNEL_DETAIL);
+        let coarser_size = sizes[(level + 1).min(2)];
+        p.read("b_filtered", filtered[level])
+            .read("b_finer", filtered[level - 1])
+            // Without a coarser scale the filtered radiance is bound in its place (not read).
+            .read("b_coarser", coarser.unwrap_or(filtered[level]))
+            .read("b_logits", heads[level].buffer)
+            .specialize("LOGIT_CHANNELS", heads[level].channels)
+            .specialize("HAS_COARSER", coarser.is_some())
+            .push(&[
+                sizes[level].0,
+                sizes[level].1,
+                sizes[level - 1].0,
+                sizes[level - 1].1,
+                coarser_size.0,
+                coarser_size.1,
+            ]);
+        let out = p.create_buffer("b_out", "neural.kernel_detail", vec4_bytes(sizes[level]));
+        p.dispatch([sizes[level].0, sizes[level].1, 1]);
+        out
+    };
+    let quarter = detail(g, 2, None);
+    let half = detail(g, 1, Some(quarter));
+    [filtered[0], half]
 }
 
 /// Bytes of a half-precision tensor of `channels` at `size`.
@@ -272,9 +372,10 @@ fn tensor_bytes(channels: u32, (width, height): (u32, u32)) -> u64 {
     u64::from(channels) * u64::from(width) * u64::from(height) * 2
 }
 
-/// Adds convolution `index` of [`LAYERS`] over `in0` then `in1` (the skip connection), at `in1`'s
-/// size (`in0` upsampled when smaller) or, without `in1`, at `in0`'s. Returns its output and, when
-/// `pool`, the output 2x2 average-pooled (fused into the convolution on the tensor-core path).
+/// Adds convolution `index` of the network's layers over `in0` then `in1` (the skip connection), at
+/// `in1`'s size (`in0` upsampled when smaller) or, without `in1`, at `in0`'s. Returns its output
+/// and, when `pool`, the output 2x2 average-pooled (fused into the convolution on the tensor-core
+/// path).
 fn add_conv(
     g: &mut RenderGraph,
     network: &Network,
@@ -284,7 +385,8 @@ fn add_conv(
     pool: bool,
 ) -> (Tensor, Option<Tensor>) {
     let offset = network.offsets[index];
-    let layer = &LAYERS[index];
+    let layer = &network.layers[index];
+    let out_channels = layer.out_padded();
     debug_assert_eq!(in0.channels, layer.in0);
     debug_assert_eq!(in1.map_or(0, |t| t.channels), layer.in1);
     let size = in1.map_or(in0.size, |t| t.size);
@@ -300,26 +402,19 @@ fn add_conv(
         .read("b_in1", in1.unwrap_or(in0).buffer)
         .specialize("IN0_CHANNELS", layer.in0)
         .specialize("IN1_CHANNELS", layer.in1)
-        .specialize("OUT_CHANNELS", layer.out)
+        .specialize("OUT_CHANNELS", out_channels)
         .specialize("IN0_UPSAMPLED", in0.size != size)
-        .specialize("RELU", layer.name != "out");
-    let buffer = p.create_buffer("b_out", &name, tensor_bytes(layer.out, size));
+        .specialize("RELU", layer.relu);
+    let buffer = p.create_buffer("b_out", &name, tensor_bytes(out_channels, size));
     let output = Tensor {
         buffer,
-        channels: layer.out,
+        channels: out_channels,
         size,
     };
     let push = [size.0, size.1, in0.size.0, in0.size.1];
-    match weights.half {
-        None => {
-            let per_thread = layer.out.min(16);
-            p.specialize("OUT_PER_THREAD", per_thread)
-                .push(&[push[0], push[1], push[2], push[3], offset]);
-            p.dispatch([size.0, size.1, layer.out / per_thread]);
-            (output, pool.then(|| add_pool(g, output)))
-        }
-        Some((half_weights, half_offsets)) => {
-            let bias = offset + 9 * layer.inputs() * layer.out / 4;
+    match (weights.half, &network.half) {
+        (Some(half_weights), Some((_, half_offsets))) => {
+            let bias = offset + 9 * layer.inputs() * out_channels / 4;
             let half_offset = half_offsets[index];
             // Two rows a subgroup: measured faster than four (and than staging the weights in
             // shared memory) on an H100, `training/bench_gpu.sh`.
@@ -329,7 +424,7 @@ fn add_conv(
                 "b_pooled",
                 "neural.pooled",
                 if pool {
-                    tensor_bytes(layer.out, pooled_size)
+                    tensor_bytes(out_channels, pooled_size)
                 } else {
                     16
                 },
@@ -342,10 +437,19 @@ fn add_conv(
             p.dispatch([size.0.div_ceil(16) * 128, size.1.div_ceil(4 * rows), 1]);
             let pooled = Tensor {
                 buffer: pooled,
-                channels: layer.out,
+                channels: out_channels,
                 size: pooled_size,
             };
             (output, pool.then_some(pooled))
+        }
+        _ => {
+            // Up to four groups of four output channels an invocation, a divisor of them all.
+            let groups = out_channels / 4;
+            let per_thread = 4 * [4, 2, 1].into_iter().find(|d| groups % d == 0).unwrap_or(1);
+            p.specialize("OUT_PER_THREAD", per_thread)
+                .push(&[push[0], push[1], push[2], push[3], offset]);
+            p.dispatch([size.0, size.1, out_channels / per_thread]);
+            (output, pool.then(|| add_pool(g, output)))
         }
     }
 }

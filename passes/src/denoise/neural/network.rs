@@ -1,6 +1,6 @@
 //! The network's weights on the GPU and the way its convolutions run there.
 
-use super::weights::{NetworkWeights, LAYERS};
+use super::weights::{Decoder, Layer, NetworkWeights};
 use lucid_engine::memory::Buffer;
 use lucid_engine::{Context, EngineError, Result};
 use std::sync::Arc;
@@ -69,13 +69,16 @@ impl InferencePath {
 /// The network's weights on the GPU, shared by every frame, and the path its convolutions take.
 #[derive(Clone)]
 pub struct Network {
+    pub(super) decoder: Decoder,
+    /// The layers, in execution order ([`Decoder::layers`]).
+    pub(super) layers: Vec<Layer>,
     /// Every layer's float32 weights and bias (`conv.comp`'s layout).
     pub(super) buffer: Arc<Buffer>,
     /// Where each layer starts in `buffer`, in vec4s.
-    pub(super) offsets: [u32; LAYERS.len()],
+    pub(super) offsets: Vec<u32>,
     /// On the tensor-core path, the half-precision weights in `conv_coop.comp`'s layout and where
     /// each layer starts in them, in uvec4s.
-    pub(super) half: Option<(Arc<Buffer>, [u32; LAYERS.len()])>,
+    pub(super) half: Option<(Arc<Buffer>, Vec<u32>)>,
     pub(super) path: InferencePath,
 }
 
@@ -104,8 +107,12 @@ impl Network {
             }
         };
         Ok(Self {
+            decoder: weights.decoder(),
+            layers: weights.layers().to_vec(),
             buffer,
-            offsets: std::array::from_fn(|i| weights.offset(i)),
+            offsets: (0..weights.layers().len())
+                .map(|i| weights.offset(i))
+                .collect(),
             half,
             path,
         })
@@ -114,6 +121,11 @@ impl Network {
     /// The path the convolutions take.
     pub fn path(&self) -> InferencePath {
         self.path
+    }
+
+    /// What the network's last layers predict.
+    pub fn decoder(&self) -> Decoder {
+        self.decoder
     }
 }
 
@@ -124,14 +136,14 @@ const MATRIX_SIZE: usize = 16;
 /// The weights in `conv_coop.comp`'s layout: per layer, per chunk of 16 input channels and per tap,
 /// a row-major (16 input x output channels rounded up to 16) half-precision matrix, zero past the
 /// layer's channels. Returns the halves and where each layer starts, in uvec4s (eight halves).
-fn pack_half_weights(weights: &NetworkWeights) -> (Vec<u16>, [u32; LAYERS.len()]) {
+fn pack_half_weights(weights: &NetworkWeights) -> (Vec<u16>, Vec<u32>) {
     let mut halves = Vec::new();
-    let mut offsets = [0; LAYERS.len()];
-    for (index, layer) in LAYERS.iter().enumerate() {
-        offsets[index] = (halves.len() / 8) as u32;
-        let (cin, cout) = (layer.inputs() as usize, layer.out as usize);
+    let mut offsets = Vec::new();
+    for (index, layer) in weights.layers().iter().enumerate() {
+        offsets.push((halves.len() / 8) as u32);
+        let (cin, cout) = (layer.inputs() as usize, layer.out_padded() as usize);
         let padded = cout.div_ceil(MATRIX_SIZE) * MATRIX_SIZE;
-        // conv.comp's layout: output channels innermost, at (tap * cin + ci) * cout.
+        // conv.comp's layout: output channels (padded to 4) innermost, at (tap * cin + ci) * cout.
         let packed = &weights.packed()[weights.offset(index) as usize * 4..];
         for chunk in 0..cin.div_ceil(MATRIX_SIZE) {
             for tap in 0..9 {

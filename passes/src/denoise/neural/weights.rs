@@ -1,17 +1,21 @@
 //! The learned denoiser's weights: a safetensors file of float32 `<layer>.weight` [out, in, 3, 3]
-//! and `<layer>.bias` [out] tensors for each layer of [`LAYERS`], with `format` metadata
-//! [`FORMAT`] (written by `training/train.py`), packed into the order `shaders/neural/conv.comp`
-//! reads.
+//! and `<layer>.bias` [out] tensors for each layer of its decoder's [`Decoder::layers`], with
+//! `format` metadata [`FORMAT`] and `decoder` metadata naming the [`Decoder`] (written by
+//! `training/train.py`), packed into the order `shaders/neural/conv.comp` reads.
 
 use safetensors::tensor::{Dtype, SafeTensors};
 use std::path::Path;
 
 /// The network format this code runs (`FORMAT` in `training/model.py`).
-pub const FORMAT: &str = "lucid-rae-v2";
+pub const FORMAT: &str = "lucid-rae-v3";
 
 /// Channels of the network's input features (`FEATURES` in `training/model.py`; a multiple of 4,
 /// `FEATURE_GROUPS` in `shaders/neural/tensor.glsl`).
-pub const FEATURES: u32 = 20;
+pub const FEATURES: u32 = 24;
+
+/// Taps of the kernel-predicting decoder's per-pixel 5x5 kernels (`TAPS` in
+/// `training/kernel_model.py`).
+pub const KERNEL_TAPS: u32 = 25;
 
 /// One 3x3 convolution of the network.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -24,15 +28,28 @@ pub struct Layer {
     pub in1: u32,
     /// Output channels.
     pub out: u32,
+    /// Whether a ReLU follows (all but the output layers).
+    pub relu: bool,
 }
 
 impl Layer {
-    const fn new(name: &'static str, in0: u32, in1: u32, out: u32) -> Self {
+    const fn hidden(name: &'static str, in0: u32, in1: u32, out: u32) -> Self {
         Self {
             name,
             in0,
             in1,
             out,
+            relu: true,
+        }
+    }
+
+    const fn output(name: &'static str, out: u32) -> Self {
+        Self {
+            name,
+            in0: 32,
+            in1: 0,
+            out,
+            relu: false,
         }
     }
 
@@ -41,26 +58,73 @@ impl Layer {
         self.in0 + self.in1
     }
 
+    /// Output channels as the shaders store them: rounded up to a multiple of 4 (the padding is
+    /// zero).
+    pub fn out_padded(&self) -> u32 {
+        self.out.next_multiple_of(4)
+    }
+
     /// Floats this layer takes in the packed buffer (weights, then bias).
     fn packed_len(&self) -> usize {
-        (9 * self.inputs() * self.out + self.out) as usize
+        (9 * self.inputs() * self.out_padded() + self.out_padded()) as usize
     }
 }
 
-/// The layers in execution order (`LAYERS` in `training/model.py`).
-pub const LAYERS: [Layer; 7] = [
-    Layer::new("enc0", FEATURES, 0, 32),
-    Layer::new("enc1", 32, 0, 32),
-    Layer::new("enc2", 32, 0, 64),
-    Layer::new("bottleneck", 64, 0, 64),
-    Layer::new("dec1", 64, 32, 32),
-    Layer::new("dec0", 32, 32, 32),
-    Layer::new("out", 32, 0, 4),
+/// The U-Net's layers up to the decoder's output layers, in execution order (`LAYERS` in
+/// `training/model.py` without `out`).
+pub const UNET: [Layer; 6] = [
+    Layer::hidden("enc0", FEATURES, 0, 32),
+    Layer::hidden("enc1", 32, 0, 32),
+    Layer::hidden("enc2", 32, 0, 64),
+    Layer::hidden("bottleneck", 64, 0, 64),
+    Layer::hidden("dec1", 64, 32, 32),
+    Layer::hidden("dec0", 32, 32, 32),
 ];
 
-/// The weights of the committed network (`passes/src/denoise/neural/lucid-rae-v2.safetensors`; see
+/// What the network's last layers predict (the weights file's `decoder` metadata; measured
+/// against each other in `training/README.md`).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Decoder {
+    /// Log radiance and a blend weight per pixel (`training/model.py`): one output layer.
+    Direct,
+    /// Per-pixel 5x5 kernels filtering the noisy radiance at full, half and quarter resolution,
+    /// composited coarse to fine (`training/kernel_model.py`): three output layers, one a scale.
+    Kernel,
+}
+
+impl Decoder {
+    /// The name in weights files.
+    pub fn name(self) -> &'static str {
+        match self {
+            Decoder::Direct => "direct",
+            Decoder::Kernel => "kernel",
+        }
+    }
+
+    fn from_name(name: &str) -> Option<Self> {
+        [Decoder::Direct, Decoder::Kernel]
+            .into_iter()
+            .find(|d| d.name() == name)
+    }
+
+    /// Every layer of a network with this decoder, in execution order: [`UNET`], then the output
+    /// layers (the kernel decoder's at full, half and quarter resolution).
+    pub fn layers(self) -> Vec<Layer> {
+        let outputs: &[Layer] = match self {
+            Decoder::Direct => &[Layer::output("out", 4)],
+            Decoder::Kernel => &[
+                Layer::output("out", KERNEL_TAPS + 2),
+                Layer::output("out_half", KERNEL_TAPS + 1),
+                Layer::output("out_quarter", KERNEL_TAPS),
+            ],
+        };
+        UNET.iter().chain(outputs).copied().collect()
+    }
+}
+
+/// The weights of the committed network (`passes/src/denoise/neural/lucid-rae-v3.safetensors`; see
 /// `training/README.md` for the command and data that produced them).
-pub const BUILTIN: &[u8] = include_bytes!("lucid-rae-v2.safetensors");
+pub const BUILTIN: &[u8] = include_bytes!("lucid-rae-v3.safetensors");
 
 /// A weights file that cannot be used, naming the file and, where it applies, the tensor.
 #[derive(Debug, thiserror::Error)]
@@ -89,6 +153,14 @@ pub enum WeightsError {
         /// The `format` metadata found (empty when absent).
         found: String,
     },
+    /// The file's decoder is none this code runs.
+    #[error("denoiser weights {file}: decoder {found:?}, expected \"direct\" or \"kernel\"")]
+    Decoder {
+        /// The file.
+        file: String,
+        /// The `decoder` metadata found (empty when absent).
+        found: String,
+    },
     /// A tensor is missing, of the wrong type or shape, or holds a non-finite value.
     #[error("denoiser weights {file}: tensor {tensor}: {problem}")]
     Tensor {
@@ -104,8 +176,10 @@ pub enum WeightsError {
 /// Weights ready for upload: every layer's weights and bias, packed.
 #[derive(Clone, Debug, PartialEq)]
 pub struct NetworkWeights {
+    decoder: Decoder,
+    layers: Vec<Layer>,
     packed: Vec<f32>,
-    offsets: [u32; LAYERS.len()],
+    offsets: Vec<u32>,
 }
 
 impl NetworkWeights {
@@ -132,23 +206,33 @@ impl NetworkWeights {
         };
         let (_, metadata) =
             SafeTensors::read_metadata(bytes).map_err(|e| format_error(e.to_string()))?;
-        let found = metadata
-            .metadata()
-            .as_ref()
-            .and_then(|m| m.get("format").cloned())
-            .unwrap_or_default();
+        let entry = |key: &str| {
+            metadata
+                .metadata()
+                .as_ref()
+                .and_then(|m| m.get(key).cloned())
+                .unwrap_or_default()
+        };
+        let found = entry("format");
         if found != FORMAT {
             return Err(WeightsError::Network {
                 file: file.to_owned(),
                 found,
             });
         }
+        let found = entry("decoder");
+        let decoder = Decoder::from_name(&found).ok_or_else(|| WeightsError::Decoder {
+            file: file.to_owned(),
+            found,
+        })?;
         let tensors = SafeTensors::deserialize(bytes).map_err(|e| format_error(e.to_string()))?;
-        let mut packed = Vec::with_capacity(LAYERS.iter().map(Layer::packed_len).sum());
-        let mut offsets = [0; LAYERS.len()];
-        for (layer, offset) in LAYERS.iter().zip(&mut offsets) {
-            *offset = (packed.len() / 4) as u32;
+        let layers = decoder.layers();
+        let mut packed = Vec::with_capacity(layers.iter().map(Layer::packed_len).sum());
+        let mut offsets = Vec::with_capacity(layers.len());
+        for layer in &layers {
+            offsets.push((packed.len() / 4) as u32);
             let (cin, cout) = (layer.inputs() as usize, layer.out as usize);
+            let padding = (layer.out_padded() - layer.out) as usize;
             let weight = read_tensor(
                 &tensors,
                 file,
@@ -156,15 +240,33 @@ impl NetworkWeights {
                 &[cout, cin, 3, 3],
             )?;
             let bias = read_tensor(&tensors, file, &format!("{}.bias", layer.name), &[cout])?;
-            // conv.comp reads vec4s of four consecutive output channels at (tap * cin + ci) * cout / 4.
+            // conv.comp reads vec4s of four consecutive output channels at
+            // (tap * cin + ci) * cout / 4, the output channels padded with zeros to a multiple of 4.
             for tap in 0..9 {
                 for ci in 0..cin {
                     packed.extend((0..cout).map(|co| weight[(co * cin + ci) * 9 + tap]));
+                    packed.extend(std::iter::repeat_n(0.0, padding));
                 }
             }
             packed.extend_from_slice(&bias);
+            packed.extend(std::iter::repeat_n(0.0, padding));
         }
-        Ok(Self { packed, offsets })
+        Ok(Self {
+            decoder,
+            layers,
+            packed,
+            offsets,
+        })
+    }
+
+    /// The decoder these weights are for.
+    pub fn decoder(&self) -> Decoder {
+        self.decoder
+    }
+
+    /// The layers, in execution order ([`Decoder::layers`]).
+    pub fn layers(&self) -> &[Layer] {
+        &self.layers
     }
 
     /// The packed floats (vec4-aligned per layer), as `shaders/neural/conv.comp` reads them.
@@ -172,7 +274,7 @@ impl NetworkWeights {
         &self.packed
     }
 
-    /// The first vec4 of layer `index` of [`LAYERS`] in [`NetworkWeights::packed`].
+    /// The first vec4 of layer `index` of [`NetworkWeights::layers`] in [`NetworkWeights::packed`].
     pub fn offset(&self, index: usize) -> u32 {
         self.offsets[index]
     }
@@ -215,10 +317,15 @@ mod tests {
     use safetensors::tensor::TensorView;
     use std::collections::HashMap;
 
-    /// A weights file with `format`, every layer's tensors, `edit` applied to (name, shape, values).
-    fn file(format: &str, edit: impl Fn(&str, &mut Vec<usize>, &mut Vec<f32>) -> bool) -> Vec<u8> {
+    /// A weights file with `format` and `decoder`, every layer's tensors, `edit` applied to (name,
+    /// shape, values).
+    fn file_for(
+        format: &str,
+        decoder: Decoder,
+        edit: impl Fn(&str, &mut Vec<usize>, &mut Vec<f32>) -> bool,
+    ) -> Vec<u8> {
         let mut tensors = Vec::new();
-        for layer in LAYERS {
+        for layer in decoder.layers() {
             let (cin, cout) = (layer.inputs() as usize, layer.out as usize);
             for (kind, shape) in [("weight", vec![cout, cin, 3, 3]), ("bias", vec![cout])] {
                 let name = format!("{}.{kind}", layer.name);
@@ -241,8 +348,16 @@ mod tests {
                 (name.clone(), view)
             })
             .collect();
-        let metadata = HashMap::from([("format".to_string(), format.to_string())]);
+        let metadata = HashMap::from([
+            ("format".to_string(), format.to_string()),
+            ("decoder".to_string(), decoder.name().to_string()),
+        ]);
         safetensors::serialize(&views, &Some(metadata)).expect("serialize")
+    }
+
+    /// A direct decoder's weights file ([`file_for`]).
+    fn file(format: &str, edit: impl Fn(&str, &mut Vec<usize>, &mut Vec<f32>) -> bool) -> Vec<u8> {
+        file_for(format, Decoder::Direct, edit)
     }
 
     fn error(bytes: &[u8]) -> String {
@@ -254,11 +369,30 @@ mod tests {
     #[test]
     fn committed_weights_load_and_pack_every_layer() {
         let weights = NetworkWeights::builtin();
-        let floats: usize = LAYERS.iter().map(Layer::packed_len).sum();
+        let floats: usize = weights.layers().iter().map(Layer::packed_len).sum();
         assert_eq!(weights.packed().len(), floats);
         assert_eq!(weights.offset(0), 0);
-        let good = file(FORMAT, |_, _, _| true);
-        assert!(NetworkWeights::from_bytes(&good, "w").is_ok());
+        for decoder in [Decoder::Direct, Decoder::Kernel] {
+            let good = file_for(FORMAT, decoder, |_, _, _| true);
+            let loaded = NetworkWeights::from_bytes(&good, "w").expect("loads");
+            assert_eq!(loaded.decoder(), decoder);
+            assert_eq!(loaded.layers(), decoder.layers());
+        }
+    }
+
+    #[test]
+    fn output_channels_are_padded_with_zeros() {
+        let kernel = file_for(FORMAT, Decoder::Kernel, |_, _, _| true);
+        let weights = NetworkWeights::from_bytes(&kernel, "w").expect("loads");
+        let index = weights.layers().iter().position(|l| l.name == "out_half");
+        let layer = weights.layers()[index.expect("has out_half")];
+        assert_eq!((layer.out, layer.out_padded()), (26, 28));
+        let start = weights.offset(index.expect("index")) as usize * 4;
+        let packed = &weights.packed()[start..start + layer.packed_len()];
+        for (i, chunk) in packed.chunks(28).enumerate() {
+            assert!(chunk[..26].iter().all(|&w| w == 0.5), "row {i}");
+            assert_eq!(chunk[26..], [0.0, 0.0], "row {i}");
+        }
     }
 
     #[test]
@@ -269,7 +403,14 @@ mod tests {
             truncated.contains("w.safetensors") && truncated.contains("not a valid safetensors")
         );
         assert!(error(b"not a weights file").contains("not a valid safetensors"));
-        assert!(error(&file("lucid-rae-v1", |_, _, _| true)).contains("format \"lucid-rae-v1\""));
+        assert!(error(&file("lucid-rae-v2", |_, _, _| true)).contains("format \"lucid-rae-v2\""));
+        let mut other = file(FORMAT, |_, _, _| true);
+        let at = other
+            .windows(6)
+            .position(|w| w == b"direct")
+            .expect("decoder in the header");
+        other[at..at + 6].copy_from_slice(b"dirext");
+        assert!(error(&other).contains("decoder \"dirext\""));
         let missing = error(&file(FORMAT, |name, _, _| name != "dec1.bias"));
         assert!(
             missing.contains("dec1.bias") && missing.contains("missing"),
