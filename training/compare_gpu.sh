@@ -10,25 +10,26 @@
 #                         seconds, parameters, FLOPs per pixel (and the ratios to the first variant)
 #   variants.tar.gz       per variant: weights (<name>.safetensors), log (<name>.json) and output
 #                         (<name>.log)
-#   lucid-rae-v2.safetensors, train.json, neural_parity.safetensors
-#                         the direct+l1grad run's weights under the shipping name (model.FORMAT),
-#                         its log and the parity fixture from them, as train_gpu.sh writes them
+#   lucid-rae-v3.safetensors, train.json, neural_parity.safetensors
+#                         the SHIP variant's weights under the shipping name (model.FORMAT),
+#                         its log and the parity fixture from them
 #   dataset.json          the dataset's index
 # (6 files: what the GPU machine sends back is limited to 8.)
 # A variant is MODEL:LOSS[:BURN_IN[:SEED]] (train.py's --model, --loss, --burn-in, --seed) and is
 # named MODEL-LOSS[-burnK][-seedN]. VARIANTS defaults to
-# "direct:l1grad kernel:l1grad direct:l1msssim"; SEED (0) is the seed of variants that name none:
-# the same seed draws the same training windows. Also: LUCID, ROOMS (dataset_gpu.sh), DATA, the
-# dataset's folder; INIT, weights every variant starts from; TRAIN_ARGS, more train.py arguments
-# for every variant; SHIP, the variant exported under the shipping name (direct-l1grad).
+# "direct:l1grad:12 kernel:l1grad:12"; SEED (0) is the seed of variants that name none: the same
+# seed draws the same training windows. Also: LUCID, SHARDS, ROOMS, FRAMES, SEQUENCES
+# (dataset_gpu.sh), DATA, the dataset's folder; INIT, weights every variant starts from (e.g.
+# lucid-rae-v2's: its first layer grows by the new inputs, at zero); MINUTES, each variant's
+# training time; TRAIN_ARGS, more train.py arguments for every variant; SHIP, the variant exported
+# under the shipping name (the first).
 set -euo pipefail
 out=${1:?usage: training/compare_gpu.sh OUT_DIR}
 here=$(cd "$(dirname "$0")" && pwd)
 data=${DATA:-/tmp/lucid-dataset}
 budget=${BUDGET:-560}
 reserve=${RESERVE:-90}
-variants=${VARIANTS:-direct:l1grad kernel:l1grad direct:l1msssim}
-ship=${SHIP:-direct-l1grad}
+variants=${VARIANTS:-direct:l1grad:12 kernel:l1grad:12}
 start=$(date +%s)
 names=()
 args=()
@@ -45,6 +46,7 @@ for v in $variants; do
   names+=("$name")
   args+=("--model $model --loss $loss --burn-in ${burn:-0} --seed ${seed:-${SEED:-0}}")
 done
+ship=${SHIP:-${names[0]}}
 mkdir -p "$out"
 out=$(realpath "$out")
 data=$(realpath -m "$data")

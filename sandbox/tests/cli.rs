@@ -308,6 +308,59 @@ fn dataset_writes_records_and_references_with_an_index() {
     assert!(stderr(&odd).contains("multiples of 4"), "{}", stderr(&odd));
 }
 
+#[test]
+fn sequence_evaluates_other_learned_weights_beside_the_committed_ones() {
+    let dir = temp("sequence-weights");
+    let alternative = concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/../tests/references/neural_alternative_weights.safetensors"
+    );
+    let out = lucid(&[
+        "sequence",
+        "--scene",
+        "cornell-box",
+        "--size",
+        "16x12",
+        "--frames",
+        "2",
+        "--reference-spp",
+        "4",
+        "--also-neural-weights",
+        alternative,
+        "--out",
+        dir.to_str().unwrap(),
+    ]);
+    assert!(out.status.success(), "{}", stderr(&out));
+    let method = "neural-neural_alternative_weights";
+    for frame in ["0000.exr", "0001.exr"] {
+        assert!(dir.join(method).join(frame).is_file(), "{method}/{frame}");
+    }
+    let csv = std::fs::read_to_string(dir.join("metrics.csv")).unwrap();
+    let methods: std::collections::BTreeSet<&str> = csv
+        .lines()
+        .skip(1)
+        .filter_map(|line| line.split(',').next())
+        .collect();
+    for expected in ["none", "spatial", "svgf", "neural", method] {
+        assert!(methods.contains(expected), "{expected} in {methods:?}");
+    }
+    let bad = lucid(&[
+        "sequence",
+        "--size",
+        "16x12",
+        "--also-neural-weights",
+        "/nonexistent/w.safetensors",
+        "--out",
+        dir.to_str().unwrap(),
+    ]);
+    assert!(
+        stderr(&bad).contains("/nonexistent/w.safetensors"),
+        "{}",
+        stderr(&bad)
+    );
+    std::fs::remove_dir_all(&dir).unwrap();
+}
+
 /// Fails before any rendering (no device is even opened), with one line naming the problem.
 fn assert_fails_at_once(args: &[&str], expect: &str) {
     let started = std::time::Instant::now();

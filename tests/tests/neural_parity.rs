@@ -196,8 +196,7 @@ fn vulkan_inference_matches_pytorch_over_two_frames() {
         let (w, h) = fixture.size;
         let records = records(&fixture, fixture.size);
         for &path in &paths {
-            let network =
-                Network::with_path(&ctx, &fixture.weights, path).expect("upload weights");
+            let network = Network::with_path(&ctx, &fixture.weights, path).expect("upload weights");
             let images = denoise(&mut executor, &network, &records, (w, h));
             let mut worst_per_frame = Vec::new();
             let mut worst_accum_per_frame = Vec::new();
@@ -259,8 +258,7 @@ fn inference_paths_agree_at_odd_sizes() {
         let records = records(&fixture, (cw, ch));
         let mut results = Vec::new();
         for &path in &paths {
-            let network =
-                Network::with_path(&ctx, &fixture.weights, path).expect("upload weights");
+            let network = Network::with_path(&ctx, &fixture.weights, path).expect("upload weights");
             results.push(denoise(&mut executor, &network, &records, (cw, ch)));
         }
         let mut worst = 0.0f32;

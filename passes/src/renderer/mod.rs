@@ -403,6 +403,11 @@ impl Renderer {
         self.network.path()
     }
 
+    /// What the learned denoiser's last layers predict.
+    pub fn neural_decoder(&self) -> neural::Decoder {
+        self.network.decoder()
+    }
+
     /// Frames averaged into the current output.
     pub fn accumulated_frames(&self) -> u32 {
         self.accumulated

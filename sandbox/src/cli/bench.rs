@@ -134,6 +134,7 @@ pub fn run(args: &BenchArgs) -> anyhow::Result<()> {
         "algorithm": settings.algorithm.short_name(),
         "denoiser": settings.denoiser.short_name(),
         "neural_path": renderer.neural_path().short_name(),
+        "neural_decoder": renderer.neural_decoder().name(),
         "size": [w, h],
         "spp": args.options.spp.get(),
         "max_depth": args.options.max_depth,

@@ -53,11 +53,11 @@ pub fn evaluate_folder(dir: &Path, display: &PngEncoding) -> anyhow::Result<()> 
     let methods = method_folders(dir)?;
     let reference = load_frames(&dir.join("reference"))?;
     let mut results = Vec::new();
-    for method in methods {
+    for method in &methods {
         let frames = load_frames(&dir.join(method))?;
         let metrics = evaluate_sequence(&frames, &reference, display)
             .with_context(|| format!("evaluating {method}"))?;
-        results.push((method, metrics));
+        results.push((method.as_str(), metrics));
     }
     let csv = dir.join("metrics.csv");
     write_atomic(&csv, to_csv(&results).as_bytes())
@@ -76,19 +76,28 @@ pub fn evaluate_folder(dir: &Path, display: &PngEncoding) -> anyhow::Result<()> 
     Ok(())
 }
 
-/// The method folders of `dir` (the sequence's methods, then [`EXTERNAL_METHODS`]) that exist; an
-/// error naming the expected folders when there is none.
-fn method_folders(dir: &Path) -> anyhow::Result<Vec<&'static str>> {
+/// The method folders of `dir` (the sequence's methods, then the learned denoiser's other weights'
+/// `neural-*` in name order, then [`EXTERNAL_METHODS`]) that exist; an error naming the expected
+/// folders when there is none.
+fn method_folders(dir: &Path) -> anyhow::Result<Vec<String>> {
     anyhow::ensure!(dir.is_dir(), "{}: no such folder", dir.display());
-    let expected: Vec<&'static str> = Method::ALL
-        .map(Method::name)
-        .into_iter()
-        .chain(EXTERNAL_METHODS)
+    let extra_neural = format!("{}-", Method::Neural.name());
+    let mut other_weights: Vec<String> = std::fs::read_dir(dir)
+        .with_context(|| format!("reading {}", dir.display()))?
+        .filter_map(|entry| entry.ok()?.file_name().into_string().ok())
+        .filter(|name| name.starts_with(&extra_neural))
         .collect();
-    let present: Vec<&'static str> = expected
+    other_weights.sort();
+    let expected: Vec<String> = Method::ALL
+        .map(|m| m.name().to_owned())
+        .into_iter()
+        .chain(other_weights)
+        .chain(EXTERNAL_METHODS.map(str::to_owned))
+        .collect();
+    let present: Vec<String> = expected
         .iter()
-        .copied()
         .filter(|method| dir.join(method).is_dir())
+        .cloned()
         .collect();
     anyhow::ensure!(
         !present.is_empty(),

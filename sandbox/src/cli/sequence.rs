@@ -12,9 +12,11 @@ use clap::Args;
 use lucid_engine::capture::{self, ExrPrecision, ImageData};
 use lucid_engine::scene::{Camera, Scene};
 use lucid_engine::{Context, ContextDesc};
-use lucid_passes::denoise::neural::{record_image, RECORD_ALBEDO, RECORD_NORMAL};
+use lucid_passes::denoise::neural::{
+    record_image, InferencePath, NetworkWeights, RECORD_ALBEDO, RECORD_NORMAL,
+};
 use lucid_passes::denoise::svgf::{SvgfMode, SvgfParams};
-use lucid_passes::renderer::{Denoiser, SamplesPerPixel, Settings};
+use lucid_passes::renderer::{Denoiser, Renderer, SamplesPerPixel, Settings};
 use std::path::{Path, PathBuf};
 
 /// Options of `lucid sequence`.
@@ -38,6 +40,19 @@ pub struct SequenceArgs {
     /// Only render; evaluate later with `lucid evaluate` (e.g. after adding an `oidn/` folder).
     #[arg(long)]
     no_evaluate: bool,
+    /// More learned-denoiser weights (files `training/train.py` wrote), each rendered and evaluated
+    /// as one more method, `neural-<file stem>/`, beside `neural/` (the committed weights, or
+    /// `--neural-weights`).
+    #[arg(long, value_name = "FILE")]
+    also_neural_weights: Vec<PathBuf>,
+}
+
+/// The method name of learned-denoiser weights given with `--also-neural-weights`.
+pub fn extra_neural_method(weights: &Path) -> String {
+    let stem = weights
+        .file_stem()
+        .map_or_else(|| "weights".into(), |s| s.to_string_lossy());
+    format!("{}-{stem}", Denoiser::Neural.short_name())
 }
 
 /// The sequences rendered besides the reference: the noisy input and each denoiser, at `--spp`
@@ -132,9 +147,19 @@ pub fn run(args: &SequenceArgs) -> anyhow::Result<()> {
         reference_settings,
         reference_frames,
     )?;
+    let extra: Vec<(String, NetworkWeights)> = args
+        .also_neural_weights
+        .iter()
+        .map(|path| Ok((extra_neural_method(path), NetworkWeights::load(path)?)))
+        .collect::<anyhow::Result<_>>()?;
     for method in Method::ALL {
         let settings = method.settings(base);
         render(&ctx, &scene, args, &cameras, method.name(), settings, 1)?;
+    }
+    for (name, weights) in &extra {
+        let settings = Method::Neural.settings(base);
+        let network = Some((weights, args.options.neural_path));
+        render_with(&ctx, &scene, args, &cameras, (name, settings), network)?;
     }
     if args.no_evaluate {
         return Ok(());
@@ -156,13 +181,44 @@ fn render(
     frames_each: u32,
 ) -> anyhow::Result<()> {
     let (w, h) = (args.options.size.width, args.options.size.height);
-    let folder = args.out.join(name);
-    std::fs::create_dir_all(&folder).with_context(|| format!("creating {}", folder.display()))?;
-    let mut renderer = args
+    let renderer = args
         .options
         .renderer(ctx, scene.clone(), (w, h), settings)?;
+    render_frames(renderer, args, cameras, name, frames_each)
+}
+
+/// Renders `cameras` with the learned denoiser as [`render`] does, with `network`'s weights (on
+/// its inference path, or the device's best) into `<out>/<name>/`.
+fn render_with(
+    ctx: &Context,
+    scene: &Scene,
+    args: &SequenceArgs,
+    cameras: &[Camera],
+    (name, settings): (&str, Settings),
+    network: Option<(&NetworkWeights, Option<InferencePath>)>,
+) -> anyhow::Result<()> {
+    let (w, h) = (args.options.size.width, args.options.size.height);
+    let mut renderer = Renderer::new(ctx, scene.clone(), w, h, settings)?;
+    if let Some((weights, path)) = network {
+        renderer.set_neural_network(weights, path.unwrap_or(InferencePath::best(ctx)))?;
+    }
+    render_frames(renderer, args, cameras, name, 1)
+}
+
+/// [`render`]'s frames, by `renderer`.
+fn render_frames(
+    mut renderer: Renderer,
+    args: &SequenceArgs,
+    cameras: &[Camera],
+    name: &str,
+    frames_each: u32,
+) -> anyhow::Result<()> {
+    let (w, h) = (args.options.size.width, args.options.size.height);
+    let neural = renderer.settings().denoiser == Denoiser::Neural;
+    let folder = args.out.join(name);
+    std::fs::create_dir_all(&folder).with_context(|| format!("creating {}", folder.display()))?;
     eprintln!("{name}: {} frames", cameras.len());
-    let aux = if settings.denoiser == Denoiser::Neural {
+    let aux = if neural {
         [("albedo", RECORD_ALBEDO), ("normal", RECORD_NORMAL)].as_slice()
     } else {
         &[]

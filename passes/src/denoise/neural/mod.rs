@@ -126,7 +126,13 @@ impl FrameDenoiser for NeuralDenoiser {
 
     fn reset_on_scene_change(&self) -> Vec<String> {
         let keys = HistoryKeys::new(&self.prefix);
-        vec![keys.output, keys.surface, keys.accum, keys.moment, keys.robust]
+        vec![
+            keys.output,
+            keys.surface,
+            keys.accum,
+            keys.moment,
+            keys.robust,
+        ]
     }
 }
 
@@ -271,7 +277,7 @@ pub fn add_neural(
     let (net, _) = conv(g, 6, d0, None, false);
     // The kernel decoder's full-scale filtered radiance and the half scale's detail.
     let scales = d0_pooled.map(|f1| {
-        let f2 = add_pool(g, f1);
+        let f2 = add_pool(g, f1, "neural.dec0.pool_quarter");
         let (half_net, _) = conv(g, 7, f1, None, false);
         let (quarter_net, _) = conv(g, 8, f2, None, false);
         add_kernel_scales(g, record, features, [net, half_net, quarter_net])
@@ -313,10 +319,12 @@ fn add_kernel_scales(
     heads: [Tensor; 3],
 ) -> [BufferHandle; 2] {
     let sizes = heads.map(|t| t.size);
+    const SCALES: [&str; 3] = ["full", "half", "quarter"];
     let vec4_bytes = |(w, h): (u32, u32)| u64::from(w) * u64::from(h) * 16;
     let radiance: Vec<BufferHandle> = (1..3)
         .map(|level| {
-            let mut p = g.compute_pass("neural.kernel_radiance", &KERNEL_RADIANCE);
+            let name = format!("neural.kernel_radiance.{}", SCALES[level]);
+            let mut p = g.compute_pass(&name, &KERNEL_RADIANCE);
             p.read("b_record", record)
                 .specialize("LEVEL", level as u32)
                 .push(&[features.size.0, features.size.1]);
@@ -327,7 +335,8 @@ fn add_kernel_scales(
         .collect();
     let filtered: Vec<BufferHandle> = (0..3)
         .map(|level| {
-            let mut p = g.compute_pass("neural.kernel_filter", &KERNEL_FILTER);
+            let name = format!("neural.kernel_filter.{}", SCALES[level]);
+            let mut p = g.compute_pass(&name, &KERNEL_FILTER);
             p.read("b_logits", heads[level].buffer)
                 .read("b_features", features.buffer)
                 // The full scale reads the features; the others their pooled radiance.
@@ -341,7 +350,8 @@ fn add_kernel_scales(
         })
         .collect();
     let detail = |g: &mut RenderGraph, level: usize, coarser: Option<BufferHandle>| {
-        let mut p = g.compute_pass("neural.kernel_detail", &KERNEL_DETAIL);
+        let name = format!("neural.kernel_detail.{}", SCALES[level]);
+        let mut p = g.compute_pass(&name, &KERNEL_DETAIL);
         let coarser_size = sizes[(level + 1).min(2)];
         p.read("b_filtered", filtered[level])
             .read("b_finer", filtered[level - 1])
@@ -449,7 +459,10 @@ fn add_conv(
             p.specialize("OUT_PER_THREAD", per_thread)
                 .push(&[push[0], push[1], push[2], push[3], offset]);
             p.dispatch([size.0, size.1, out_channels / per_thread]);
-            (output, pool.then(|| add_pool(g, output)))
+            (
+                output,
+                pool.then(|| add_pool(g, output, &format!("{name}.pool"))),
+            )
         }
     }
 }
@@ -459,10 +472,10 @@ fn half_size((width, height): (u32, u32)) -> (u32, u32) {
     (width.div_ceil(2), height.div_ceil(2))
 }
 
-/// Adds 2x2 average pooling of `input` down to half its size.
-fn add_pool(g: &mut RenderGraph, input: Tensor) -> Tensor {
+/// Adds 2x2 average pooling of `input` down to half its size, as the pass `name`.
+fn add_pool(g: &mut RenderGraph, input: Tensor, name: &str) -> Tensor {
     let size = half_size(input.size);
-    let mut p = g.compute_pass("neural.pool", &POOL);
+    let mut p = g.compute_pass(name, &POOL);
     p.read("b_in", input.buffer)
         .specialize("CHANNELS", input.channels)
         .push(&[size.0, size.1, input.size.0, input.size.1]);
