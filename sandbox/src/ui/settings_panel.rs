@@ -64,7 +64,7 @@ fn scene(ui: &mut egui::Ui, state: &mut AppState, requests: &mut Requests) {
 }
 
 /// The scene features with their names, in a fixed order.
-fn feature_list(f: &SceneFeatures) -> [(&'static str, bool); 11] {
+fn feature_list(f: &SceneFeatures) -> [(&'static str, bool); 16] {
     [
         ("diffuse", f.diffuse),
         ("conductor", f.conductor),
@@ -74,6 +74,11 @@ fn feature_list(f: &SceneFeatures) -> [(&'static str, bool); 11] {
         ("spheres", f.spheres),
         ("textures", f.textures),
         ("vertex colours", f.vertex_colors),
+        ("normal maps", f.normal_maps),
+        ("emissive textures", f.emissive_textures),
+        ("alpha cut-outs", f.alpha_test),
+        ("occlusion", f.occlusion),
+        ("texture transforms", f.texture_transforms),
         ("environment", f.environment),
         ("sun", f.sun),
         ("point/spot lights", f.delta_lights),
