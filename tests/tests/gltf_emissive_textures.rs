@@ -62,6 +62,6 @@ fn a_half_black_emissive_texture_gives_half_the_light() {
         assert!((white / plain - 1.0).abs() < 0.05, "{white} vs {plain}");
         assert!((half_lit / white - 0.5).abs() < 0.05, "{half_lit} vs {white}");
         // The light comes from the white half (over x < 0).
-        assert!(l > 1.5 * r, "left {l}, right {r}");
+        assert!(l > 1.3 * r, "left {l}, right {r}");
     }
 }

@@ -145,7 +145,8 @@ fn occlusion_darkens_the_denoisers_albedo_only() {
     let scene = |strength: Option<f32>| {
         let mut doc = Doc::new();
         let occlusion = strength.map_or(String::new(), |s| {
-            let t = doc.texture(2, 1, &[[255, 0, 0, 255], [0, 0, 0, 255]], None);
+            let clamp = Some(r#"{"wrapS": 33071, "wrapT": 33071}"#);
+            let t = doc.texture(2, 1, &[[255, 0, 0, 255], [0, 0, 0, 255]], clamp);
             format!(r#", "occlusionTexture": {{"index": {t}, "strength": {s}}}"#)
         });
         let m = doc.material(&format!(
