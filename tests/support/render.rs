@@ -74,8 +74,11 @@ pub fn render_once(
 /// normal-and-roughness images.
 pub fn gbuffer_once(scene: Scene, size: u32) -> [ImageData; 2] {
     let ctx = crate::context(false);
-    let mut renderer = Renderer::new(&ctx, scene, size, size, Settings::default()).expect("renderer");
-    let images = frame_images(&mut renderer, |i| [i.gbuffer.albedo, i.gbuffer.normal_roughness]);
+    let mut renderer =
+        Renderer::new(&ctx, scene, size, size, Settings::default()).expect("renderer");
+    let images = frame_images(&mut renderer, |i| {
+        [i.gbuffer.albedo, i.gbuffer.normal_roughness]
+    });
     drop(renderer);
     crate::assert_no_validation_messages(&ctx);
     images

@@ -88,15 +88,28 @@ fn a_mask_shows_the_floor_through_the_cut_outs() {
     let [albedo, _] = gbuffer_once(masked, SIZE);
     let (red_clear, green_clear) = (mean_at(&albedo, &clear, 0), mean_at(&albedo, &clear, 1));
     let (red_opaque, green_opaque) = (mean_at(&albedo, &opaque, 0), mean_at(&albedo, &opaque, 1));
-    println!("clear: red {red_clear} green {green_clear}; opaque: red {red_opaque} green {green_opaque}");
-    assert!(red_clear > 0.7 && green_clear < 0.05, "the floor through the cut-outs");
-    assert!(green_opaque > 0.7 && red_opaque < 0.05, "the panel elsewhere");
+    println!(
+        "clear: red {red_clear} green {green_clear}; opaque: red {red_opaque} green {green_opaque}"
+    );
+    assert!(
+        red_clear > 0.7 && green_clear < 0.05,
+        "the floor through the cut-outs"
+    );
+    assert!(
+        green_opaque > 0.7 && red_opaque < 0.05,
+        "the panel elsewhere"
+    );
     // Opaque, the same file shows the panel everywhere.
     let [albedo, _] = gbuffer_once(scene("", true, None, ABOVE), SIZE);
     assert!(mean_at(&albedo, &clear, 1) > 0.7);
     // A cutoff above the texels' alpha removes the whole panel; vertex alpha below it too.
     let [albedo, _] = gbuffer_once(
-        scene(r#", "alphaMode": "MASK", "alphaCutoff": 1.01"#, true, None, ABOVE),
+        scene(
+            r#", "alphaMode": "MASK", "alphaCutoff": 1.01"#,
+            true,
+            None,
+            ABOVE,
+        ),
         SIZE,
     );
     assert!(mean_at(&albedo, &opaque, 0) > 0.7);
@@ -111,14 +124,23 @@ fn a_mask_shows_the_floor_through_the_cut_outs() {
 fn a_mask_casts_a_checkered_shadow() {
     let [opaque, clear] = quadrants(&BELOW);
     let render = |panel: &str| {
-        render_once(scene(panel, true, None, BELOW), Algorithm::PathTracing, 1, 2, SIZE)
+        render_once(
+            scene(panel, true, None, BELOW),
+            Algorithm::PathTracing,
+            1,
+            2,
+            SIZE,
+        )
     };
     let masked = render(r#", "alphaMode": "MASK""#);
     let (lit, shadowed) = (mean_at(&masked, &clear, 0), mean_at(&masked, &opaque, 0));
     println!("under the cut-outs {lit}, under the opaque texels {shadowed}");
     assert!(lit > 0.2 && shadowed < 0.01 * lit, "{lit} {shadowed}");
     let opaque_panel = render("");
-    assert!(mean_at(&opaque_panel, &clear, 0) < 0.01 * lit, "no light through an opaque panel");
+    assert!(
+        mean_at(&opaque_panel, &clear, 0) < 0.01 * lit,
+        "no light through an opaque panel"
+    );
 }
 
 #[test]

@@ -25,7 +25,10 @@ fn room(texels: Option<[[u8; 4]; 2]>) -> Scene {
     doc.uses("KHR_materials_emissive_strength");
     let floor = doc.material(r#"{"pbrMetallicRoughness": {"metallicFactor": 0}}"#);
     let texture = texels.map_or(String::new(), |t| {
-        format!(r#", "emissiveTexture": {{"index": {}}}"#, doc.texture(2, 1, &t, None))
+        format!(
+            r#", "emissiveTexture": {{"index": {}}}"#,
+            doc.texture(2, 1, &t, None)
+        )
     });
     let emitter = doc.material(&format!(
         r#"{{"pbrMetallicRoughness": {{"baseColorFactor": [0, 0, 0, 1], "metallicFactor": 0}},
@@ -60,7 +63,10 @@ fn a_half_black_emissive_texture_gives_half_the_light() {
         println!("{algorithm:?}: no texture {plain}, white {white}, half black {half_lit} (left {l}, right {r})");
         // A white texture changes nothing; half the texels black, half the light.
         assert!((white / plain - 1.0).abs() < 0.05, "{white} vs {plain}");
-        assert!((half_lit / white - 0.5).abs() < 0.05, "{half_lit} vs {white}");
+        assert!(
+            (half_lit / white - 0.5).abs() < 0.05,
+            "{half_lit} vs {white}"
+        );
         // The light comes from the white half (over x < 0).
         assert!(l > 1.3 * r, "left {l}, right {r}");
     }

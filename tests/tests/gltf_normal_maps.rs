@@ -69,15 +69,29 @@ fn a_normal_map_tilts_shading_towards_its_normal() {
     assert_eq!(towards.meshes[0].tangents.len(), 4, "MikkTSpace tangents");
     let (plain, _) = brightness(floor(None, 1.0, None, sun));
     let (lit, _) = brightness(towards);
-    let (away, _) = brightness(floor(Some(tilt(-(30f32.to_radians().tan()))), 1.0, None, sun));
+    let (away, _) = brightness(floor(
+        Some(tilt(-(30f32.to_radians().tan()))),
+        1.0,
+        None,
+        sun,
+    ));
     let (flattened, _) = brightness(floor(Some(tilt(1.0)), 0.0, None, sun));
     println!("plain {plain}, towards the sun {lit}, away {away}, scale 0 {flattened}");
     // Lambert: cos 45° flat, cos 15° tilted 30° towards the sun, cos 75° away from it.
     let cos = |deg: f32| deg.to_radians().cos();
-    assert!((lit / plain - cos(15.0) / cos(45.0)).abs() < 0.05, "{lit} / {plain}");
-    assert!((away / plain - cos(75.0) / cos(45.0)).abs() < 0.05, "{away} / {plain}");
+    assert!(
+        (lit / plain - cos(15.0) / cos(45.0)).abs() < 0.05,
+        "{lit} / {plain}"
+    );
+    assert!(
+        (away / plain - cos(75.0) / cos(45.0)).abs() < 0.05,
+        "{away} / {plain}"
+    );
     // A scale of 0 flattens the map's x and y: the mesh normal again.
-    assert!((flattened / plain - 1.0).abs() < 0.01, "{flattened} / {plain}");
+    assert!(
+        (flattened / plain - 1.0).abs() < 0.01,
+        "{flattened} / {plain}"
+    );
 }
 
 #[test]

@@ -40,7 +40,10 @@ fn floor(sampler: Option<&str>, info: &str) -> Scene {
             "baseColorTexture": {{"index": {t}{info}}}}}}}"#
     ));
     uv_plane(&mut doc, 1.0, 0.0, false, m, &[]);
-    doc.light(r#"{"type": "point", "intensity": 10}"#, r#""translation": [0, 1, 0]"#);
+    doc.light(
+        r#"{"type": "point", "intensity": 10}"#,
+        r#""translation": [0, 1, 0]"#,
+    );
     VIEW.add_to(&mut doc);
     doc.load("sampled.gltf")
 }
@@ -127,7 +130,8 @@ fn wrap_modes_clamp_repeat_and_mirror() {
         rotation: 0.0,
         scale: Vec2::splat(2.0),
     };
-    let info = r#", "extensions": {"KHR_texture_transform": {"offset": [-0.5, -0.5], "scale": [2, 2]}}"#;
+    let info =
+        r#", "extensions": {"KHR_texture_transform": {"offset": [-0.5, -0.5], "scale": [2, 2]}}"#;
     for (mode, wrap) in [
         (10497, repeat as fn(f32) -> f32),
         (33071, clamp),
@@ -153,7 +157,10 @@ fn occlusion_darkens_the_denoisers_albedo_only() {
             r#"{{"pbrMetallicRoughness": {{"baseColorFactor": [0.5, 0.5, 0.5, 1], "metallicFactor": 0}}{occlusion}}}"#
         ));
         uv_plane(&mut doc, 1.0, 0.0, false, m, &[]);
-        doc.light(r#"{"type": "point", "intensity": 10}"#, r#""translation": [0, 1, 0]"#);
+        doc.light(
+            r#"{"type": "point", "intensity": 10}"#,
+            r#""translation": [0, 1, 0]"#,
+        );
         VIEW.add_to(&mut doc);
         doc.load("occluded.gltf")
     };
@@ -165,7 +172,10 @@ fn occlusion_darkens_the_denoisers_albedo_only() {
         let [albedo, _] = gbuffer_once(scene(Some(strength)), VIEW.size);
         let (l, r) = (mean_at(&albedo, &left, 0), mean_at(&albedo, &right, 0));
         println!("strength {strength}: albedo {l} unoccluded, {r} occluded");
-        assert!((l - 0.5).abs() < 0.02 && (r - want_right).abs() < 0.02, "{l} {r}");
+        assert!(
+            (l - 0.5).abs() < 0.02 && (r - want_right).abs() < 0.02,
+            "{l} {r}"
+        );
     }
     // Light transport ignores it: the same radiance with and without the texture.
     let with = render_once(occluded, Algorithm::PathTracing, 4, 3, VIEW.size);

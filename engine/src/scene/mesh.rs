@@ -144,7 +144,10 @@ impl Mesh {
         {
             return fail(format!("colour {c} is not finite or outside [0, 1]"));
         }
-        for (name, len) in [("alphas", self.alphas.len()), ("tangents", self.tangents.len())] {
+        for (name, len) in [
+            ("alphas", self.alphas.len()),
+            ("tangents", self.tangents.len()),
+        ] {
             if len != 0 && len != nv {
                 return fail(format!("{len} {name} for {nv} positions"));
             }

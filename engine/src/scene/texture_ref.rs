@@ -125,8 +125,15 @@ mod tests {
             (Vec2::new(0.0, 1.0), Vec2::new(0.5, 1.0)),
             (Vec2::new(1.0, 1.0), Vec2::new(0.5, 0.5)),
         ] {
-            assert!(t.apply(uv).abs_diff_eq(want, 1e-6), "{uv} -> {}", t.apply(uv));
+            assert!(
+                t.apply(uv).abs_diff_eq(want, 1e-6),
+                "{uv} -> {}",
+                t.apply(uv)
+            );
         }
-        assert_eq!(UvTransform::IDENTITY.apply(Vec2::new(0.3, 0.7)), Vec2::new(0.3, 0.7));
+        assert_eq!(
+            UvTransform::IDENTITY.apply(Vec2::new(0.3, 0.7)),
+            Vec2::new(0.3, 0.7)
+        );
     }
 }

@@ -112,7 +112,10 @@ impl<'a> MaterialImporter<'a> {
         let doc = self.doc;
         let json = &doc.as_json().materials[index];
         let info = |i: &gltf::json::texture::Info| {
-            let transform = i.extensions.as_ref().and_then(|e| e.texture_transform.as_ref());
+            let transform = i
+                .extensions
+                .as_ref()
+                .and_then(|e| e.texture_transform.as_ref());
             Slot::new(doc, i.index, i.tex_coord, transform)
         };
         let pbr_json = &json.pbr_metallic_roughness;

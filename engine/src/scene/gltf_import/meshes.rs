@@ -144,10 +144,7 @@ pub fn primitive(
 
 /// Reads a `COLOR_0` accessor: RGB or RGBA, float or normalized `u8`/`u16`, as linear RGB in
 /// `[0, 1]` and, for RGBA, the alphas (floats are clamped; RGB gives no alphas).
-fn read_colors(
-    a: &gltf::Accessor,
-    buffers: &[Vec<u8>],
-) -> Result<(Vec<Vec3>, Vec<f32>), String> {
+fn read_colors(a: &gltf::Accessor, buffers: &[Vec<u8>]) -> Result<(Vec<Vec3>, Vec<f32>), String> {
     let (rgb, alphas): (Vec<Vec3>, Vec<f32>) = match a.dimensions() {
         Dimensions::Vec3 => (
             read_floats::<3>(a, buffers, true)?

@@ -5,9 +5,9 @@
 use glam::Vec2;
 use gltf::json::extensions::texture::TextureTransform;
 use gltf::json::Index;
-use serde_json::{Map, Value};
 use gltf::texture::WrappingMode;
 use gltf::Document;
+use serde_json::{Map, Value};
 
 use crate::scene::{UvTransform, WrapMode};
 
@@ -59,8 +59,9 @@ impl Slot {
     ) -> Result<Self, String> {
         let transform = match others.and_then(|o| o.get("KHR_texture_transform")) {
             Some(v) => Some(
-                serde_json::from_value::<TextureTransform>(v.clone())
-                    .map_err(|e| format!("texture {}: KHR_texture_transform: {e}", index.value()))?,
+                serde_json::from_value::<TextureTransform>(v.clone()).map_err(|e| {
+                    format!("texture {}: KHR_texture_transform: {e}", index.value())
+                })?,
             ),
             None => None,
         };

@@ -11,7 +11,11 @@ use crate::scene::{Bvh, Mesh, Scene};
 fn attributes(mesh: &Mesh, i: usize) -> GpuVertexAttributes {
     let color = mesh.colors.get(i).copied().unwrap_or(glam::Vec3::ONE);
     let alpha = mesh.alphas.get(i).copied().unwrap_or(1.0);
-    let tangent = mesh.tangents.get(i).copied().unwrap_or(glam::Vec4::X.with_w(1.0));
+    let tangent = mesh
+        .tangents
+        .get(i)
+        .copied()
+        .unwrap_or(glam::Vec4::X.with_w(1.0));
     let [rg, b] = encode_color(color.extend(alpha));
     [
         rg,

@@ -29,12 +29,12 @@ mod params;
 pub use bvh_pack::GpuBvhNode;
 pub use encode::{decode_normal, encode_color, encode_normal, encode_uv};
 pub use flat::{apply_flattening, pack_flat, INSTANCE_FLATTENED};
+pub use layout::material_flags;
 pub use layout::{
     light_kind, material_kind, texture_format, GpuAliasEntry, GpuCamera, GpuEnvironment,
     GpuInstance, GpuLight, GpuMaterial, GpuSceneParams, GpuSphere, GpuSun, GpuTextureRecord,
     GpuTriangle, GpuVertex, GpuVertexAttributes,
 };
-pub use layout::material_flags;
 pub use params::camera;
 
 use std::mem::size_of;

@@ -1,8 +1,8 @@
 //! Packs materials, textures, lights, camera, environment and sun.
 
 use super::layout::{
-    light_kind, material_flags, material_kind, texture_format, GpuAliasEntry, GpuCamera, GpuEnvironment, GpuLight,
-    GpuMaterial, GpuSun, GpuTextureRecord,
+    light_kind, material_flags, material_kind, texture_format, GpuAliasEntry, GpuCamera,
+    GpuEnvironment, GpuLight, GpuMaterial, GpuSun, GpuTextureRecord,
 };
 use crate::scene::{
     AlphaMode, Camera, Environment, Instance, LightDistribution, LightSource, MaterialKind, Mesh,
