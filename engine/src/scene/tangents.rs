@@ -68,9 +68,9 @@ impl Mesh {
         let _ = bevy_mikktspace::generate_tangents(&mut corners);
         let per_corner = corners.tangents;
         let mut tangents: Vec<Option<Vec4>> = vec![None; self.positions.len()];
-        for c in 0..per_corner.len() {
+        for (c, corner) in per_corner.into_iter().enumerate() {
             let v = self.indices[c / 3][c % 3] as usize;
-            let t = per_corner[c].unwrap_or_else(|| any_tangent(self.normals[v]));
+            let t = corner.unwrap_or_else(|| any_tangent(self.normals[v]));
             match tangents[v] {
                 None => tangents[v] = Some(t),
                 Some(have) if have.abs_diff_eq(t, 1e-5) => {}

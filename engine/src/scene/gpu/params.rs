@@ -186,7 +186,6 @@ pub fn lights(
                         p1: direction.extend(outer_angle.cos()).to_array(),
                         p2: [inner_angle.cos(), 0.0, 0.0, 0.0],
                         emission,
-                        ..Default::default()
                     },
                 },
             }
