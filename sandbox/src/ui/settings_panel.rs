@@ -50,12 +50,16 @@ fn scene(ui: &mut egui::Ui, state: &mut AppState, requests: &mut Requests) {
             for note in &info.notes {
                 ui.label(note);
             }
-            ui.label("Features:");
-            ui.indent("features", |ui| {
-                for (name, used) in feature_list(&info.features) {
-                    ui.label(format!("{} {name}", if used { "☑" } else { "☐" }));
-                }
-            });
+            let used: Vec<&str> = feature_list(&info.features)
+                .into_iter()
+                .filter_map(|(name, used)| used.then_some(name))
+                .collect();
+            let used = if used.is_empty() {
+                "none".to_string()
+            } else {
+                used.join(", ")
+            };
+            ui.label(format!("Features: {used}"));
         }
         Err(e) => {
             ui.colored_label(egui::Color32::LIGHT_RED, e);
