@@ -172,7 +172,10 @@ fn imports_textures_from_files_and_data_uris() {
         assert_eq!(px[5], [200, 200, 7, 255]);
         assert!(t.srgb);
     }
-    assert_eq!(s.materials[0].base_color_texture, Some(0));
+    assert_eq!(
+        s.materials[0].base_color_texture.map(|t| t.texture),
+        Some(0)
+    );
     assert!(s.features().textures);
 }
 

@@ -15,6 +15,7 @@ struct BsdfParams {
     float alpha;      // GGX alpha
     float ior;        // dielectric index of refraction (outside is 1)
     bool smooth_lobe; // delta reflection / refraction
+    float occlusion;  // the occlusion texture's factor on the denoisers' albedo (1: none)
 };
 
 struct BsdfSample {

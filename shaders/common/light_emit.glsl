@@ -56,12 +56,14 @@ bool sample_emission(vec3 u, vec2 v, out EmitSample e) {
     }
     if (light.kind == LIGHT_TRIANGLE || light.kind == LIGHT_SPHERE) {
         float area;
+        vec3 emission = light.emission.rgb;
         if (light.kind == LIGHT_TRIANGLE) {
             float su = sqrt(u.y);
             vec2 bary = vec2(1.0 - su, u.z * su);
             e.p = bary.x * light.p0.xyz + bary.y * light.p1.xyz + (1.0 - bary.x - bary.y) * light.p2.xyz;
             e.n = triangle_front_normal(light);
             area = light.p0.w;
+            emission = triangle_light_radiance(light, bary);
         } else {
             float z = 1.0 - 2.0 * u.y;
             float r = sqrt(max(0.0, 1.0 - z * z));
@@ -79,7 +81,7 @@ bool sample_emission(vec3 u, vec2 v, out EmitSample e) {
         if (area <= 0.0 || e.cos_light <= 0.0) {
             return false;
         }
-        e.weight = light.emission.rgb * (PI * area / selection);
+        e.weight = emission * (PI * area / selection);
         e.pdf_dir = emitter_selection(light.emission.rgb, area) / area * e.cos_light * INV_PI;
         return e.pdf_dir > 0.0;
     }

@@ -1,13 +1,15 @@
 // Light sampling for next-event estimation and the matching pdfs for MIS: emissive triangles and
 // spheres, point and spot lights (an alias table, half by power and half uniform: see
 // lucid_engine::scene::LightDistribution), the sun, and the environment (reached by BSDF sampling
-// only). Requires scene.glsl, math.glsl.
+// only). Requires scene.glsl, math.glsl, traverse.glsl.
 #ifndef LUCID_LIGHTS_GLSL
 #define LUCID_LIGHTS_GLSL
 
 layout(constant_id = 104) const bool HAS_SUN = true;
 layout(constant_id = 105) const bool HAS_DELTA_LIGHTS = true;
 layout(constant_id = 106) const bool HAS_ENVIRONMENT = true;
+// Some emissive material has an emissive texture.
+layout(constant_id = 113) const bool HAS_EMISSIVE_TEXTURES = true;
 
 // Candidates resampled per next-event light sample (sample_light) when the table has more than
 // one light; 1 turns resampling off.
@@ -68,6 +70,43 @@ float sun_pdf() {
 // The emitting side of a triangle light: its winding normal times the side packed in p1.w.
 vec3 triangle_front_normal(Light light) {
     return normalize(cross(light.p1.xyz - light.p0.xyz, light.p2.xyz - light.p0.xyz)) * light.p1.w;
+}
+
+// Emitted radiance of material m at uv: its emission times its emissive texture.
+vec3 material_emission(Material m, vec2 uv) {
+    vec3 e = m.emission;
+    if (HAS_EMISSIVE_TEXTURES && m.emissive_texture != NO_TEXTURE) {
+        e *= sample_texture(m.emissive_texture, uv).rgb;
+    }
+    return e;
+}
+
+// Radiance a triangle light emits at the point of vertex weights (bary.x, bary.y, 1 - both) for
+// its p0, p1, p2: its emission, times its emissive texture there, times how much of a cut-out
+// surface is there (0 or 1 for a mask, the opacity for blending, which a ray meets with that
+// probability). The light table and the MIS pdfs keep weighing the emission factor alone: the
+// estimate stays unbiased, texels just get samples in proportion to area.
+vec3 triangle_light_radiance(Light light, vec2 bary) {
+    vec3 e = light.emission.rgb;
+    if (!HAS_EMISSIVE_TEXTURES && !HAS_ALPHA_TEST) {
+        return e;
+    }
+    Material m = b_materials.m[light.material];
+    bool textured = HAS_EMISSIVE_TEXTURES && m.emissive_texture != NO_TEXTURE;
+    bool cut_out = HAS_ALPHA_TEST && (m.flags & MATERIAL_CUT_OUT) != 0u;
+    if (!textured && !cut_out) {
+        return e;
+    }
+    vec2 uv;
+    float vertex_alpha;
+    triangle_uv_alpha(light.index, vec3(bary, 1.0 - bary.x - bary.y), uv, vertex_alpha);
+    if (textured) {
+        e *= sample_texture(m.emissive_texture, uv).rgb;
+    }
+    if (cut_out) {
+        e *= surface_coverage(m, material_opacity(m, uv, vertex_alpha));
+    }
+    return e;
 }
 
 // An area emitter's power as the light table weighs it: on its strongest channel
@@ -140,7 +179,7 @@ bool sample_table_light(vec3 p, uint index, float selection, vec2 u, out LightSa
         if (cos_l <= 0.0 || area <= 0.0) {
             return false;
         }
-        ls.radiance = light.emission.rgb;
+        ls.radiance = triangle_light_radiance(light, bary);
         ls.pdf = selection * dist2 / (cos_l * area);
         return true;
     }

@@ -1,6 +1,6 @@
 // The scene buffers, mirroring lucid_engine::scene::gpu (std430). Bound by name: b_vertices,
 // b_indices, b_blas, b_tlas, b_instances, b_spheres, b_materials, b_lights, b_light_table,
-// b_texels, b_textures, b_scene, b_triangle_ids, b_triangles, b_vertex_colors. Bindings 0-11 and
+// b_texels, b_textures, b_scene, b_triangle_ids, b_triangles, b_vertex_attributes. Bindings 0-11 and
 // 13-15 (12 is the frame constants); passes use 16 and up for their own resources.
 #ifndef LUCID_SCENE_GLSL
 #define LUCID_SCENE_GLSL
@@ -22,15 +22,20 @@ struct Instance {
     uint scene_instance;
 };
 struct Sphere { vec4 center_radius; uint material; uint scene_sphere; uint pad0; uint pad1; };
+// Texture fields index b_textures (NO_TEXTURE: none).
 struct Material {
     vec3 base_color; uint kind;
     vec3 emission; float alpha;
     float ior; uint texture; uint flags; uint metal_roughness;
-    float metallic; uint pad0; uint pad1; uint pad2;
+    float metallic; uint normal_texture; float normal_scale; uint emissive_texture;
+    uint occlusion_texture; float occlusion_strength; float opacity; float alpha_cutoff;
 };
-struct Light { uint kind; uint index; uint instance; uint pad; vec4 p0; vec4 p1; vec4 p2; vec4 emission; };
+// material: a triangle light's material (emissive texture, opacity), ~0u for other lights.
+struct Light { uint kind; uint index; uint instance; uint material; vec4 p0; vec4 p1; vec4 p2; vec4 emission; };
 struct LightTableEntry { float threshold; uint alias; float pdf; float cdf; };
-struct TextureRecord { uint offset; uint width; uint height; uint format; };
+// A texture as one material slot samples it: texels, then the coordinate transform's rows with the
+// wrap mode along each axis in w (TEXTURE_WRAP_*).
+struct TextureRecord { uint offset; uint width; uint height; uint format; vec4 u_row; vec4 v_row; };
 struct Camera { vec4 position_aperture; vec4 right_focus; vec4 up_tan_half_fov; vec4 forward; };
 struct Environment { uint kind; uint pad0; uint pad1; uint pad2; vec4 zenith; vec4 horizon; vec4 ground; };
 struct Sun { vec4 direction_cos; vec4 radiance_enabled; };
@@ -48,6 +53,9 @@ const uint MATERIAL_CONDUCTOR = 1u;
 const uint MATERIAL_DIELECTRIC = 2u;
 const uint MATERIAL_FLAG_EMISSIVE = 1u;
 const uint MATERIAL_FLAG_SMOOTH = 2u;
+const uint MATERIAL_FLAG_ALPHA_MASK = 4u;  // absent where opacity < alpha_cutoff
+const uint MATERIAL_FLAG_ALPHA_BLEND = 8u; // present with probability opacity
+const uint NO_TEXTURE = 0xffffffffu;
 const uint LIGHT_TRIANGLE = 0u;
 const uint LIGHT_SPHERE = 1u;
 const uint LIGHT_POINT = 2u;
@@ -58,6 +66,17 @@ const uint INSTANCE_FLATTENED = 2u; // static instances merged in world space: i
 const uint TEXTURE_RGBA8_SRGB = 0u;
 const uint TEXTURE_RGBA8_LINEAR = 1u;
 const uint TEXTURE_RGBA32F = 2u;
+const uint TEXTURE_WRAP_REPEAT = 0u;
+const uint TEXTURE_WRAP_CLAMP = 1u;
+const uint TEXTURE_WRAP_MIRROR = 2u;
+
+// Some material uses a base-colour or other texture (else texture coordinates are not even
+// interpolated).
+layout(constant_id = 107) const bool HAS_TEXTURES = true;
+// Some mesh has vertex colours (and alphas) in b_vertex_attributes.
+layout(constant_id = 110) const bool HAS_VERTEX_COLORS = true;
+// Some texture slot transforms its coordinates (KHR_texture_transform) or does not repeat.
+layout(constant_id = 111) const bool HAS_TEXTURE_TRANSFORMS = true;
 
 layout(set = 0, binding = 0, std430) readonly buffer Vertices { Vertex v[]; } b_vertices;
 layout(set = 0, binding = 1, std430) readonly buffer Indices { uint i[]; } b_indices;
@@ -76,13 +95,23 @@ layout(set = 0, binding = 13, std430) readonly buffer TriangleIds { uvec2 t[]; }
 // Per triangle (in b_indices order), nine floats: first vertex, p1 - p0, p2 - p0 (what ray
 // intersection reads, contiguous).
 layout(set = 0, binding = 14, std430) readonly buffer Triangles { float t[]; } b_triangles;
-// Per vertex (as b_vertices), when the scene has vertex colours (HAS_VERTEX_COLORS in surface.glsl):
-// RGB as half floats, packHalf2x16(r, g) and packHalf2x16(b, 0). One unread element otherwise.
-layout(set = 0, binding = 15, std430) readonly buffer VertexColors { uvec2 c[]; } b_vertex_colors;
+// Per vertex (as b_vertices), when the scene has vertex colours or tangents (HAS_VERTEX_COLORS,
+// HAS_NORMAL_MAPS): packHalf2x16(r, g), packHalf2x16(b, alpha), the octahedral tangent and the
+// bitangent's sign as float bits. One unread element otherwise.
+layout(set = 0, binding = 15, std430) readonly buffer VertexAttributes { uvec4 a[]; } b_vertex_attributes;
 
-vec3 vertex_color(uint index) {
-    uvec2 c = b_vertex_colors.c[index];
-    return vec3(unpackHalf2x16(c.x), unpackHalf2x16(c.y).x);
+// RGB and alpha.
+vec4 vertex_color(uint index) {
+    uvec4 a = b_vertex_attributes.a[index];
+    return vec4(unpackHalf2x16(a.x), unpackHalf2x16(a.y));
+}
+
+vec3 decode_normal(uint bits);
+
+// Unit tangent (xyz) and the bitangent's sign (w).
+vec4 vertex_tangent(uint index) {
+    uvec4 a = b_vertex_attributes.a[index];
+    return vec4(decode_normal(a.z), uintBitsToFloat(a.w));
 }
 
 vec3 vertex_position(uint index) {
@@ -113,9 +142,21 @@ vec3 transform_normal(vec4 inv[3], vec3 n) {
     return inv[0].xyz * n.x + inv[1].xyz * n.y + inv[2].xyz * n.z;
 }
 
-vec4 fetch_texel(TextureRecord r, int x, int y) {
-    x = int(uint(x) % r.width);
-    y = int(uint(y) % r.height);
+// Texel index i of a row or column of n texels under wrap mode `mode`.
+int wrap_texel(int i, int n, uint mode) {
+    if (mode == TEXTURE_WRAP_CLAMP) {
+        return clamp(i, 0, n - 1);
+    }
+    if (mode == TEXTURE_WRAP_MIRROR) {
+        int k = ((i % (2 * n)) + 2 * n) % (2 * n);
+        return k < n ? k : 2 * n - 1 - k;
+    }
+    return ((i % n) + n) % n;
+}
+
+vec4 fetch_texel(TextureRecord r, int x, int y, uvec2 wrap) {
+    x = wrap_texel(x, int(r.width), wrap.x);
+    y = wrap_texel(y, int(r.height), wrap.y);
     if (r.format == TEXTURE_RGBA32F) {
         uint o = r.offset + (uint(y) * r.width + uint(x)) * 4u;
         return uintBitsToFloat(uvec4(b_texels.t[o], b_texels.t[o + 1u], b_texels.t[o + 2u], b_texels.t[o + 3u]));
@@ -128,14 +169,20 @@ vec4 fetch_texel(TextureRecord r, int x, int y) {
     return c;
 }
 
-// Bilinear, repeating lookup of a texture record at uv.
+// Bilinear lookup of texture record `texture_index` at uv, after its coordinate transform and
+// with its wrap modes (repeating, untransformed without HAS_TEXTURE_TRANSFORMS).
 vec4 sample_texture(uint texture_index, vec2 uv) {
     TextureRecord r = b_textures.r[texture_index];
+    uvec2 wrap = uvec2(TEXTURE_WRAP_REPEAT);
+    if (HAS_TEXTURE_TRANSFORMS) {
+        uv = vec2(dot(r.u_row.xyz, vec3(uv, 1.0)), dot(r.v_row.xyz, vec3(uv, 1.0)));
+        wrap = uvec2(r.u_row.w, r.v_row.w);
+    }
     vec2 st = uv * vec2(r.width, r.height) - 0.5;
     ivec2 i = ivec2(floor(st));
     vec2 f = st - vec2(i);
-    vec4 a = mix(fetch_texel(r, i.x, i.y), fetch_texel(r, i.x + 1, i.y), f.x);
-    vec4 b = mix(fetch_texel(r, i.x, i.y + 1), fetch_texel(r, i.x + 1, i.y + 1), f.x);
+    vec4 a = mix(fetch_texel(r, i.x, i.y, wrap), fetch_texel(r, i.x + 1, i.y, wrap), f.x);
+    vec4 b = mix(fetch_texel(r, i.x, i.y + 1, wrap), fetch_texel(r, i.x + 1, i.y + 1, wrap), f.x);
     return mix(a, b, f.y);
 }
 

@@ -3,13 +3,15 @@
 #ifndef LUCID_SURFACE_GLSL
 #define LUCID_SURFACE_GLSL
 
-layout(constant_id = 107) const bool HAS_TEXTURES = true;
-layout(constant_id = 110) const bool HAS_VERTEX_COLORS = true;
+// Some used material has a normal map (tangents in b_vertex_attributes).
+layout(constant_id = 114) const bool HAS_NORMAL_MAPS = true;
+// Some used material has an occlusion texture (the denoisers' albedo only).
+layout(constant_id = 115) const bool HAS_OCCLUSION = true;
 
 struct Surface {
     vec3 p;
     vec3 ng;        // geometric normal, on the side of the shading normal (the "front")
-    vec3 ns;        // shading normal
+    vec3 ns;        // shading normal (the normal map's, where the material has one)
     vec2 uv;
     vec3 color;     // interpolated vertex colour (white without HAS_VERTEX_COLORS)
     uint material;
@@ -21,6 +23,30 @@ struct Surface {
     bool sphere;
     vec4 center_radius;
 };
+
+// The shading normal of surface s perturbed by tangent-space normal map `map` (scaled in x and y
+// by `scale`), with world tangent t and bitangent along `bitangent`: the frame is made orthonormal
+// about s.ns, and the result kept at least slightly on the front of the geometric normal (light
+// transport offsets and visibility keep using s.ng).
+vec3 normal_mapped(Surface s, uint map, float scale, vec3 t, vec3 bitangent) {
+    vec3 n = sample_texture(map, s.uv).xyz * 2.0 - 1.0;
+    n.xy *= scale;
+    vec3 tangent = t - s.ns * dot(s.ns, t);
+    float len = length(tangent);
+    if (!(len > 1e-8)) {
+        return s.ns;
+    }
+    tangent /= len;
+    vec3 b = cross(s.ns, tangent);
+    b = dot(b, bitangent) < 0.0 ? -b : b;
+    vec3 mapped = tangent * n.x + b * n.y + s.ns * n.z;
+    float front = dot(mapped, s.ng);
+    if (front < 0.05) {
+        mapped += s.ng * (0.05 - front);
+    }
+    float m = length(mapped);
+    return m > 1e-8 ? mapped / m : s.ns;
+}
 
 Surface surface_at(Hit hit, vec3 origin, vec3 dir) {
     Surface s;
@@ -51,6 +77,7 @@ Surface surface_at(Hit hit, vec3 origin, vec3 dir) {
     s.p1 = vec3(v1.px, v1.py, v1.pz);
     s.p2 = vec3(v2.px, v2.py, v2.pz);
     vec3 ns = b.x * decode_normal(v0.normal) + b.y * decode_normal(v1.normal) + b.z * decode_normal(v2.normal);
+    vec3 ns_object = ns;
     bool flattened = inst.kind == INSTANCE_FLATTENED; // already in world space
     if (!flattened) {
         s.p0 = transform_point(inst.object_to_world, s.p0);
@@ -70,7 +97,7 @@ Surface surface_at(Hit hit, vec3 origin, vec3 dir) {
         s.uv = vec2(0.0);
     }
     if (HAS_VERTEX_COLORS) {
-        s.color = b.x * vertex_color(i0) + b.y * vertex_color(i1) + b.z * vertex_color(i2);
+        s.color = b.x * vertex_color(i0).rgb + b.y * vertex_color(i1).rgb + b.z * vertex_color(i2).rgb;
     } else {
         s.color = vec3(1.0);
     }
@@ -82,8 +109,23 @@ Surface surface_at(Hit hit, vec3 origin, vec3 dir) {
         s.material = inst.material;
         s.object_id = inst.scene_instance;
     }
+    if (HAS_NORMAL_MAPS) {
+        uint map = b_materials.m[s.material].normal_texture;
+        if (map != NO_TEXTURE) {
+            vec4 t0 = vertex_tangent(i0);
+            vec3 t = b.x * t0.xyz + b.y * vertex_tangent(i1).xyz + b.z * vertex_tangent(i2).xyz;
+            vec3 bitangent = cross(ns_object, t) * t0.w;
+            if (!flattened) {
+                t = transform_vector(inst.object_to_world, t);
+                bitangent = transform_vector(inst.object_to_world, bitangent);
+            }
+            s.ns = normal_mapped(s, map, b_materials.m[s.material].normal_scale, t, bitangent);
+        }
+    }
     return s;
 }
+
+
 
 // The BSDF of `material` at texture coordinates `uv` with vertex colour `vertex_color` (white when
 // the scene has none), which multiplies the base colour.
@@ -101,6 +143,11 @@ BsdfParams material_params(uint material, vec2 uv, vec3 vertex_color) {
     p.alpha = max(m.alpha, 1e-4);
     p.ior = m.ior;
     p.smooth_lobe = (m.flags & MATERIAL_FLAG_SMOOTH) != 0u;
+    p.occlusion = 1.0;
+    if (HAS_OCCLUSION && m.occlusion_texture != NO_TEXTURE) {
+        float ao = sample_texture(m.occlusion_texture, uv).r;
+        p.occlusion = 1.0 + m.occlusion_strength * (ao - 1.0);
+    }
     if (HAS_TEXTURES && m.kind == MATERIAL_CONDUCTOR && m.metal_roughness != 0xffffffffu) {
         // glTF's metallic-roughness texture: roughness in G (alpha scales by its square), metal
         // in B; a texel less than half metal is diffuse.
@@ -117,9 +164,10 @@ BsdfParams material_params(uint material, vec2 uv, vec3 vertex_color) {
 }
 
 // The colour a denoiser divides radiance by (and multiplies back): the material's base colour for
-// diffuse and conductors, white for dielectrics.
+// diffuse and conductors, white for dielectrics; times the occlusion texture's (which light
+// transport does not use: it only guides the denoisers).
 vec3 demodulation_albedo(BsdfParams m) {
-    return m.kind == MATERIAL_DIELECTRIC ? vec3(1.0) : m.color;
+    return (m.kind == MATERIAL_DIELECTRIC ? vec3(1.0) : m.color) * m.occlusion;
 }
 
 // Radiance emitted from the surface towards -dir (one-sided: front only).
@@ -128,7 +176,7 @@ vec3 surface_emission(Surface s, vec3 dir) {
     if ((m.flags & MATERIAL_FLAG_EMISSIVE) == 0u || dot(s.ng, dir) >= 0.0) {
         return vec3(0.0);
     }
-    return m.emission;
+    return material_emission(m, s.uv);
 }
 
 // The NEE pdf of having sampled this emitting surface point from `from` (for MIS).

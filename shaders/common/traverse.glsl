@@ -1,8 +1,11 @@
 // Ray queries over the two-level BVH (TLAS over instances, BLAS over triangles or spheres):
 // stack-based, near child first, with early exit for shadow rays; a single triangle instance is
-// walked without the top level (SINGLE_INSTANCE). Requires scene.glsl.
+// walked without the top level (SINGLE_INSTANCE); hits on cut-out materials count only where the
+// surface is there (common/opacity.glsl, HAS_ALPHA_TEST). Requires scene.glsl.
 #ifndef LUCID_TRAVERSE_GLSL
 #define LUCID_TRAVERSE_GLSL
+
+#include "common/opacity.glsl"
 
 layout(constant_id = 100) const bool HAS_SPHERES = true;
 // The scene is packed as exactly one triangle instance (GpuScene::single_instance, e.g. a fully
@@ -139,6 +142,12 @@ bool traverse_blas(uint inst_index, Instance inst, vec3 o, vec3 d, bool any_hit,
                     t = intersect_sphere(prim, o, d, hit.t);
                 } else {
                     t = intersect_triangle(prim, o, d, hit.t, bary);
+                    if (HAS_ALPHA_TEST && t < hit.t) {
+                        uint material = inst.kind == INSTANCE_FLATTENED ? b_triangle_ids.t[prim].x : inst.material;
+                        if (!hit_counts(material, prim, bary, o, d)) {
+                            t = T_INFINITY;
+                        }
+                    }
                 }
                 if (t < hit.t) {
                     hit.t = t;

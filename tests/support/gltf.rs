@@ -1,6 +1,7 @@
 //! Small glTF 2.0 files written by the tests themselves: a [`Doc`] collects accessors (one
-//! embedded base64 buffer), meshes, materials, nodes, lights and cameras and writes the JSON, and
-//! a few shapes ([`plane`], [`cube`]) give the geometry.
+//! embedded base64 buffer), meshes, materials, textures (PNG data URIs), nodes, lights and
+//! cameras and writes the JSON, and a few shapes ([`plane`], [`cube`]) give the geometry;
+//! [`TopView`] is a camera looking straight down at the plane y = 0.
 
 use lucid_engine::scene::{load_gltf_slice, Scene};
 
@@ -27,6 +28,9 @@ pub struct Doc {
     nodes: Vec<String>,
     lights: Vec<String>,
     cameras: Vec<String>,
+    images: Vec<String>,
+    samplers: Vec<String>,
+    textures: Vec<String>,
     extensions_used: Vec<String>,
     members: Vec<String>,
 }
@@ -125,6 +129,37 @@ impl Doc {
         self.materials.len() - 1
     }
 
+    /// Adds a `width` x `height` PNG texture of `rgba` texels (rows from the top) with sampler
+    /// `sampler` (its JSON object, e.g. `{"wrapS": 33071}`; `None` for the default); returns the
+    /// texture index.
+    pub fn texture(
+        &mut self,
+        width: u32,
+        height: u32,
+        rgba: &[[u8; 4]],
+        sampler: Option<&str>,
+    ) -> usize {
+        let image = image::RgbaImage::from_raw(width, height, rgba.concat())
+            .expect("width x height texels");
+        let mut png = std::io::Cursor::new(Vec::new());
+        image
+            .write_to(&mut png, image::ImageFormat::Png)
+            .expect("PNG encoding");
+        self.images.push(format!(
+            r#"{{"uri": "data:image/png;base64,{}"}}"#,
+            base64::encode(png.into_inner())
+        ));
+        let sampler = sampler.map_or(String::new(), |json| {
+            self.samplers.push(json.to_string());
+            format!(r#", "sampler": {}"#, self.samplers.len() - 1)
+        });
+        self.textures.push(format!(
+            r#"{{"source": {}{sampler}}}"#,
+            self.images.len() - 1
+        ));
+        self.textures.len() - 1
+    }
+
     /// Adds a mesh (its JSON object); returns its index.
     pub fn mesh_json(&mut self, json: &str) -> usize {
         self.meshes.push(json.to_string());
@@ -220,6 +255,9 @@ impl Doc {
             ("meshes", &self.meshes),
             ("materials", &self.materials),
             ("cameras", &self.cameras),
+            ("images", &self.images),
+            ("samplers", &self.samplers),
+            ("textures", &self.textures),
             ("accessors", &self.accessors),
             ("bufferViews", &self.views),
         ] {
@@ -296,4 +334,77 @@ pub fn cube(half: f32) -> (Vec<[f32; 3]>, Vec<u32>) {
         .flat_map(|q| [q[0], q[1], q[2], q[0], q[2], q[3]])
         .collect();
     (positions, indices)
+}
+
+/// The plane y = 0 seen straight down from `height` with vertical field of view `yfov` on a
+/// square image of `size` pixels: +x to the right, +z down the image.
+#[derive(Clone, Copy, Debug)]
+pub struct TopView {
+    /// Camera height.
+    pub height: f32,
+    /// Vertical field of view in radians.
+    pub yfov: f32,
+    /// Image width and height.
+    pub size: u32,
+}
+
+impl TopView {
+    /// Adds the camera to `doc`.
+    pub fn add_to(&self, doc: &mut Doc) {
+        let q = glam::Quat::from_rotation_arc(glam::Vec3::NEG_Z, glam::Vec3::NEG_Y);
+        doc.camera(
+            self.yfov,
+            &format!(
+                r#""rotation": [{}, {}, {}, {}], "translation": [0, {}, 0]"#,
+                q.x, q.y, q.z, q.w, self.height
+            ),
+        );
+    }
+
+    /// The floor point (x, z) seen at the centre of pixel (column, row).
+    pub fn floor_point(&self, column: u32, row: u32) -> [f32; 2] {
+        let extent = self.height * (0.5 * self.yfov).tan();
+        let ndc = |p: u32| ((p as f32 + 0.5) / self.size as f32) * 2.0 - 1.0;
+        [ndc(column) * extent, ndc(row) * extent]
+    }
+
+    /// The pixels whose floor point lies in the axis-aligned box [x0, x1] x [z0, z1].
+    pub fn pixels_in(&self, [x0, x1]: [f32; 2], [z0, z1]: [f32; 2]) -> Vec<(u32, u32)> {
+        (0..self.size)
+            .flat_map(|row| (0..self.size).map(move |column| (column, row)))
+            .filter(|&(c, r)| {
+                let [x, z] = self.floor_point(c, r);
+                (x0..=x1).contains(&x) && (z0..=z1).contains(&z)
+            })
+            .collect()
+    }
+}
+
+/// Adds the square plane(`half`) at height `y` with `material` and `TEXCOORD_0` u = 0..1 along
+/// +x, v = 0..1 along +z, facing +Y, or -Y when `down`; `extra` attributes (semantic, accessor)
+/// join POSITION and TEXCOORD_0. Returns the node.
+pub fn uv_plane(
+    doc: &mut Doc,
+    half: f32,
+    y: f32,
+    down: bool,
+    material: usize,
+    extra: &[(&str, usize)],
+) -> usize {
+    let (positions, mut indices) = plane(half);
+    let uvs: Vec<[f32; 2]> = positions
+        .iter()
+        .map(|p| [(p[0] + half) / (2.0 * half), (p[2] + half) / (2.0 * half)])
+        .collect();
+    if down {
+        indices.reverse();
+    }
+    let positions: Vec<[f32; 3]> = positions.iter().map(|p| [p[0], y, p[2]]).collect();
+    let p = doc.floats(&positions);
+    let t = doc.floats(&uvs);
+    let i = doc.indices(&indices);
+    let mut attributes = vec![("POSITION", p), ("TEXCOORD_0", t)];
+    attributes.extend_from_slice(extra);
+    let mesh = doc.mesh(&attributes, Some(i), Some(material));
+    doc.node(&format!(r#"{{"mesh": {mesh}}}"#))
 }

@@ -69,3 +69,26 @@ pub fn render_once(
     };
     render_accumulated(scene, (size, size), settings, 1)
 }
+
+/// The G-buffer of one frame of `scene` at `size` x `size` (default settings): its albedo and its
+/// normal-and-roughness images.
+pub fn gbuffer_once(scene: Scene, size: u32) -> [ImageData; 2] {
+    let ctx = crate::context(false);
+    let mut renderer =
+        Renderer::new(&ctx, scene, size, size, Settings::default()).expect("renderer");
+    let images = frame_images(&mut renderer, |i| {
+        [i.gbuffer.albedo, i.gbuffer.normal_roughness]
+    });
+    drop(renderer);
+    crate::assert_no_validation_messages(&ctx);
+    images
+}
+
+/// The mean of channel `c` over `pixels` (column, row) of `image`.
+pub fn mean_at(image: &ImageData, pixels: &[(u32, u32)], c: usize) -> f32 {
+    let sum: f32 = pixels
+        .iter()
+        .map(|&(x, y)| image.get(x, y).expect("pixel in the image")[c])
+        .sum();
+    sum / pixels.len() as f32
+}

@@ -75,7 +75,7 @@ fn a_metallic_roughness_texture_sets_metal_and_roughness_per_texel() {
             "metallicRoughnessTexture": {"index": 0}}}"#,
     );
     let m = &textured.materials[0];
-    assert_eq!(m.metallic_roughness_texture, Some(0));
+    assert_eq!(m.metallic_roughness_texture.map(|t| t.texture), Some(0));
     assert!(!textured.textures[0].srgb, "data, not colour");
     let f = textured.features();
     assert!(f.conductor && f.diffuse && f.textures, "{f}");

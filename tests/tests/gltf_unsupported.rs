@@ -6,11 +6,11 @@ use lucid_tests::gltf::{plane, Doc};
 /// A 1x1 PNG.
 const PNG: &str = "iVBORw0KGgoAAAANSUhEUgAAAAEAAAABCAYAAAAfFcSJAAAADUlEQVR4nGM4kWL0HwAFtAJeHzr7ywAAAABJRU5ErkJggg==";
 
-/// A file that uses every unsupported feature twice.
+/// A file that uses every unsupported feature twice (and supported ones that used to warn).
 fn everything_unsupported() -> Doc {
     let mut doc = Doc::new();
     doc.uses("KHR_materials_transmission");
-    doc.uses("KHR_texture_transform");
+    doc.uses("KHR_materials_clearcoat");
     let (positions, indices) = plane(1.0);
     let p = doc.floats(&positions);
     let i = doc.indices(&indices);
@@ -91,21 +91,12 @@ fn every_unsupported_feature_is_said_once_per_file() {
             "metallic-roughness textures",
             "2 materials, the first material `bottle`",
         ),
-        ("normal maps", "4 materials"),
-        ("occlusion textures", "4 materials"),
-        ("emissive textures", "4 materials"),
-        ("alpha masks", "2 materials, the first material `leaves`"),
-        (
-            "alpha blending",
-            "2 materials, the first material `glass-pane`",
-        ),
         ("metallic factors between 0 and 1", "4 materials"),
         (
             "partial transmission",
             "2 materials, the first material `bottle`",
         ),
         ("other than TEXCOORD_0", "4 materials"),
-        ("wrap modes other than REPEAT", "4 materials"),
         (
             "point and line primitives",
             "2 primitives, the first mesh `wire-0/0` (Points)",
@@ -116,7 +107,7 @@ fn every_unsupported_feature_is_said_once_per_file() {
         ("orthographic cameras", "2 cameras"),
         ("only one directional light", "2 lights"),
         ("light ranges", "2 lights"),
-        ("extension `KHR_texture_transform`", ""),
+        ("extension `KHR_materials_clearcoat`", ""),
     ];
     for (feature, users) in expected {
         let hits: Vec<&String> = scene
@@ -134,13 +125,29 @@ fn every_unsupported_feature_is_said_once_per_file() {
 #[test]
 fn a_file_lucid_renders_whole_has_no_warning() {
     let mut doc = Doc::new();
+    doc.uses("KHR_texture_transform");
     let (positions, indices) = plane(1.0);
     let p = doc.floats(&positions);
+    let t = doc.floats(&[[0.0f32, 0.0]; 4]);
     let i = doc.indices(&indices);
-    let m = doc.material(
-        r#"{"pbrMetallicRoughness": {"baseColorFactor": [0.5, 0.5, 0.5, 1], "metallicFactor": 0}}"#,
+    let texture = doc.texture(
+        1,
+        1,
+        &[[128, 128, 255, 255]],
+        Some(r#"{"wrapS": 33071, "wrapT": 33648}"#),
     );
-    let mesh = doc.mesh(&[("POSITION", p)], Some(i), Some(m));
+    // Every texture slot, alpha modes and texture transforms are rendered.
+    let transform =
+        r#""extensions": {"KHR_texture_transform": {"offset": [0.5, 0], "scale": [2, 2]}}"#;
+    let m = doc.material(&format!(
+        r#"{{"alphaMode": "MASK", "alphaCutoff": 0.3, "emissiveFactor": [1, 1, 1],
+            "pbrMetallicRoughness": {{"baseColorFactor": [0.5, 0.5, 0.5, 1], "metallicFactor": 0,
+                "baseColorTexture": {{"index": {texture}, {transform}}}}},
+            "normalTexture": {{"index": {texture}, "scale": 0.5, {transform}}},
+            "occlusionTexture": {{"index": {texture}, "strength": 0.5}},
+            "emissiveTexture": {{"index": {texture}}}}}"#
+    ));
+    let mesh = doc.mesh(&[("POSITION", p), ("TEXCOORD_0", t)], Some(i), Some(m));
     doc.node(&format!(r#"{{"mesh": {mesh}}}"#));
     doc.light(
         r#"{"type": "point", "intensity": 100}"#,
@@ -148,4 +155,17 @@ fn a_file_lucid_renders_whole_has_no_warning() {
     );
     let scene = doc.load("plain.gltf");
     assert!(scene.warnings.is_empty(), "{:?}", scene.warnings);
+    let m = &scene.materials[0];
+    let slots = [
+        m.base_color_texture,
+        m.normal_texture,
+        m.occlusion_texture,
+        m.emissive_texture,
+    ];
+    assert!(slots.iter().all(Option::is_some), "{m:?}");
+    let f = scene.features();
+    assert!(
+        f.normal_maps && f.emissive_textures && f.alpha_test && f.occlusion && f.texture_transforms,
+        "{f}"
+    );
 }

@@ -136,7 +136,7 @@ fn vertex_colours_import_in_every_format_and_only_their_scenes_pay() {
         }
         assert!(scene.features().vertex_colors, "{name}");
         let gpu = GpuScene::new(&scene, &Bvh::build(&scene));
-        assert_eq!(gpu.vertex_colors.len(), gpu.vertices.len(), "{name}");
+        assert_eq!(gpu.vertex_attributes.len(), gpu.vertices.len(), "{name}");
     }
     // Without COLOR_0 there is neither the buffer nor the shader code.
     let plain = colored_plane(None);
@@ -147,7 +147,7 @@ fn vertex_colours_import_in_every_format_and_only_their_scenes_pay() {
         .specialization_constants()
         .contains(&("HAS_VERTEX_COLORS", false)));
     let gpu = GpuScene::new(&plain, &Bvh::build(&plain));
-    assert!(gpu.vertex_colors.is_empty());
+    assert!(gpu.vertex_attributes.is_empty());
     // A colour accessor of the wrong shape or count is an error naming it, not a panic.
     let mut doc = Doc::new();
     let (positions, indices) = plane(1.0);

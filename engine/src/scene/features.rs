@@ -25,6 +25,16 @@ pub struct SceneFeatures {
     pub textures: bool,
     /// Some placed mesh has vertex colours.
     pub vertex_colors: bool,
+    /// Some used material has a normal map.
+    pub normal_maps: bool,
+    /// Some used emissive material has an emissive texture.
+    pub emissive_textures: bool,
+    /// Some used material is cut out (alpha mask or blend): traversal tests opacity.
+    pub alpha_test: bool,
+    /// Some used material has an occlusion texture.
+    pub occlusion: bool,
+    /// Some used texture slot transforms its coordinates or wraps other than by repeating.
+    pub texture_transforms: bool,
     /// The environment is not black.
     pub environment: bool,
     /// A sun is present.
@@ -66,7 +76,15 @@ impl SceneFeatures {
                 MaterialKind::Dielectric => f.dielectric_rough = true,
             }
             f.emissive |= m.is_emissive();
-            f.textures |= m.base_color_texture.is_some();
+            f.textures |= m.base_color_texture.is_some()
+                || m.emissive_texture.is_some()
+                || m.normal_texture.is_some()
+                || m.occlusion_texture.is_some();
+            f.normal_maps |= m.normal_texture.is_some();
+            f.emissive_textures |= m.is_emissive() && m.emissive_texture.is_some();
+            f.alpha_test |= m.is_cut_out();
+            f.occlusion |= m.occlusion_texture.is_some();
+            f.texture_transforms |= m.textures().any(|t| t.is_transformed());
         }
         f
     }
@@ -87,6 +105,11 @@ impl SceneFeatures {
             ("HAS_SPHERES", self.spheres),
             ("HAS_TEXTURES", self.textures),
             ("HAS_VERTEX_COLORS", self.vertex_colors),
+            ("HAS_NORMAL_MAPS", self.normal_maps),
+            ("HAS_EMISSIVE_TEXTURES", self.emissive_textures),
+            ("HAS_ALPHA_TEST", self.alpha_test),
+            ("HAS_OCCLUSION", self.occlusion),
+            ("HAS_TEXTURE_TRANSFORMS", self.texture_transforms),
             ("HAS_ENVIRONMENT", self.environment),
             ("HAS_SUN", self.sun),
             ("HAS_DELTA_LIGHTS", self.delta_lights),

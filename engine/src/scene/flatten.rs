@@ -7,7 +7,7 @@
 //! indices remapped through [`FlatScene::placement`] (see `crate::scene::gpu::pack_flat`).
 
 use super::{Instance, Mesh, Scene};
-use glam::{Affine3A, Vec3};
+use glam::{Affine3A, Vec3, Vec4};
 
 /// Where an instance of the original scene went in a [`FlatScene`].
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -60,21 +60,24 @@ impl FlatScene {
                 name: "flattened static instances".into(),
                 positions: Vec::new(),
                 normals: Vec::new(),
-                uvs: Vec::new(),
-                colors: Vec::new(),
-                indices: Vec::new(),
                 material: 0,
+                ..Default::default()
             };
-            let colored = merge.iter().any(|&i| {
-                !scene.meshes[scene.instances[i].mesh as usize]
-                    .colors
-                    .is_empty()
-            });
+            let any = |has: fn(&Mesh) -> bool| {
+                merge
+                    .iter()
+                    .any(|&i| has(&scene.meshes[scene.instances[i].mesh as usize]))
+            };
+            let carried = Carried {
+                colors: any(|m| !m.colors.is_empty()),
+                alphas: any(|m| !m.alphas.is_empty()),
+                tangents: any(|m| !m.tangents.is_empty()),
+            };
             for &i in &merge {
                 placement[i] = Placement::Merged {
                     first_triangle: mesh.indices.len() as u32,
                 };
-                append_instance(&mut mesh, scene, i, colored);
+                append_instance(&mut mesh, scene, i, carried);
                 let triangles = scene.meshes[scene.instances[i].mesh as usize].indices.len();
                 let material = scene.instance_material(i);
                 merged_ids.extend(std::iter::repeat_n([material, i as u32], triangles));
@@ -129,9 +132,18 @@ impl FlatScene {
     }
 }
 
-/// Appends instance `i` of `scene` to `mesh` in world space (positions and normals transformed,
-/// missing UVs zero; with `colored`, vertex colours too, missing ones white).
-fn append_instance(mesh: &mut Mesh, scene: &Scene, i: usize, colored: bool) {
+/// The optional vertex attributes the merged mesh carries (because some merged mesh has them).
+#[derive(Clone, Copy)]
+struct Carried {
+    colors: bool,
+    alphas: bool,
+    tangents: bool,
+}
+
+/// Appends instance `i` of `scene` to `mesh` in world space (positions, normals and tangents
+/// transformed, missing UVs zero; vertex colours and alphas as `carried` says, missing ones white
+/// and opaque; missing tangents zero).
+fn append_instance(mesh: &mut Mesh, scene: &Scene, i: usize, carried: Carried) {
     let inst = &scene.instances[i];
     let source = &scene.meshes[inst.mesh as usize];
     let base = mesh.positions.len() as u32;
@@ -154,16 +166,37 @@ fn append_instance(mesh: &mut Mesh, scene: &Scene, i: usize, colored: bool) {
             source.positions.len(),
         ));
     }
-    if colored {
-        if source.colors.len() == source.positions.len() {
-            mesh.colors.extend_from_slice(&source.colors);
-        } else {
-            mesh.colors
-                .extend(std::iter::repeat_n(Vec3::ONE, source.positions.len()));
-        }
+    let n = source.positions.len();
+    if carried.colors {
+        extend_or(&mut mesh.colors, &source.colors, n, Vec3::ONE);
+    }
+    if carried.alphas {
+        extend_or(&mut mesh.alphas, &source.alphas, n, 1.0);
+    }
+    if carried.tangents {
+        // A mirroring transform flips the handedness of the tangent frame.
+        let handedness = inst.transform.matrix3.determinant().signum();
+        let world: Vec<Vec4> = source
+            .tangents
+            .iter()
+            .map(|t| {
+                let v = inst.transform.transform_vector3(t.truncate());
+                v.normalize_or_zero().extend(t.w * handedness)
+            })
+            .collect();
+        extend_or(&mut mesh.tangents, &world, n, Vec4::ZERO);
     }
     mesh.indices
         .extend(source.indices.iter().map(|&t| t + base));
+}
+
+/// Appends `source` to `out` when it has all `n` vertices, else `n` copies of `missing`.
+fn extend_or<T: Copy>(out: &mut Vec<T>, source: &[T], n: usize, missing: T) {
+    if source.len() == n {
+        out.extend_from_slice(source);
+    } else {
+        out.extend(std::iter::repeat_n(missing, n));
+    }
 }
 
 #[cfg(test)]

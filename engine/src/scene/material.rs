@@ -2,7 +2,7 @@
 
 use glam::Vec3;
 
-use super::SceneError;
+use super::{SceneError, TextureRef};
 
 /// GGX `alpha` below which a surface is treated as perfectly smooth.
 pub const SMOOTH_ALPHA: f32 = 1e-3;
@@ -20,6 +20,22 @@ pub enum MaterialKind {
     Dielectric,
 }
 
+/// How a material's opacity (base colour alpha × texture alpha × vertex colour alpha) applies
+/// (glTF `alphaMode`).
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub enum AlphaMode {
+    /// Opacity is ignored.
+    #[default]
+    Opaque,
+    /// The surface is absent where the opacity is below `cutoff` (rays pass there).
+    Mask {
+        /// glTF `alphaCutoff` (0.5 by default).
+        cutoff: f32,
+    },
+    /// Stochastic transparency: a ray meets the surface with probability equal to the opacity.
+    Blend,
+}
+
 /// A surface material. Any material may also emit (`emission > 0`), which
 /// turns its surfaces into area lights.
 #[derive(Clone, Debug, PartialEq)]
@@ -30,21 +46,36 @@ pub struct Material {
     pub kind: MaterialKind,
     /// Albedo / metal colour / transmission tint, linear RGB in `[0, 1]`.
     pub base_color: Vec3,
-    /// Optional base-colour texture (index into `Scene::textures`),
-    /// multiplied with `base_color`.
-    pub base_color_texture: Option<u32>,
+    /// Optional base-colour texture, multiplied with `base_color` (its alpha with `opacity`).
+    pub base_color_texture: Option<TextureRef>,
     /// GGX roughness `alpha` (= perceptual roughness squared) in `[0, 1]`.
     pub alpha: f32,
     /// Optional metallic-roughness texture (linear; glTF's layout: roughness in G, metalness in
     /// B). On a conductor it scales the roughness by G (`alpha` by G²) and makes the texel
     /// diffuse where `metallic * B < 0.5`; other kinds ignore it.
-    pub metallic_roughness_texture: Option<u32>,
+    pub metallic_roughness_texture: Option<TextureRef>,
     /// Metallic factor in `[0, 1]` (used with `metallic_roughness_texture`).
     pub metallic: f32,
     /// Index of refraction (dielectrics), `>= 1`.
     pub ior: f32,
     /// Emitted radiance, linear RGB, `>= 0`.
     pub emission: Vec3,
+    /// Optional emissive texture (sRGB), multiplying `emission` per texel.
+    pub emissive_texture: Option<TextureRef>,
+    /// Optional tangent-space normal map (glTF `normalTexture`, linear); meshes using it carry
+    /// tangents.
+    pub normal_texture: Option<TextureRef>,
+    /// Scale of the normal map's X and Y (glTF `normalTexture.scale`).
+    pub normal_scale: f32,
+    /// Optional ambient occlusion in R (glTF `occlusionTexture`, linear): darkens the albedo the
+    /// G-buffer and the denoisers see, never the light transport.
+    pub occlusion_texture: Option<TextureRef>,
+    /// How much of the occlusion applies (glTF `occlusionTexture.strength`, `[0, 1]`).
+    pub occlusion_strength: f32,
+    /// Base opacity (glTF base colour alpha), `[0, 1]`.
+    pub opacity: f32,
+    /// How opacity applies.
+    pub alpha_mode: AlphaMode,
 }
 
 impl Material {
@@ -63,6 +94,13 @@ impl Material {
             },
             ior: 1.5,
             emission: Vec3::ZERO,
+            emissive_texture: None,
+            normal_texture: None,
+            normal_scale: 1.0,
+            occlusion_texture: None,
+            occlusion_strength: 1.0,
+            opacity: 1.0,
+            alpha_mode: AlphaMode::Opaque,
         }
     }
 
@@ -104,6 +142,24 @@ impl Material {
         self.emission.max_element() > 0.0
     }
 
+    /// Whether rays may pass through the surface (an alpha mask or blending).
+    pub fn is_cut_out(&self) -> bool {
+        self.alpha_mode != AlphaMode::Opaque
+    }
+
+    /// The textures the material uses, slot by slot.
+    pub fn textures(&self) -> impl Iterator<Item = TextureRef> {
+        [
+            self.base_color_texture,
+            self.metallic_roughness_texture,
+            self.emissive_texture,
+            self.normal_texture,
+            self.occlusion_texture,
+        ]
+        .into_iter()
+        .flatten()
+    }
+
     /// Whether the material is a perfectly smooth dielectric.
     pub fn is_smooth_dielectric(&self) -> bool {
         self.kind == MaterialKind::Dielectric && self.alpha < SMOOTH_ALPHA
@@ -127,7 +183,15 @@ impl Material {
             && self.emission.is_finite()
             && self.alpha.is_finite()
             && self.ior.is_finite()
-            && self.metallic.is_finite();
+            && self.metallic.is_finite()
+            && self.normal_scale.is_finite()
+            && self.occlusion_strength.is_finite()
+            && self.opacity.is_finite()
+            && self.textures().all(|t| t.transform.is_finite())
+            && match self.alpha_mode {
+                AlphaMode::Mask { cutoff } => cutoff.is_finite(),
+                _ => true,
+            };
         if !finite {
             return Err(reject(
                 "parameters must be finite (found NaN or infinity)".into(),
@@ -152,6 +216,8 @@ impl Material {
             self.base_color = clamped;
         }
         self.metallic = self.metallic.clamp(0.0, 1.0);
+        self.occlusion_strength = self.occlusion_strength.clamp(0.0, 1.0);
+        self.opacity = self.opacity.clamp(0.0, 1.0);
         let alpha = self.alpha.clamp(0.0, 1.0);
         if alpha != self.alpha {
             warnings.push(format!(

@@ -1,6 +1,6 @@
 //! Triangle meshes.
 
-use glam::{UVec3, Vec2, Vec3};
+use glam::{UVec3, Vec2, Vec3, Vec4};
 
 use super::SceneError;
 use crate::bvh::Aabb;
@@ -19,6 +19,13 @@ pub struct Mesh {
     /// Vertex colours (linear RGB in `[0, 1]`, multiplying the material's base colour), one per
     /// vertex, or empty (white).
     pub colors: Vec<Vec3>,
+    /// Vertex colour alphas (`[0, 1]`, multiplying the material's opacity), one per vertex, or
+    /// empty (opaque).
+    pub alphas: Vec<f32>,
+    /// Unit tangents (xyz, along increasing u) with the bitangent's sign (w = ±1: the bitangent
+    /// is `w * cross(normal, tangent)`), one per vertex, or empty. Only meshes whose material
+    /// has a normal map carry them.
+    pub tangents: Vec<Vec4>,
     /// Triangles as vertex index triples.
     pub indices: Vec<UVec3>,
     /// Index into `Scene::materials`.
@@ -63,7 +70,7 @@ impl Mesh {
     }
 
     /// Gives every triangle its own three vertices with the triangle's (flat) normal, as glTF
-    /// requires of a mesh without normals; UVs and colours are copied to the new vertices. A
+    /// requires of a mesh without normals; UVs, colours and tangents are copied to the new vertices. A
     /// degenerate triangle gets `+Y`.
     pub fn make_flat(&mut self) {
         fn corners<T: Copy>(indices: &[UVec3], v: &[T]) -> Vec<T> {
@@ -78,6 +85,8 @@ impl Mesh {
         let positions = corners(&self.indices, &self.positions);
         let uvs = corners(&self.indices, &self.uvs);
         let colors = corners(&self.indices, &self.colors);
+        let alphas = corners(&self.indices, &self.alphas);
+        let tangents = corners(&self.indices, &self.tangents);
         self.normals = positions
             .chunks_exact(3)
             .flat_map(|t| {
@@ -91,10 +100,12 @@ impl Mesh {
         self.positions = positions;
         self.uvs = uvs;
         self.colors = colors;
+        self.alphas = alphas;
+        self.tangents = tangents;
     }
 
     /// Checks attribute counts, index ranges and that positions, normals,
-    /// UVs and colours are finite (colours also in `[0, 1]`).
+    /// UVs, colours and tangents are finite (colours and alphas also in `[0, 1]`).
     pub fn validate(&self) -> Result<(), SceneError> {
         let fail = |reason: String| {
             Err(SceneError::InvalidMesh {
@@ -132,6 +143,20 @@ impl Mesh {
             .position(|c| !(c.is_finite() && c.min_element() >= 0.0 && c.max_element() <= 1.0))
         {
             return fail(format!("colour {c} is not finite or outside [0, 1]"));
+        }
+        for (name, len) in [
+            ("alphas", self.alphas.len()),
+            ("tangents", self.tangents.len()),
+        ] {
+            if len != 0 && len != nv {
+                return fail(format!("{len} {name} for {nv} positions"));
+            }
+        }
+        if self.alphas.iter().any(|a| !(0.0..=1.0).contains(a)) {
+            return fail("vertex alphas must lie in [0, 1]".into());
+        }
+        if self.tangents.iter().any(|t| !t.is_finite()) {
+            return fail("tangents must be finite".into());
         }
         if let Some(t) = self
             .indices

@@ -18,7 +18,9 @@ mod light_list;
 mod material;
 mod mesh;
 mod model;
+mod tangents;
 mod texture;
+mod texture_ref;
 
 pub use crate::bvh::Sphere;
 pub use alias::{AliasEntry, AliasTable};
@@ -34,7 +36,8 @@ pub use light::{luminance, Environment, PunctualLight, Sun, LUMENS_PER_WATT};
 pub use light_list::{
     selection_power, LightDistribution, LightEntry, LightSource, Selection, UNIFORM_SELECTION,
 };
-pub use material::{Material, MaterialKind, SMOOTH_ALPHA};
+pub use material::{AlphaMode, Material, MaterialKind, SMOOTH_ALPHA};
 pub use mesh::Mesh;
 pub use model::{AnalyticRadiance, Scene};
 pub use texture::{TexelData, Texture};
+pub use texture_ref::{TextureRef, UvTransform, WrapMode};

@@ -189,10 +189,7 @@ impl Scene {
             self.warnings.extend(w);
         }
         for m in &self.materials {
-            for t in [m.base_color_texture, m.metallic_roughness_texture]
-                .into_iter()
-                .flatten()
-            {
+            for t in m.textures().map(|t| t.texture) {
                 if t as usize >= self.textures.len() {
                     return invalid(format!("material `{}` uses missing texture {t}", m.name));
                 }
@@ -314,6 +311,8 @@ impl Scene {
             h.bytes(bytemuck::cast_slice(&m.normals));
             h.bytes(bytemuck::cast_slice(&m.uvs));
             h.bytes(bytemuck::cast_slice(&m.colors));
+            h.bytes(bytemuck::cast_slice(&m.alphas));
+            h.bytes(bytemuck::cast_slice(&m.tangents));
             h.bytes(bytemuck::cast_slice(&m.indices));
             h.u32(m.material);
         }
@@ -333,9 +332,21 @@ impl Scene {
             h.str(&format!("{:?}", m.kind));
             h.bytes(bytemuck::cast_slice(&[m.base_color, m.emission]));
             h.bytes(bytemuck::cast_slice(&[m.alpha, m.ior]));
-            h.u32(m.base_color_texture.map_or(u32::MAX, |t| t));
-            h.u32(m.metallic_roughness_texture.map_or(u32::MAX, |t| t));
-            h.bytes(bytemuck::cast_slice(&[m.metallic]));
+            h.str(&format!(
+                "{:?} {:?} {:?} {:?} {:?} {:?}",
+                m.base_color_texture,
+                m.metallic_roughness_texture,
+                m.emissive_texture,
+                m.normal_texture,
+                m.occlusion_texture,
+                m.alpha_mode
+            ));
+            h.bytes(bytemuck::cast_slice(&[
+                m.metallic,
+                m.normal_scale,
+                m.occlusion_strength,
+                m.opacity,
+            ]));
         }
         for t in &self.textures {
             h.u32(t.width);

@@ -26,7 +26,7 @@ const NAMES: [&str; 15] = [
     "b_scene",
     "b_triangle_ids",
     "b_triangles",
-    "b_vertex_colors",
+    "b_vertex_attributes",
 ];
 
 /// Device-local copies of a packed scene.
@@ -67,7 +67,7 @@ impl SceneBuffers {
                 upload(ctx, NAMES[11], std::slice::from_ref(&gpu.params))?,
                 upload(ctx, NAMES[12], triangle_ids)?,
                 upload(ctx, NAMES[13], &gpu.triangles)?,
-                upload(ctx, NAMES[14], &gpu.vertex_colors)?,
+                upload(ctx, NAMES[14], &gpu.vertex_attributes)?,
             ],
             features: gpu.features,
         })
@@ -84,9 +84,10 @@ impl SceneBuffers {
         Ok(())
     }
 
-    /// Replaces the materials (and params) after a material edit.
+    /// Replaces the materials, their texture records (and params) after a material edit.
     pub fn update_materials(&mut self, ctx: &Context, gpu: &GpuScene) -> Result<()> {
         self.buffers[6] = upload(ctx, NAMES[6], &gpu.materials)?;
+        self.buffers[10] = upload(ctx, NAMES[10], &gpu.textures)?;
         self.update_top_level(ctx, gpu)
     }
 
@@ -137,6 +138,10 @@ pub fn specialization(gpu: &GpuScene) -> Specialization {
         "HAS_ENVIRONMENT",
         "HAS_TEXTURES",
         "HAS_VERTEX_COLORS",
+        "HAS_NORMAL_MAPS",
+        "HAS_EMISSIVE_TEXTURES",
+        "HAS_OCCLUSION",
+        "HAS_TEXTURE_TRANSFORMS",
     ]
     .into_iter()
     .fold(traversal_specialization(gpu), |spec, name| {
@@ -145,10 +150,12 @@ pub fn specialization(gpu: &GpuScene) -> Specialization {
 }
 
 /// The constants of `shaders/common/traverse.glsl` alone, for passes that only trace (see
-/// [`crate::debug::ray_query`]): `HAS_SPHERES`, and `SINGLE_INSTANCE` when the packing is one triangle
-/// instance ([`GpuScene::single_instance`]; the traversal then skips the top level).
+/// [`crate::debug::ray_query`]): `HAS_SPHERES`, `HAS_ALPHA_TEST` (cut-out surfaces let rays
+/// through), and `SINGLE_INSTANCE` when the packing is one triangle instance
+/// ([`GpuScene::single_instance`]; the traversal then skips the top level).
 pub fn traversal_specialization(gpu: &GpuScene) -> Specialization {
     Specialization::new()
         .set("HAS_SPHERES", gpu.features.spheres)
+        .set("HAS_ALPHA_TEST", gpu.features.alpha_test)
         .set("SINGLE_INSTANCE", gpu.single_instance())
 }

@@ -50,12 +50,16 @@ fn scene(ui: &mut egui::Ui, state: &mut AppState, requests: &mut Requests) {
             for note in &info.notes {
                 ui.label(note);
             }
-            ui.label("Features:");
-            ui.indent("features", |ui| {
-                for (name, used) in feature_list(&info.features) {
-                    ui.label(format!("{} {name}", if used { "☑" } else { "☐" }));
-                }
-            });
+            let used: Vec<&str> = feature_list(&info.features)
+                .into_iter()
+                .filter_map(|(name, used)| used.then_some(name))
+                .collect();
+            let used = if used.is_empty() {
+                "none".to_string()
+            } else {
+                used.join(", ")
+            };
+            ui.label(format!("Features: {used}"));
         }
         Err(e) => {
             ui.colored_label(egui::Color32::LIGHT_RED, e);
@@ -64,7 +68,7 @@ fn scene(ui: &mut egui::Ui, state: &mut AppState, requests: &mut Requests) {
 }
 
 /// The scene features with their names, in a fixed order.
-fn feature_list(f: &SceneFeatures) -> [(&'static str, bool); 11] {
+fn feature_list(f: &SceneFeatures) -> [(&'static str, bool); 16] {
     [
         ("diffuse", f.diffuse),
         ("conductor", f.conductor),
@@ -74,6 +78,11 @@ fn feature_list(f: &SceneFeatures) -> [(&'static str, bool); 11] {
         ("spheres", f.spheres),
         ("textures", f.textures),
         ("vertex colours", f.vertex_colors),
+        ("normal maps", f.normal_maps),
+        ("emissive textures", f.emissive_textures),
+        ("alpha cut-outs", f.alpha_test),
+        ("occlusion", f.occlusion),
+        ("texture transforms", f.texture_transforms),
         ("environment", f.environment),
         ("sun", f.sun),
         ("point/spot lights", f.delta_lights),

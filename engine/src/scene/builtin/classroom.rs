@@ -7,7 +7,9 @@ use glam::{Affine3A, Quat, Vec3};
 
 use super::shapes::{self, wall_with_openings, MeshBuilder};
 use super::{paths, BuildOptions};
-use crate::scene::{Camera, Environment, Material, Scene, SceneError, Sun, TexelData, Texture};
+use crate::scene::{
+    Camera, Environment, Material, Scene, SceneError, Sun, TexelData, Texture, TextureRef,
+};
 
 fn wood_texture() -> Texture {
     let size = 64u32;
@@ -43,7 +45,7 @@ pub fn build(options: &BuildOptions) -> Result<Scene, SceneError> {
     let board = scene.add_material(Material::diffuse("blackboard", Vec3::new(0.05, 0.12, 0.08)));
     let wood_tex = scene.add_texture(wood_texture());
     let mut wood = Material::diffuse("desk-wood", Vec3::ONE);
-    wood.base_color_texture = Some(wood_tex);
+    wood.base_color_texture = Some(TextureRef::new(wood_tex));
     let wood = scene.add_material(wood);
     let steel = scene.add_material(Material::conductor(
         "steel",

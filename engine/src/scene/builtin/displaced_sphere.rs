@@ -85,9 +85,9 @@ pub fn displaced_sphere(name: &str, material: u32, radius: f32, n: u32) -> Mesh 
         positions,
         normals,
         uvs,
-        colors: Vec::new(),
         indices,
         material,
+        ..Default::default()
     }
 }
 

@@ -26,9 +26,9 @@ impl MeshBuilder {
             positions: self.positions,
             normals: self.normals,
             uvs: self.uvs,
-            colors: Vec::new(),
             indices: self.indices,
             material,
+            ..Default::default()
         }
     }
 

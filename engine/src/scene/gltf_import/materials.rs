@@ -9,24 +9,26 @@
 //! - otherwise → Lambertian diffuse with the base colour as albedo.
 //!
 //! Roughness maps to GGX `alpha = roughness²`. Emission is
-//! `emissiveFactor × KHR_materials_emissive_strength`. The base-colour
-//! texture (sRGB, `TEXCOORD_0`) is kept for every kind; a metal's
-//! metallic-roughness texture (linear, roughness in G, metal in B) scales its
-//! roughness per texel and makes the texels where `metallic × B < 0.5` diffuse. What a material uses beyond this
-//! (textures other than base colour, alpha modes, partial metal or transmission, other texture
-//! coordinates or wrap modes) is reported once per feature per file ([`super::unsupported`]).
+//! `emissiveFactor × KHR_materials_emissive_strength`, times the emissive texture (sRGB) when
+//! there is one. The base-colour texture (sRGB, its alpha the opacity), the normal map and the
+//! occlusion texture are kept for every kind; a metal's metallic-roughness texture (linear,
+//! roughness in G, metal in B) scales its roughness per texel and makes the texels where
+//! `metallic × B < 0.5` diffuse. `alphaMode` and `alphaCutoff` carry over. Every texture keeps
+//! its sampler's wrap modes and its `KHR_texture_transform`. What a material uses beyond this
+//! (partial metal or transmission, texture coordinates other than `TEXCOORD_0`) is reported once
+//! per feature per file ([`super::unsupported`]).
 
 use std::collections::HashMap;
 use std::path::Path;
 
 use glam::Vec3;
 use gltf::material::AlphaMode;
-use gltf::texture::WrappingMode;
 use gltf::Document;
 
+use super::texture_slot::Slot;
 use super::unsupported::{Feature, Unsupported};
 use super::uri;
-use crate::scene::{Material, MaterialKind, Scene, TexelData, Texture};
+use crate::scene::{Material, MaterialKind, Scene, TexelData, Texture, TextureRef};
 
 /// Converts materials and the textures they use.
 pub struct MaterialImporter<'a> {
@@ -65,7 +67,7 @@ impl<'a> MaterialImporter<'a> {
             .name()
             .map_or_else(|| format!("material {index}"), str::to_owned);
         let pbr = m.pbr_metallic_roughness();
-        let [r, g, b, _] = pbr.base_color_factor();
+        let [r, g, b, a] = pbr.base_color_factor();
         let ext = self
             .doc
             .as_json()
@@ -100,56 +102,97 @@ impl<'a> MaterialImporter<'a> {
         if kind == MaterialKind::Dielectric && pbr.metallic_roughness_texture().is_some() {
             note(Feature::MetallicRoughnessTexture);
         }
-        if m.normal_texture().is_some() {
-            note(Feature::NormalMap);
-        }
-        if m.occlusion_texture().is_some() {
-            note(Feature::Occlusion);
-        }
-        if m.emissive_texture().is_some() {
-            note(Feature::EmissiveTexture);
-        }
-        match m.alpha_mode() {
-            AlphaMode::Opaque => {}
-            AlphaMode::Mask => note(Feature::AlphaMask),
-            AlphaMode::Blend => note(Feature::AlphaBlend),
-        }
-        let mut check = |info: &gltf::texture::Info| {
-            if info.tex_coord() != 0 {
-                note(Feature::OtherTexCoords);
-            }
-            let sampler = info.texture().sampler();
-            if [sampler.wrap_s(), sampler.wrap_t()]
-                .iter()
-                .any(|&w| w != WrappingMode::Repeat)
-            {
-                note(Feature::WrapMode);
-            }
-            info.texture().source().index()
+        let alpha_mode = match m.alpha_mode() {
+            AlphaMode::Opaque => crate::scene::AlphaMode::Opaque,
+            AlphaMode::Mask => crate::scene::AlphaMode::Mask {
+                cutoff: m.alpha_cutoff().unwrap_or(0.5),
+            },
+            AlphaMode::Blend => crate::scene::AlphaMode::Blend,
         };
-        let texture = match pbr.base_color_texture() {
-            Some(info) => Some(self.image(scene, check(&info), true)?),
+        let doc = self.doc;
+        let json = &doc.as_json().materials[index];
+        let info = |i: &gltf::json::texture::Info| {
+            let transform = i
+                .extensions
+                .as_ref()
+                .and_then(|e| e.texture_transform.as_ref());
+            Slot::new(doc, i.index, i.tex_coord, transform)
+        };
+        let pbr_json = &json.pbr_metallic_roughness;
+        let base_color_texture = match &pbr_json.base_color_texture {
+            Some(i) => Some(self.slot(scene, &info(i)?, true, &mut note)?),
             None => None,
         };
         // Metal and roughness per texel matter only to a metal: below a metallic factor of 0.5
         // every texel is diffuse, and Lambertian reflection has no roughness.
-        let metallic_roughness = match pbr.metallic_roughness_texture() {
-            Some(info) if kind == MaterialKind::Conductor => {
-                Some(self.image(scene, check(&info), false)?)
+        let metallic_roughness_texture = match &pbr_json.metallic_roughness_texture {
+            Some(i) if kind == MaterialKind::Conductor => {
+                Some(self.slot(scene, &info(i)?, false, &mut note)?)
             }
             _ => None,
+        };
+        let emission = Vec3::from(m.emissive_factor()) * strength;
+        // An emissive texture multiplies the factor: without a factor it adds nothing.
+        let emissive_texture = match &json.emissive_texture {
+            Some(i) if emission.max_element() > 0.0 => {
+                Some(self.slot(scene, &info(i)?, true, &mut note)?)
+            }
+            _ => None,
+        };
+        let normal_texture = match &json.normal_texture {
+            Some(t) => {
+                let others = t.extensions.as_ref().map(|e| &e.others);
+                let slot = Slot::with_raw_extensions(doc, t.index, t.tex_coord, others)?;
+                Some(self.slot(scene, &slot, false, &mut note)?)
+            }
+            None => None,
+        };
+        let occlusion_texture = match &json.occlusion_texture {
+            Some(t) => {
+                let others = t.extensions.as_ref().map(|e| &e.others);
+                let slot = Slot::with_raw_extensions(doc, t.index, t.tex_coord, others)?;
+                Some(self.slot(scene, &slot, false, &mut note)?)
+            }
+            None => None,
         };
         Ok(scene.add_material(Material {
             name,
             kind,
             base_color: Vec3::new(r, g, b),
-            base_color_texture: texture,
+            base_color_texture,
             alpha: roughness * roughness,
-            metallic_roughness_texture: metallic_roughness,
+            metallic_roughness_texture,
             metallic,
             ior,
-            emission: Vec3::from(m.emissive_factor()) * strength,
+            emission,
+            emissive_texture,
+            normal_texture,
+            normal_scale: m.normal_texture().map_or(1.0, |t| t.scale()),
+            occlusion_texture,
+            occlusion_strength: m.occlusion_texture().map_or(1.0, |t| t.strength()),
+            opacity: a,
+            alpha_mode,
         }))
+    }
+
+    /// The scene texture of `slot`'s image (decoded once per colour space: `srgb` for colours,
+    /// linear for data) with its sampler's wrap modes and `KHR_texture_transform`. Texture
+    /// coordinates other than `TEXCOORD_0` are noted as unsupported.
+    fn slot(
+        &mut self,
+        scene: &mut Scene,
+        slot: &Slot,
+        srgb: bool,
+        note: &mut impl FnMut(Feature),
+    ) -> Result<TextureRef, String> {
+        if slot.tex_coord != 0 {
+            note(Feature::OtherTexCoords);
+        }
+        Ok(TextureRef {
+            texture: self.image(scene, slot.image, srgb)?,
+            transform: slot.transform,
+            wrap: slot.wrap,
+        })
     }
 
     /// Decodes glTF image `index` once per colour space (`srgb` for colours, linear for data)

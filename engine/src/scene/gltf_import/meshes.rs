@@ -1,6 +1,6 @@
 //! glTF mesh primitives to Lucid meshes.
 
-use glam::{UVec3, Vec2, Vec3};
+use glam::{UVec3, Vec2, Vec3, Vec4};
 use gltf::accessor::Dimensions;
 use gltf::mesh::Mode;
 use gltf::{Primitive, Semantic};
@@ -15,8 +15,9 @@ pub const MAX_COORDINATE: f32 = 1e18;
 
 /// Converts one triangle, triangle-strip or triangle-fan primitive into a
 /// scene mesh and returns its id, or `None` (noted in `unsupported`) for points and
-/// lines. Reads POSITION, NORMAL (flat normals without it, as the spec requires), `TEXCOORD_0`
-/// and `COLOR_0`.
+/// lines. Reads POSITION, NORMAL (flat normals without it, as the spec requires), `TEXCOORD_0`,
+/// `COLOR_0` (its alpha only for a cut-out `material`) and, for a normal-mapped `material`,
+/// TANGENT (MikkTSpace tangents without it).
 pub fn primitive(
     scene: &mut Scene,
     (mesh, prim): (&gltf::Mesh, &Primitive),
@@ -71,11 +72,30 @@ pub fn primitive(
         Some(a) => read_floats::<2>(&a, buffers, true).map_err(ctx)?,
         None => Vec::new(),
     };
-    let colors = match prim.get(&Semantic::Colors(0)) {
+    let (colors, alphas) = match prim.get(&Semantic::Colors(0)) {
         Some(a) => read_colors(&a, buffers).map_err(ctx)?,
-        None => Vec::new(),
+        None => (Vec::new(), Vec::new()),
     };
-    let counts = [normals.len(), uvs.len(), colors.len()];
+    let mat = &scene.materials[material as usize];
+    let (normal_mapped, cut_out) = (mat.normal_texture.is_some(), mat.is_cut_out());
+    // Opacity matters to cut-out materials only.
+    let alphas = if cut_out { alphas } else { Vec::new() };
+    // glTF 2.0, meshes: without normals, "the provided tangents (if present) MUST be ignored".
+    let tangents = match prim.get(&Semantic::Tangents) {
+        Some(a) if normal_mapped && !normals.is_empty() => read_floats::<4>(&a, buffers, false)
+            .map_err(ctx)?
+            .into_iter()
+            .map(Vec4::from)
+            .collect(),
+        _ => Vec::new(),
+    };
+    let counts = [
+        normals.len(),
+        uvs.len(),
+        colors.len(),
+        alphas.len(),
+        tangents.len(),
+    ];
     if counts.iter().any(|&n| n != 0 && n != nv) {
         return Err(ctx("attribute counts differ from the POSITION count".into()));
     }
@@ -98,6 +118,14 @@ pub fn primitive(
             .collect(),
         uvs: uvs.into_iter().map(Vec2::from).collect(),
         colors,
+        alphas,
+        tangents: tangents
+            .into_iter()
+            .map(|t: Vec4| {
+                let xyz = t.truncate().try_normalize().unwrap_or(Vec3::X);
+                xyz.extend(if t.w < 0.0 { -1.0 } else { 1.0 })
+            })
+            .collect(),
         indices,
         material,
     };
@@ -106,21 +134,29 @@ pub fn primitive(
         // calculate flat normals".
         m.make_flat();
     }
+    if normal_mapped && m.tangents.is_empty() {
+        // "When tangents are not specified, client implementations SHOULD calculate tangents
+        // using default MikkTSpace algorithms".
+        m.generate_tangents();
+    }
     Ok(Some(scene.add_mesh(m)))
 }
 
 /// Reads a `COLOR_0` accessor: RGB or RGBA, float or normalized `u8`/`u16`, as linear RGB in
-/// `[0, 1]` (alpha, which would scale opacity, is dropped; floats are clamped).
-fn read_colors(a: &gltf::Accessor, buffers: &[Vec<u8>]) -> Result<Vec<Vec3>, String> {
-    let rgb: Vec<Vec3> = match a.dimensions() {
-        Dimensions::Vec3 => read_floats::<3>(a, buffers, true)?
-            .into_iter()
-            .map(Vec3::from)
-            .collect(),
+/// `[0, 1]` and, for RGBA, the alphas (floats are clamped; RGB gives no alphas).
+fn read_colors(a: &gltf::Accessor, buffers: &[Vec<u8>]) -> Result<(Vec<Vec3>, Vec<f32>), String> {
+    let (rgb, alphas): (Vec<Vec3>, Vec<f32>) = match a.dimensions() {
+        Dimensions::Vec3 => (
+            read_floats::<3>(a, buffers, true)?
+                .into_iter()
+                .map(Vec3::from)
+                .collect(),
+            Vec::new(),
+        ),
         Dimensions::Vec4 => read_floats::<4>(a, buffers, true)?
             .into_iter()
-            .map(|c| Vec3::new(c[0], c[1], c[2]))
-            .collect(),
+            .map(|c| (Vec3::new(c[0], c[1], c[2]), c[3].clamp(0.0, 1.0)))
+            .unzip(),
         d => {
             return Err(format!(
                 "COLOR_0 (accessor {}) must be VEC3 or VEC4, found {d:?}",
@@ -128,10 +164,11 @@ fn read_colors(a: &gltf::Accessor, buffers: &[Vec<u8>]) -> Result<Vec<Vec3>, Str
             ))
         }
     };
-    Ok(rgb
+    let rgb = rgb
         .into_iter()
         .map(|c| c.clamp(Vec3::ZERO, Vec3::ONE))
-        .collect())
+        .collect();
+    Ok((rgb, alphas))
 }
 
 /// The triangles of a triangle list, strip or fan (glTF 2.0, primitive topology: strip triangle `i` is

@@ -24,6 +24,7 @@ mod container;
 pub mod materials;
 mod meshes;
 mod nodes;
+mod texture_slot;
 mod unsupported;
 mod uri;
 
@@ -43,11 +44,12 @@ use unsupported::{Feature, Unsupported};
 pub const DEFAULT_VFOV_DEGREES: f32 = 45.0;
 
 /// Extensions the importer understands (and so accepts as required).
-pub const SUPPORTED_EXTENSIONS: [&str; 4] = [
+pub const SUPPORTED_EXTENSIONS: [&str; 5] = [
     "KHR_lights_punctual",
     "KHR_materials_emissive_strength",
     "KHR_materials_ior",
     "KHR_materials_transmission",
+    "KHR_texture_transform",
 ];
 
 /// Imports a `.gltf` or `.glb` file; external files resolve relative to it.

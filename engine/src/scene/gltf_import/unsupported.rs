@@ -9,24 +9,13 @@ use std::collections::BTreeMap;
 pub enum Feature {
     /// `pbrMetallicRoughness.metallicRoughnessTexture` on a transmissive material.
     MetallicRoughnessTexture,
-    /// `normalTexture`.
-    NormalMap,
-    /// `occlusionTexture`.
-    Occlusion,
-    /// `emissiveTexture`.
-    EmissiveTexture,
-    /// `alphaMode: MASK` (with `alphaCutoff`).
-    AlphaMask,
-    /// `alphaMode: BLEND`.
-    AlphaBlend,
     /// A `metallicFactor` strictly between 0 and 1 (a material is either metal or not).
     PartialMetal,
     /// A `KHR_materials_transmission` factor strictly between 0 and 1, or its texture.
     PartialTransmission,
-    /// A texture read through `TEXCOORD_n`, n > 0.
+    /// A texture read through `TEXCOORD_n`, n > 0 (by its `texCoord` or its
+    /// `KHR_texture_transform`'s).
     OtherTexCoords,
-    /// A sampler wrap mode other than `REPEAT`.
-    WrapMode,
     /// Point and line primitives.
     PointsAndLines,
     /// Morph targets.
@@ -51,20 +40,6 @@ impl Feature {
                 "metallic-roughness textures on transmissive materials are not supported: their \
                  roughness factor alone is used"
             }
-            Feature::NormalMap => {
-                "normal maps (normalTexture) are not supported: the meshes' own normals are used"
-            }
-            Feature::Occlusion => "occlusion textures are not supported (path tracing needs none)",
-            Feature::EmissiveTexture => {
-                "emissive textures are not supported: the emissive factor alone is used"
-            }
-            Feature::AlphaMask => {
-                "alpha masks (alphaMode MASK, alphaCutoff) are not supported: the surfaces are \
-                 opaque"
-            }
-            Feature::AlphaBlend => {
-                "alpha blending (alphaMode BLEND) is not supported: the surfaces are opaque"
-            }
             Feature::PartialMetal => {
                 "metallic factors between 0 and 1 are not supported: a material is a metal from \
                  0.5 up, else not"
@@ -75,9 +50,6 @@ impl Feature {
             }
             Feature::OtherTexCoords => {
                 "texture coordinates other than TEXCOORD_0 are not supported: TEXCOORD_0 is used"
-            }
-            Feature::WrapMode => {
-                "sampler wrap modes other than REPEAT are not supported: textures repeat"
             }
             Feature::PointsAndLines => {
                 "point and line primitives are not supported (only triangles, triangle strips \
@@ -167,14 +139,14 @@ mod tests {
     fn one_warning_per_feature_with_a_count() {
         let mut u = Unsupported::default();
         for name in ["a", "b", "b", "c"] {
-            u.note(Feature::NormalMap, "materials", || {
+            u.note(Feature::PartialMetal, "materials", || {
                 format!("material `{name}`")
             });
         }
         u.note(Feature::Animations, "animations", || "animation 0".into());
         let w = u.warnings("f.gltf");
         assert_eq!(w.len(), 2);
-        assert!(w[0].starts_with("f.gltf: normal maps"), "{w:?}");
+        assert!(w[0].starts_with("f.gltf: metallic factors"), "{w:?}");
         assert!(
             w[0].ends_with("(3 materials, the first material `a`)"),
             "{w:?}"

@@ -1,6 +1,6 @@
 //! Compact attribute encodings matching GLSL's unpack built-ins.
 
-use glam::{Vec2, Vec3};
+use glam::{Vec2, Vec3, Vec4};
 use half::f16;
 
 /// Octahedral encoding of a unit normal into two snorm16 values packed
@@ -35,11 +35,11 @@ pub fn encode_uv(uv: Vec2) -> u32 {
     f16::from_f32(uv.x).to_bits() as u32 | ((f16::from_f32(uv.y).to_bits() as u32) << 16)
 }
 
-/// A linear RGB colour as three half floats, `[packHalf2x16(r, g), packHalf2x16(b, 0)]`.
-pub fn encode_color(c: Vec3) -> [u32; 2] {
+/// A linear RGBA colour as four half floats, `[packHalf2x16(r, g), packHalf2x16(b, a)]`.
+pub fn encode_color(c: Vec4) -> [u32; 2] {
     [
         encode_uv(Vec2::new(c.x, c.y)),
-        encode_uv(Vec2::new(c.z, 0.0)),
+        encode_uv(Vec2::new(c.z, c.w)),
     ]
 }
 
@@ -66,7 +66,7 @@ mod tests {
         assert!(decode_normal(encode_normal(Vec3::NEG_Z)).abs_diff_eq(Vec3::NEG_Z, 1e-4));
         assert_eq!(encode_uv(Vec2::new(1.0, 0.5)), 0x3c00 | (0x3800 << 16));
         assert_eq!(
-            encode_color(Vec3::new(1.0, 0.5, 1.0)),
+            encode_color(Vec4::new(1.0, 0.5, 1.0, 0.0)),
             [0x3c00 | (0x3800 << 16), 0x3c00]
         );
     }

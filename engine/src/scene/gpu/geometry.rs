@@ -4,16 +4,34 @@ use glam::Vec2;
 
 use super::bvh_pack::{pack_tree, GpuBvhNode};
 use super::encode::{encode_color, encode_normal, encode_uv};
-use super::layout::{GpuSphere, GpuTriangle, GpuVertex};
-use crate::scene::{Bvh, Scene};
+use super::layout::{GpuSphere, GpuTriangle, GpuVertex, GpuVertexAttributes};
+use crate::scene::{Bvh, Mesh, Scene};
+
+/// Vertex `i`'s colour and alpha, and its tangent with the bitangent's sign.
+fn attributes(mesh: &Mesh, i: usize) -> GpuVertexAttributes {
+    let color = mesh.colors.get(i).copied().unwrap_or(glam::Vec3::ONE);
+    let alpha = mesh.alphas.get(i).copied().unwrap_or(1.0);
+    let tangent = mesh
+        .tangents
+        .get(i)
+        .copied()
+        .unwrap_or(glam::Vec4::X.with_w(1.0));
+    let [rg, b] = encode_color(color.extend(alpha));
+    [
+        rg,
+        b,
+        encode_normal(tangent.truncate()),
+        tangent.w.to_bits(),
+    ]
+}
 
 /// Packed geometry and bottom levels.
 pub struct PackedGeometry {
     /// All mesh vertices, mesh after mesh.
     pub vertices: Vec<GpuVertex>,
-    /// The vertex colour of every vertex of `vertices` (white where a mesh has none) when some
-    /// mesh has vertex colours, else empty: RGB as half floats, `[r | g << 16, b]`.
-    pub vertex_colors: Vec<[u32; 2]>,
+    /// The colour, alpha and tangent of every vertex of `vertices` (opaque white and `+X` where a
+    /// mesh has none) when some mesh has vertex colours or tangents, else empty.
+    pub vertex_attributes: Vec<GpuVertexAttributes>,
     /// Triangle vertex indices (absolute), each mesh's triangles in its
     /// BLAS leaf order.
     pub indices: Vec<u32>,
@@ -32,10 +50,13 @@ pub struct PackedGeometry {
 /// Packs all meshes and spheres of `scene` using the BLAS leaf orders of `bvh`.
 pub fn pack(scene: &Scene, bvh: &Bvh) -> PackedGeometry {
     let vertex_total: usize = scene.meshes.iter().map(|m| m.positions.len()).sum();
-    let colored = scene.meshes.iter().any(|m| !m.colors.is_empty());
+    let attributed = scene
+        .meshes
+        .iter()
+        .any(|m| !m.colors.is_empty() || !m.tangents.is_empty());
     let mut out = PackedGeometry {
         vertices: Vec::with_capacity(vertex_total),
-        vertex_colors: Vec::new(),
+        vertex_attributes: Vec::new(),
         indices: Vec::with_capacity(scene.unique_triangle_count() * 3),
         triangles: Vec::with_capacity(scene.unique_triangle_count()),
         blas_nodes: Vec::with_capacity(bvh.blases.iter().map(|b| b.nodes.len() / 2).sum()),
@@ -51,11 +72,9 @@ pub fn pack(scene: &Scene, bvh: &Bvh) -> PackedGeometry {
                 normal: encode_normal(mesh.normals[i]),
                 uv: encode_uv(mesh.uvs.get(i).copied().unwrap_or(Vec2::ZERO)),
             }));
-        if colored {
-            out.vertex_colors.extend(
-                (0..mesh.positions.len())
-                    .map(|i| encode_color(mesh.colors.get(i).copied().unwrap_or(glam::Vec3::ONE))),
-            );
+        if attributed {
+            out.vertex_attributes
+                .extend((0..mesh.positions.len()).map(|i| attributes(mesh, i)));
         }
         let tri_base = (out.indices.len() / 3) as u32;
         out.triangle_base.push(tri_base);

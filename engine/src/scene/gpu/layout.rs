@@ -3,6 +3,14 @@
 
 use bytemuck::{Pod, Zeroable};
 
+/// Optional per-vertex attributes, 16 bytes, when some mesh has vertex colours or tangents.
+/// ```glsl
+/// uvec4 a; // packHalf2x16(r, g), packHalf2x16(b, alpha), octahedral tangent (snorm16x2),
+///          // floatBitsToUint(bitangent sign)
+/// ```
+/// Missing colours are opaque white, missing tangents `+X` with sign 1.
+pub type GpuVertexAttributes = [u32; 4];
+
 /// A mesh vertex, 20 bytes (std430 stride 20: only scalar members).
 /// ```glsl
 /// struct Vertex {
@@ -93,15 +101,28 @@ pub mod material_kind {
     pub const DIELECTRIC: u32 = 2;
 }
 
-/// A material, 64 bytes.
+/// Bits of [`GpuMaterial::flags`].
+pub mod material_flags {
+    /// The material emits.
+    pub const EMISSIVE: u32 = 1;
+    /// GGX alpha below [`crate::scene::SMOOTH_ALPHA`].
+    pub const SMOOTH: u32 = 2;
+    /// Alpha mask: absent where opacity < `alpha_cutoff`.
+    pub const ALPHA_MASK: u32 = 4;
+    /// Alpha blend: present with probability `opacity`.
+    pub const ALPHA_BLEND: u32 = 8;
+}
+
+/// A material, 80 bytes. Texture fields index [`GpuTextureRecord`]s (`~0u`: none).
 /// ```glsl
 /// struct Material {
 ///     vec3  base_color; uint kind;    // kind: 0 diffuse, 1 conductor, 2 dielectric
 ///     vec3  emission;   float alpha;  // GGX alpha
-///     float ior; uint texture;        // ~0u = no base-colour texture
-///     uint  flags;                    // bit 0 emissive, bit 1 smooth (alpha < 1e-3)
-///     uint  metal_roughness;          // ~0u = no metallic-roughness texture (G roughness, B metal)
-///     float metallic; uint pad0, pad1, pad2; // metallic factor
+///     float ior; uint texture;        // base-colour texture
+///     uint  flags;                    // material_flags
+///     uint  metal_roughness;          // metallic-roughness texture (G roughness, B metal)
+///     float metallic; uint normal_texture; float normal_scale; uint emissive_texture;
+///     uint  occlusion_texture; float occlusion_strength; float opacity; float alpha_cutoff;
 /// };
 /// ```
 #[repr(C)]
@@ -117,17 +138,29 @@ pub struct GpuMaterial {
     pub alpha: f32,
     /// Index of refraction.
     pub ior: f32,
-    /// Texture record index or `u32::MAX`.
+    /// Base-colour texture record or `u32::MAX`.
     pub texture: u32,
-    /// Bit 0: emissive; bit 1: smooth.
+    /// See [`material_flags`].
     pub flags: u32,
-    /// Metallic-roughness texture record index or `u32::MAX`.
+    /// Metallic-roughness texture record or `u32::MAX`.
     pub metal_roughness: u32,
     /// Metallic factor (with a metallic-roughness texture, a texel is metal where
     /// `metallic * B >= 0.5`).
     pub metallic: f32,
-    /// Padding to 64 bytes.
-    pub pad: [u32; 3],
+    /// Normal-map texture record or `u32::MAX`.
+    pub normal_texture: u32,
+    /// Normal-map scale.
+    pub normal_scale: f32,
+    /// Emissive texture record or `u32::MAX`.
+    pub emissive_texture: u32,
+    /// Occlusion texture record or `u32::MAX`.
+    pub occlusion_texture: u32,
+    /// Occlusion strength.
+    pub occlusion_strength: f32,
+    /// Base opacity (base colour alpha).
+    pub opacity: f32,
+    /// Alpha-mask cutoff.
+    pub alpha_cutoff: f32,
 }
 
 /// Light kinds as stored in [`GpuLight::kind`].
@@ -148,7 +181,7 @@ pub mod light_kind {
 ///     uint kind;      // see light_kind
 ///     uint index;     // triangle: global triangle index; sphere: index in spheres
 ///     uint instance;  // triangle: index in instances; otherwise ~0u
-///     uint pad;
+///     uint material;  // triangle: its material (emissive textures, alpha); otherwise ~0u
 ///     vec4 p0;        // triangle: world v0, area | sphere: centre, radius | point/spot: position, 0
 ///     vec4 p1;        // triangle: world v1, emitting side (+1: winding normal, -1: opposite) | spot: unit direction, cos(outer angle)
 ///     vec4 p2;        // triangle: world v2 | spot: cos(inner angle), 0, 0, 0
@@ -164,8 +197,8 @@ pub struct GpuLight {
     pub index: u32,
     /// Instance index for triangles.
     pub instance: u32,
-    /// Padding.
-    pub pad: u32,
+    /// Material of a triangle (`u32::MAX` otherwise).
+    pub material: u32,
     /// First geometry vector.
     pub p0: [f32; 4],
     /// Second geometry vector.
@@ -206,9 +239,14 @@ pub mod texture_format {
     pub const RGBA32F: u32 = 2;
 }
 
-/// Where a texture lives in the texel buffer, 16 bytes.
+/// A texture as one material slot samples it, 48 bytes: where its texels live, its texture
+/// coordinate transform and its wrap modes.
 /// ```glsl
-/// struct TextureRecord { uint offset; uint width; uint height; uint format; };
+/// struct TextureRecord {
+///     uint offset; uint width; uint height; uint format;
+///     vec4 u_row; // u' = dot(u_row.xyz, vec3(uv, 1)); w: wrap mode along u (WrapMode::code)
+///     vec4 v_row; // v' = dot(v_row.xyz, vec3(uv, 1)); w: wrap mode along v
+/// };
 /// ```
 /// `offset` counts `u32` words; texel `(x, y)` starts at
 /// `offset + (y * width + x) * words_per_texel`.
@@ -223,6 +261,10 @@ pub struct GpuTextureRecord {
     pub height: u32,
     /// See [`texture_format`].
     pub format: u32,
+    /// First row of the coordinate transform, and the wrap mode along u.
+    pub u_row: [f32; 4],
+    /// Second row of the coordinate transform, and the wrap mode along v.
+    pub v_row: [f32; 4],
 }
 
 /// Camera parameters, 64 bytes.
@@ -324,10 +366,10 @@ mod tests {
         assert_eq!(size_of::<GpuVertex>(), 20);
         assert_eq!(size_of::<GpuInstance>(), 112);
         assert_eq!(size_of::<GpuSphere>(), 32);
-        assert_eq!(size_of::<GpuMaterial>(), 64);
+        assert_eq!(size_of::<GpuMaterial>(), 80);
         assert_eq!(size_of::<GpuLight>(), 80);
         assert_eq!(size_of::<GpuAliasEntry>(), 16);
-        assert_eq!(size_of::<GpuTextureRecord>(), 16);
+        assert_eq!(size_of::<GpuTextureRecord>(), 48);
         assert_eq!(size_of::<GpuCamera>(), 64);
         assert_eq!(size_of::<GpuEnvironment>(), 64);
         assert_eq!(size_of::<GpuSun>(), 32);

@@ -3,8 +3,8 @@
 //!
 //! Buffers and how they reference each other:
 //! - `vertices` ([`GpuVertex`], 20 B) and `indices` (3 × `u32` per
-//!   triangle, absolute vertex indices); `vertex_colors` (8 B per vertex) only when a mesh has
-//!   vertex colours. Each mesh's triangles are stored
+//!   triangle, absolute vertex indices); `vertex_attributes` ([`GpuVertexAttributes`], 16 B per
+//!   vertex: colour, alpha, tangent) only when a mesh has vertex colours or tangents. Each mesh's triangles are stored
 //!   in its BLAS leaf order, so a BLAS leaf `(first, count)` is directly a
 //!   global triangle range.
 //! - `blas_nodes` / `tlas_nodes` ([`GpuBvhNode`], 64 B, see [`bvh_pack`]):
@@ -13,7 +13,8 @@
 //!   leaves index `instances`, which are stored in TLAS leaf order.
 //! - `instances` ([`GpuInstance`]): transforms, BLAS root, material.
 //! - `spheres` ([`GpuSphere`]) in sphere-BLAS leaf order.
-//! - `materials`, `textures` (records into the flat `texels` word buffer).
+//! - `materials`, `textures` (one record per texture a material uses: where its texels lie in
+//!   the flat `texels` word buffer, its coordinate transform and wrap modes).
 //! - `lights` + `light_table`: the NEE light list with its alias table / CDF
 //!   (power and uniform selection, see [`crate::scene::LightDistribution`]).
 //! - `params`: camera, environment, sun, counts.
@@ -28,10 +29,11 @@ mod params;
 pub use bvh_pack::GpuBvhNode;
 pub use encode::{decode_normal, encode_color, encode_normal, encode_uv};
 pub use flat::{apply_flattening, pack_flat, INSTANCE_FLATTENED};
+pub use layout::material_flags;
 pub use layout::{
     light_kind, material_kind, texture_format, GpuAliasEntry, GpuCamera, GpuEnvironment,
     GpuInstance, GpuLight, GpuMaterial, GpuSceneParams, GpuSphere, GpuSun, GpuTextureRecord,
-    GpuTriangle, GpuVertex,
+    GpuTriangle, GpuVertex, GpuVertexAttributes,
 };
 pub use params::camera;
 
@@ -53,9 +55,9 @@ pub const INSTANCE_SPHERES: u32 = 1;
 pub struct GpuScene {
     /// Mesh vertices.
     pub vertices: Vec<GpuVertex>,
-    /// Vertex colours, one per vertex (`[packHalf2x16(r, g), packHalf2x16(b, 0)]`), when some
-    /// mesh has them; else empty (and `HAS_VERTEX_COLORS` off).
-    pub vertex_colors: Vec<[u32; 2]>,
+    /// Vertex colours, alphas and tangents, one per vertex, when some mesh has colours or
+    /// tangents; else empty (and `HAS_VERTEX_COLORS` and `HAS_NORMAL_MAPS` off).
+    pub vertex_attributes: Vec<GpuVertexAttributes>,
     /// Triangle vertex indices, three per triangle.
     pub indices: Vec<u32>,
     /// Triangles for ray intersection (first vertex and edges), in the order of `indices`.
@@ -78,12 +80,14 @@ pub struct GpuScene {
     pub light_table: Vec<GpuAliasEntry>,
     /// Texel words of all textures.
     pub texels: Vec<u32>,
-    /// Texture records into `texels`.
+    /// Texture records (one per material texture slot) into `texels`.
     pub textures: Vec<GpuTextureRecord>,
     /// Camera, environment, sun and counts.
     pub params: GpuSceneParams,
     /// Features to specialise shaders for.
     pub features: SceneFeatures,
+    /// Where each scene texture's texels lie (identity transform, repeating).
+    images: Vec<GpuTextureRecord>,
     /// Root child word of each BLAS.
     blas_roots: Vec<u32>,
     triangle_base: Vec<u32>,
@@ -101,17 +105,19 @@ impl GpuScene {
     /// textures and features. The instances, lights and params are left empty.
     fn without_top_level(scene: &Scene, bvh: &Bvh) -> Self {
         let geo = geometry::pack(scene, bvh);
-        let (texels, textures) = params::textures(scene);
+        let (texels, images) = params::textures(scene);
+        let (materials, textures) = params::materials(scene, &images);
         Self {
             vertices: geo.vertices,
-            vertex_colors: geo.vertex_colors,
+            vertex_attributes: geo.vertex_attributes,
             indices: geo.indices,
             triangles: geo.triangles,
             blas_nodes: geo.blas_nodes,
             spheres: geo.spheres,
-            materials: params::materials(scene),
+            materials,
             texels,
             textures,
+            images,
             features: scene.features(),
             blas_roots: geo.blas_roots,
             triangle_base: geo.triangle_base,
@@ -119,11 +125,11 @@ impl GpuScene {
         }
     }
 
-    /// Re-packs the materials of `scene` (after a material edit); the lights that depend on them
-    /// are re-packed with the top level ([`Self::update_top_level`] or
+    /// Re-packs the materials of `scene` and their texture records (after a material edit); the
+    /// lights that depend on them are re-packed with the top level ([`Self::update_top_level`] or
     /// [`apply_flattening`]).
     pub fn update_materials(&mut self, scene: &Scene) {
-        self.materials = params::materials(scene);
+        (self.materials, self.textures) = params::materials(scene, &self.images);
     }
 
     /// Re-packs what depends on instance placement (TLAS, instances,
@@ -247,7 +253,7 @@ impl GpuScene {
     /// Bytes of vertices and indices.
     pub fn geometry_bytes(&self) -> usize {
         self.vertices.len() * size_of::<GpuVertex>()
-            + self.vertex_colors.len() * 8
+            + self.vertex_attributes.len() * size_of::<GpuVertexAttributes>()
             + self.indices.len() * 4
             + self.triangles.len() * size_of::<GpuTriangle>()
             + self.spheres.len() * size_of::<GpuSphere>()

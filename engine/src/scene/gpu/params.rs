@@ -1,41 +1,80 @@
 //! Packs materials, textures, lights, camera, environment and sun.
 
 use super::layout::{
-    light_kind, material_kind, texture_format, GpuAliasEntry, GpuCamera, GpuEnvironment, GpuLight,
-    GpuMaterial, GpuSun, GpuTextureRecord,
+    light_kind, material_flags, material_kind, texture_format, GpuAliasEntry, GpuCamera,
+    GpuEnvironment, GpuLight, GpuMaterial, GpuSun, GpuTextureRecord,
 };
 use crate::scene::{
-    Camera, Environment, Instance, LightDistribution, LightSource, MaterialKind, Mesh,
-    PunctualLight, Scene, Sun, TexelData,
+    AlphaMode, Camera, Environment, Instance, LightDistribution, LightSource, MaterialKind, Mesh,
+    PunctualLight, Scene, Sun, TexelData, TextureRef,
 };
 use glam::{Vec3, Vec3A};
 
-/// Converts the scene materials.
-pub fn materials(scene: &Scene) -> Vec<GpuMaterial> {
-    scene
+/// Converts the scene materials; each texture a material uses gets its own record (the texels
+/// of scene texture `t` are at `images[t]`, with that slot's transform and wrap modes). Returns
+/// the materials and the records they index.
+pub fn materials(
+    scene: &Scene,
+    images: &[GpuTextureRecord],
+) -> (Vec<GpuMaterial>, Vec<GpuTextureRecord>) {
+    let mut records = Vec::new();
+    let mut record = |slot: Option<TextureRef>| {
+        let Some(slot) = slot else {
+            return u32::MAX;
+        };
+        let [u, v] = slot.transform.rows();
+        let code = |w: crate::scene::WrapMode| w.code() as f32;
+        records.push(GpuTextureRecord {
+            u_row: [u[0], u[1], u[2], code(slot.wrap[0])],
+            v_row: [v[0], v[1], v[2], code(slot.wrap[1])],
+            ..images[slot.texture as usize]
+        });
+        (records.len() - 1) as u32
+    };
+    let materials = scene
         .materials
         .iter()
-        .map(|m| GpuMaterial {
-            base_color: m.base_color.to_array(),
-            kind: match m.kind {
-                MaterialKind::Diffuse => material_kind::DIFFUSE,
-                MaterialKind::Conductor => material_kind::CONDUCTOR,
-                MaterialKind::Dielectric => material_kind::DIELECTRIC,
-            },
-            emission: m.emission.to_array(),
-            alpha: m.alpha,
-            ior: m.ior,
-            texture: m.base_color_texture.unwrap_or(u32::MAX),
-            flags: u32::from(m.is_emissive())
-                | (u32::from(m.alpha < crate::scene::SMOOTH_ALPHA) << 1),
-            metal_roughness: m.metallic_roughness_texture.unwrap_or(u32::MAX),
-            metallic: m.metallic,
-            pad: [0; 3],
+        .map(|m| {
+            let (alpha_flag, alpha_cutoff) = match m.alpha_mode {
+                AlphaMode::Opaque => (0, 0.0),
+                AlphaMode::Mask { cutoff } => (material_flags::ALPHA_MASK, cutoff),
+                AlphaMode::Blend => (material_flags::ALPHA_BLEND, 0.0),
+            };
+            let smooth = m.alpha < crate::scene::SMOOTH_ALPHA;
+            GpuMaterial {
+                base_color: m.base_color.to_array(),
+                kind: match m.kind {
+                    MaterialKind::Diffuse => material_kind::DIFFUSE,
+                    MaterialKind::Conductor => material_kind::CONDUCTOR,
+                    MaterialKind::Dielectric => material_kind::DIELECTRIC,
+                },
+                emission: m.emission.to_array(),
+                alpha: m.alpha,
+                ior: m.ior,
+                texture: record(m.base_color_texture),
+                flags: if m.is_emissive() {
+                    material_flags::EMISSIVE
+                } else {
+                    0
+                } | if smooth { material_flags::SMOOTH } else { 0 }
+                    | alpha_flag,
+                metal_roughness: record(m.metallic_roughness_texture),
+                metallic: m.metallic,
+                normal_texture: record(m.normal_texture),
+                normal_scale: m.normal_scale,
+                emissive_texture: record(m.emissive_texture),
+                occlusion_texture: record(m.occlusion_texture),
+                occlusion_strength: m.occlusion_strength,
+                opacity: m.opacity,
+                alpha_cutoff,
+            }
         })
-        .collect()
+        .collect();
+    (materials, records)
 }
 
-/// Flattens all textures into one texel buffer plus records.
+/// Flattens all textures into one texel buffer; returns it and where each texture's texels are
+/// (records with an identity transform, repeating).
 pub fn textures(scene: &Scene) -> (Vec<u32>, Vec<GpuTextureRecord>) {
     let mut texels = Vec::new();
     let mut records = Vec::with_capacity(scene.textures.len());
@@ -60,6 +99,8 @@ pub fn textures(scene: &Scene) -> (Vec<u32>, Vec<GpuTextureRecord>) {
             width: t.width,
             height: t.height,
             format,
+            u_row: [1.0, 0.0, 0.0, 0.0],
+            v_row: [0.0, 1.0, 0.0, 0.0],
         });
     }
     (texels, records)
@@ -99,7 +140,7 @@ pub fn lights(
                         kind: light_kind::TRIANGLE,
                         index: (remap.triangle)(instance, triangle),
                         instance: remap.instance[instance as usize],
-                        pad: 0,
+                        material: scene.instance_material(instance as usize),
                         p0: a.extend(area).to_array(),
                         p1: b
                             .extend(emitting_side(mesh, inst, triangle, geometric))
@@ -114,6 +155,7 @@ pub fn lights(
                         kind: light_kind::SPHERE,
                         index: remap.sphere[sphere as usize],
                         instance: u32::MAX,
+                        material: u32::MAX,
                         p0: s.center.extend(s.radius).to_array(),
                         emission,
                         ..Default::default()
@@ -124,6 +166,7 @@ pub fn lights(
                         kind: light_kind::POINT,
                         index: light,
                         instance: u32::MAX,
+                        material: u32::MAX,
                         p0: position.extend(0.0).to_array(),
                         emission,
                         ..Default::default()
@@ -138,11 +181,11 @@ pub fn lights(
                         kind: light_kind::SPOT,
                         index: light,
                         instance: u32::MAX,
+                        material: u32::MAX,
                         p0: position.extend(0.0).to_array(),
                         p1: direction.extend(outer_angle.cos()).to_array(),
                         p2: [inner_angle.cos(), 0.0, 0.0, 0.0],
                         emission,
-                        ..Default::default()
                     },
                 },
             }
