@@ -138,10 +138,7 @@ fn learned_denoiser_recovers_the_revealed_region() {
     );
 }
 
-/// Not met yet (issue #12): measured 0.217, where the network at this size blurs the wall with the
-/// box's surroundings; run with `cargo test -- --ignored`.
 #[test]
-#[ignore = "the learned denoiser does not meet SVGF's bound yet (measured trail error: lucid-rae-v2 0.205, v1 0.217)"]
 fn learned_denoiser_leaves_no_trail() {
     let trail = learned_errors().iter().map(|&(_, t)| t).fold(0.0, f64::max);
     assert!(trail <= MAX_TRAIL_ERROR, "ghost trail: error {trail:.3}");

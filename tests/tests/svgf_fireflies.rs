@@ -77,7 +77,6 @@ fn covered_light_has_no_blotches() {
 }
 
 #[test]
-#[ignore = "the learned denoiser (lucid-rae-v2) does not meet SVGF's bound yet (measured worst block excess 0.657; lucid-rae-v1 met it): its running mean keeps a firefly for many frames"]
 fn learned_denoiser_leaves_no_blotches_on_covered_light() {
     assert_no_blotches("covered-light", Method::Neural, MAX_EXCESS_COVERED_LIGHT);
 }

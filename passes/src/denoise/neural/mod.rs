@@ -284,6 +284,7 @@ pub fn add_neural(
     });
 
     let mut p = g.compute_pass(&format!("{prefix}.output"), &OUTPUT);
+    // The direct decoder has no filtered scales: its output is bound in their place (not read).
     let [filtered, detail] = scales.unwrap_or([net.buffer; 2]);
     p.read("b_record", record)
         .read("b_features", features.buffer)
