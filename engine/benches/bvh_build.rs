@@ -1,16 +1,16 @@
 //! BVH build benchmark (std::time, no harness): builds the `classroom` and `covered-light` scenes
-//! (1 M and 5 M triangles), times the two-level binary SAH build, the packing for the GPU in each
-//! layout (binary; wide: collapse, quantization and reordering) and the bare collapse of the bottom
-//! levels, and reports triangle counts, tree depths and GPU bytes per stored triangle (geometry +
-//! BVH) per layout.
+//! (1 M and 5 M triangles) as the renderer does (static instances flattened into one mesh), times
+//! the binary SAH build, the packing for the GPU in each layout (binary; wide: collapse,
+//! quantization and reordering) and the bare collapse of the bottom levels, and reports triangle
+//! counts, tree depths and GPU bytes per triangle (geometry + BVH) per layout.
 //!
 //! Run: `cargo bench -p lucid-engine --bench bvh_build`.
 
 use std::time::Instant;
 
 use lucid_engine::scene::builtin::{self, BuildOptions};
-use lucid_engine::scene::gpu::{wide, BvhLayout, GpuScene};
-use lucid_engine::scene::Bvh;
+use lucid_engine::scene::gpu::{pack_flat, wide, BvhLayout};
+use lucid_engine::scene::{Bvh, FlatScene};
 
 /// The best of three timings of `f` in seconds, with its last result.
 fn best_of_three<T>(mut f: impl FnMut() -> T) -> (f64, T) {
@@ -28,8 +28,9 @@ fn best_of_three<T>(mut f: impl FnMut() -> T) -> (f64, T) {
 fn run(label: &str, name: &str, detail: f32) {
     let t = Instant::now();
     let scene = builtin::build_with(name, &BuildOptions { detail }).expect("built-in scene");
+    let flat = FlatScene::new(&scene, &[]);
     let scene_s = t.elapsed().as_secs_f64();
-    let (build_s, bvh) = best_of_three(|| Bvh::build(&scene));
+    let (build_s, bvh) = best_of_three(|| Bvh::build(&flat.scene));
     println!(
         "{label:<22} triangles {:>9} (stored {:>9})  scene {scene_s:>6.3} s  bvh build {build_s:>6.3} s  \
          binary nodes {:>9}  SAH {:>7.2}",
@@ -50,7 +51,7 @@ fn run(label: &str, name: &str, detail: f32) {
         ""
     );
     for layout in BvhLayout::ALL {
-        let (pack_s, gpu) = best_of_three(|| GpuScene::with_layout(&scene, &bvh, layout));
+        let (pack_s, (gpu, _)) = best_of_three(|| pack_flat(&flat, &scene, &bvh, layout));
         let depths = gpu.bvh_depths();
         println!(
             "{:<22} {layout:<6} pack {pack_s:>6.3} s  build + pack {:>6.3} s  nodes {:>9}  depth {:>3} (top {:>2})  \

@@ -66,7 +66,7 @@ impl<'a> Collapser<'a> {
     }
 
     /// Primitives under binary node `index`.
-    fn count(&self, index: u32) -> u32 {
+    pub fn count(&self, index: u32) -> u32 {
         self.ranges[index as usize].1
     }
 
@@ -86,16 +86,21 @@ impl<'a> Collapser<'a> {
 
     /// The children of the wide node standing for binary node `index` (at most [`WIDTH`]).
     pub fn children(&self, index: u32) -> Vec<Child> {
-        // (binary node, whether it may still be opened)
-        let mut open: Vec<(u32, bool)> = if self.is_leaf(index) {
-            vec![(index, false)]
+        // (binary node, whether it may still be opened); their order does not matter (the
+        // children take slots by position later).
+        let mut open = [(0u32, false); WIDTH];
+        let mut len = if self.is_leaf(index) {
+            open[0] = (index, false);
+            1
         } else {
             let l = self.nodes[index as usize].left_or_first;
-            vec![(l, true), (l + 1, true)]
+            open[0] = (l, true);
+            open[1] = (l + 1, true);
+            2
         };
-        let mut used: usize = open.iter().map(|&(i, _)| self.slots(i)).sum();
+        let mut used: usize = open[..len].iter().map(|&(i, _)| self.slots(i)).sum();
         let area = |i: u32| self.nodes[i as usize].bounds().surface_area();
-        while let Some(k) = open
+        while let Some(k) = open[..len]
             .iter()
             .enumerate()
             .filter(|(_, &(i, may_open))| may_open && !self.is_leaf(i))
@@ -110,10 +115,11 @@ impl<'a> Collapser<'a> {
             }
             used = after;
             open[k] = (l, true);
-            open.insert(k + 1, (l + 1, true));
+            open[len] = (l + 1, true);
+            len += 1;
         }
         let mut children = Vec::with_capacity(WIDTH);
-        for (i, _) in open {
+        for &(i, _) in &open[..len] {
             let bounds = self.nodes[i as usize].bounds();
             if !self.is_leaf(i) {
                 children.push(Child::Inner { index: i, bounds });

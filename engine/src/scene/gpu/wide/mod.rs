@@ -15,6 +15,8 @@ mod walk;
 pub use node::{Slot, WideNode, INNER_BIT, MAX_LEAF_PRIMITIVES, MAX_NODE_PRIMITIVES, WIDTH};
 pub use walk::walk;
 
+use rayon::prelude::*;
+
 use crate::bvh::BvhNode;
 use collapse::{Child, Collapser};
 
@@ -34,9 +36,13 @@ pub struct PackedWide {
     pub depth: u32,
 }
 
+/// Subtrees over at least this many primitives pack their inner children's subtrees in parallel.
+const PARALLEL_MIN: u32 = 1 << 15;
+
 /// Appends the wide form of the flattened binary tree `nodes` (root first, as built by
 /// [`crate::bvh`]) to `out`; its leaves name primitives from `prim_base`. Each node's inner
-/// children are stored contiguously; subtrees are laid out depth first.
+/// children are stored contiguously; subtrees are laid out depth first (large ones packed in
+/// parallel, then concatenated).
 pub fn pack_tree(nodes: &[BvhNode], prim_base: u32, out: &mut Vec<WideNode>) -> PackedWide {
     match nodes.first() {
         None => return empty(),
@@ -44,54 +50,142 @@ pub fn pack_tree(nodes: &[BvhNode], prim_base: u32, out: &mut Vec<WideNode>) -> 
         Some(_) => {}
     }
     let collapser = Collapser::new(nodes);
+    let tree = pack_subtree(&collapser, 0);
     let root = out.len() as u32;
-    out.push(WideNode::default());
-    let mut order = Vec::new();
-    let mut depth = 0;
-    // (wide node slot, binary node, depth)
-    let mut stack = vec![(root, 0u32, 1u32)];
-    while let Some((at, binary, level)) = stack.pop() {
-        depth = depth.max(level);
-        let children = collapser.children(binary);
-        let centers: Vec<_> = children.iter().map(|c| c.bounds().center()).collect();
-        let center = children
-            .iter()
-            .fold(crate::bvh::Aabb::EMPTY, |b, c| b.union(c.bounds()))
-            .center();
-        let placement = slots::assign(&centers, center);
-        let child_base = out.len() as u32;
-        let primitive_base = prim_base + order.len() as u32;
-        let mut slot_contents = [Slot::Empty; WIDTH];
-        let mut inner = Vec::new();
-        for (s, child) in placement.iter().enumerate() {
-            let Some(k) = *child else { continue };
-            slot_contents[s] = match children[k] {
-                Child::Inner { index, bounds } => {
-                    inner.push(index);
-                    Slot::Inner(bounds)
-                }
-                Child::Leaf {
-                    first,
-                    count,
+    out.extend(tree.nodes.iter().map(|n| relocated(n, root, prim_base)));
+    PackedWide {
+        root,
+        order: tree.order,
+        depth: tree.depth,
+    }
+}
+
+/// A subtree packed on its own: its root is node 0, its primitives start at 0.
+struct Subtree {
+    nodes: Vec<WideNode>,
+    order: Vec<u32>,
+    depth: u32,
+}
+
+/// `node` with its child indices shifted by `nodes` and its primitive indices by `primitives`.
+fn relocated(node: &WideNode, nodes: u32, primitives: u32) -> WideNode {
+    WideNode {
+        child_base: node.child_base + nodes,
+        primitive_base: node.primitive_base + primitives,
+        ..*node
+    }
+}
+
+/// One wide node's plan: its slots (leaf offsets from 0), the binary nodes of its inner children
+/// in slot order, and the leaf-order positions of its leaf children's primitives in slot order.
+struct NodePlan {
+    slots: [Slot; WIDTH],
+    inner: Vec<u32>,
+    primitives: Vec<u32>,
+}
+
+/// Collapses binary node `binary` into one wide node's children and places them in slots.
+fn plan(collapser: &Collapser, binary: u32) -> NodePlan {
+    let children = collapser.children(binary);
+    let centers: Vec<_> = children.iter().map(|c| c.bounds().center()).collect();
+    let center = children
+        .iter()
+        .fold(crate::bvh::Aabb::EMPTY, |b, c| b.union(c.bounds()))
+        .center();
+    let mut plan = NodePlan {
+        slots: [Slot::Empty; WIDTH],
+        inner: Vec::new(),
+        primitives: Vec::new(),
+    };
+    for (s, child) in slots::assign(&centers, center).iter().enumerate() {
+        let Some(k) = *child else { continue };
+        plan.slots[s] = match children[k] {
+            Child::Inner { index, bounds } => {
+                plan.inner.push(index);
+                Slot::Inner(bounds)
+            }
+            Child::Leaf {
+                first,
+                count,
+                bounds,
+            } => {
+                let offset = plan.primitives.len() as u32;
+                plan.primitives.extend(first..first + count);
+                Slot::Leaf {
                     bounds,
-                } => {
-                    let offset = prim_base + order.len() as u32 - primitive_base;
-                    order.extend(first..first + count);
-                    Slot::Leaf {
-                        bounds,
-                        offset,
-                        count,
-                    }
+                    offset,
+                    count,
                 }
-            };
-        }
-        out[at as usize] = WideNode::new(&slot_contents, child_base, primitive_base);
-        out.resize(out.len() + inner.len(), WideNode::default());
-        for (r, &index) in inner.iter().enumerate().rev() {
+            }
+        };
+    }
+    plan
+}
+
+/// Packs the subtree of binary node `binary`: large ones with their inner children's subtrees in
+/// parallel, small ones sequentially.
+fn pack_subtree(collapser: &Collapser, binary: u32) -> Subtree {
+    if collapser.count(binary) < PARALLEL_MIN {
+        return pack_sequential(collapser, binary);
+    }
+    let plan = plan(collapser, binary);
+    let subtrees: Vec<Subtree> = plan
+        .inner
+        .par_iter()
+        .map(|&b| pack_subtree(collapser, b))
+        .collect();
+    // The root, its inner children's roots, then each child's other nodes.
+    let inner = subtrees.len() as u32;
+    let mut nodes = vec![WideNode::new(&plan.slots, 1, 0)];
+    let mut order = plan.primitives;
+    let mut offsets = Vec::with_capacity(subtrees.len());
+    let mut next = 1 + inner;
+    for t in &subtrees {
+        offsets.push((next, order.len() as u32));
+        next += t.nodes.len() as u32 - 1;
+        order.extend(&t.order);
+    }
+    for (t, &(at, primitives)) in subtrees.iter().zip(&offsets) {
+        nodes.push(relocated(&t.nodes[0], at - 1, primitives));
+    }
+    for (t, &(at, primitives)) in subtrees.iter().zip(&offsets) {
+        nodes.extend(
+            t.nodes[1..]
+                .iter()
+                .map(|n| relocated(n, at - 1, primitives)),
+        );
+    }
+    let depth = 1 + subtrees.iter().map(|t| t.depth).max().unwrap_or(0);
+    Subtree {
+        nodes,
+        order,
+        depth,
+    }
+}
+
+/// Packs the subtree of binary node `binary` on this thread, depth first.
+fn pack_sequential(collapser: &Collapser, binary: u32) -> Subtree {
+    let mut tree = Subtree {
+        nodes: vec![WideNode::default()],
+        order: Vec::new(),
+        depth: 0,
+    };
+    // (wide node, binary node, depth)
+    let mut stack = vec![(0u32, binary, 1u32)];
+    while let Some((at, binary, level)) = stack.pop() {
+        tree.depth = tree.depth.max(level);
+        let plan = plan(collapser, binary);
+        let child_base = tree.nodes.len() as u32;
+        let primitive_base = tree.order.len() as u32;
+        tree.order.extend(&plan.primitives);
+        tree.nodes[at as usize] = WideNode::new(&plan.slots, child_base, primitive_base);
+        tree.nodes
+            .resize(tree.nodes.len() + plan.inner.len(), WideNode::default());
+        for (r, &index) in plan.inner.iter().enumerate().rev() {
             stack.push((child_base + r as u32, index, level + 1));
         }
     }
-    PackedWide { root, order, depth }
+    tree
 }
 
 fn empty() -> PackedWide {
@@ -122,7 +216,8 @@ mod tests {
     /// is named once.
     #[test]
     fn packed_boxes_contain_their_primitives() {
-        for n in [1, 2, 5, 9, 2000] {
+        // 100 000 primitives take the parallel path (PARALLEL_MIN).
+        for n in [1, 2, 5, 9, 2000, 100_000] {
             let p = prims(n);
             let tree = build(p.clone());
             let mut out = vec![WideNode::default(); 3];

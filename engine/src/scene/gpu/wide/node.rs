@@ -149,6 +149,16 @@ impl WideNode {
 const MIN_EXPONENT: u8 = 1;
 const MAX_EXPONENT: u8 = 254;
 
+/// The biased exponent of the smallest power of two at or above `x` (clamped to normal scales).
+fn exponent_at_least(x: f32) -> u8 {
+    if x.is_nan() || x <= 0.0 {
+        return MIN_EXPONENT;
+    }
+    let bits = x.to_bits();
+    let biased = (bits >> 23) + u32::from(bits & 0x7f_ffff != 0);
+    biased.clamp(u32::from(MIN_EXPONENT), u32::from(MAX_EXPONENT)) as u8
+}
+
 /// Quantizes the intervals `children` (per slot, `None` for empty) of the node interval
 /// `[min, max]` to bytes: the origin, the biased exponent of the smallest power-of-two scale whose
 /// 255 steps cover the node, and conservative lows and highs (`origin + scale * q`, computed in
@@ -158,30 +168,24 @@ fn quantize_axis(
     max: f32,
     children: [Option<(f32, f32)>; WIDTH],
 ) -> (f32, u8, [u8; WIDTH], [u8; WIDTH]) {
-    let extent = f64::from(max) - f64::from(min);
-    let needed = (extent / 255.0).log2().ceil();
-    let mut exponent = if needed.is_finite() {
-        (needed + 127.0).clamp(f64::from(MIN_EXPONENT), f64::from(MAX_EXPONENT)) as u8
-    } else {
-        MIN_EXPONENT
-    };
+    let mut exponent = exponent_at_least((max - min) / 255.0);
     loop {
         let scale = f32::from_bits(u32::from(exponent) << 23);
+        // Exact: both are powers of two within the normal range.
+        let inv_scale = 1.0 / scale;
         let decode = |q: u32| min + scale * q as f32;
         let mut lo = [0u8; WIDTH];
         let mut hi = [0u8; WIDTH];
         let mut fits = true;
         for (i, child) in children.iter().enumerate() {
             let Some((a, b)) = *child else { continue };
-            let mut q_lo = ((f64::from(a) - f64::from(min)) / f64::from(scale))
-                .floor()
-                .clamp(0.0, 255.0) as u32;
+            // `as u32` floors non-negative values (and saturates); no libm calls in this loop.
+            let mut q_lo = (((a - min) * inv_scale) as u32).min(255);
             while q_lo > 0 && decode(q_lo) > a {
                 q_lo -= 1;
             }
-            let mut q_hi = ((f64::from(b) - f64::from(min)) / f64::from(scale))
-                .ceil()
-                .clamp(0.0, 256.0) as u32;
+            let x = (b - min) * inv_scale;
+            let mut q_hi = (x as u32 + u32::from((x as u32 as f32) < x)).min(256);
             while q_hi <= 255 && decode(q_hi) < b {
                 q_hi += 1;
             }
@@ -246,6 +250,15 @@ mod tests {
             assert!(((b.min - q.min) / extent).max_element() <= 2.0 / 127.5);
             assert!(((q.max - b.max) / extent).max_element() <= 2.0 / 127.5);
         }
+    }
+
+    #[test]
+    fn scales_are_the_smallest_powers_of_two_at_or_above() {
+        assert_eq!(exponent_at_least(1.0), 127);
+        assert_eq!(exponent_at_least(1.5), 128);
+        assert_eq!(exponent_at_least(0.25), 125);
+        assert_eq!(exponent_at_least(0.0), MIN_EXPONENT);
+        assert_eq!(exponent_at_least(f32::MAX), MAX_EXPONENT);
     }
 
     #[test]

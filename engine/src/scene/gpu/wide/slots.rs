@@ -20,16 +20,25 @@ fn diagonal(s: usize) -> Vec3 {
 /// of how far back the child lies along the slot's diagonal, each while both are free.
 pub fn assign(centers: &[Vec3], center: Vec3) -> [Option<usize>; WIDTH] {
     assert!(centers.len() <= WIDTH, "{} children", centers.len());
-    let mut pairs: Vec<(f32, usize, usize)> = Vec::with_capacity(centers.len() * WIDTH);
+    // Sort keys: the order-preserving bits of the distance along the diagonal, then child, slot.
+    let mut keys = [u64::MAX; WIDTH * WIDTH];
     for (child, c) in centers.iter().enumerate() {
         for s in 0..WIDTH {
-            pairs.push(((*c - center).dot(diagonal(s)), child, s));
+            let bits = (*c - center).dot(diagonal(s)).to_bits();
+            let ordered = if bits >> 31 == 0 {
+                bits | 1 << 31
+            } else {
+                !bits
+            };
+            keys[child * WIDTH + s] = u64::from(ordered) << 32 | (child * WIDTH + s) as u64;
         }
     }
-    pairs.sort_unstable_by(|a, b| a.0.total_cmp(&b.0).then(a.1.cmp(&b.1)).then(a.2.cmp(&b.2)));
+    let keys = &mut keys[..centers.len() * WIDTH];
+    keys.sort_unstable();
     let mut slots = [None; WIDTH];
     let mut placed = [false; WIDTH];
-    for (_, child, s) in pairs {
+    for key in keys.iter() {
+        let (child, s) = ((key & 0xff) as usize / WIDTH, (key & 0xff) as usize % WIDTH);
         if slots[s].is_none() && !placed[child] {
             slots[s] = Some(child);
             placed[child] = true;
