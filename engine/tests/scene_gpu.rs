@@ -146,6 +146,7 @@ fn gpu_buffers_trace_like_the_cpu_bvh() {
             let g = GpuScene::with_layout(&scene, &bvh, layout);
             assert_eq!(g.layout(), layout);
             assert_eq!(g.tlas_nodes.layout(), layout);
+            g.check_depths().unwrap();
             assert_eq!(g.indices.len() / 3, scene.unique_triangle_count());
             compare(&scene, &bvh, &g);
         }

@@ -4,6 +4,8 @@
 #ifndef LUCID_TRAVERSE_BINARY_GLSL
 #define LUCID_TRAVERSE_BINARY_GLSL
 
+// Far children a walk may stack: one per interior node of a path (the renderer refuses deeper
+// trees: lucid_engine::scene::gpu::BvhLayout::max_depths).
 const uint TLAS_STACK = 24u;
 const uint BLAS_STACK = 40u;
 

@@ -10,8 +10,8 @@
 #ifndef LUCID_TRAVERSE_WIDE_GLSL
 #define LUCID_TRAVERSE_WIDE_GLSL
 
-// Node groups a walk may stack: one per level below the root (the packer checks the depth,
-// lucid_engine::scene::gpu::wide::STACK_DEPTH).
+// Node groups a walk may stack: one per level below the root (the renderer refuses deeper trees:
+// lucid_engine::scene::gpu::BvhLayout::max_depths).
 const uint WIDE_STACK = 32u;
 
 // 7 - the ray's octant (bit 0: x negative, bit 1: y, bit 2: z).

@@ -153,6 +153,7 @@ impl Renderer {
         let flat_len = scene.instances.len();
         let bvh = Bvh::build(&flat.scene);
         let (gpu, triangle_ids) = pack_flat(&flat, &scene, &bvh, BvhLayout::default());
+        check_depths(&scene, &gpu)?;
         let buffers = SceneBuffers::upload(ctx, &gpu, &triangle_ids)?;
         let spec = specialization(&gpu);
         let library = ShaderLibrary::new(ctx, None)?;
@@ -336,6 +337,7 @@ impl Renderer {
                     .rebuild_top_level(&self.flat.scene)
                     .map_err(|e| EngineError::InvalidArgument(e.to_string()))?;
                 apply_flattening(&mut self.gpu, &self.flat, &self.scene, &self.bvh);
+                check_depths(&self.scene, &self.gpu)?;
                 self.buffers.update_top_level(&self.ctx, &self.gpu)
             }
             None => {
@@ -377,6 +379,11 @@ impl Renderer {
         self.gpu.layout()
     }
 
+    /// The scene as packed for the GPU (its buffers' sizes: [`GpuScene::bytes_per_triangle`], ...).
+    pub fn gpu_scene(&self) -> &GpuScene {
+        &self.gpu
+    }
+
     /// Packs and uploads the BVH in `layout` (frames in flight keep the old buffers); restarts
     /// accumulation. The image stays the same up to how rays graze box edges: both layouts find
     /// the same closest hits.
@@ -407,6 +414,7 @@ impl Renderer {
     /// Packs the flattened scene and its BVH in `layout` and uploads it.
     fn upload_gpu_scene(&mut self, layout: BvhLayout) -> Result<()> {
         let (gpu, triangle_ids) = pack_flat(&self.flat, &self.scene, &self.bvh, layout);
+        check_depths(&self.scene, &gpu)?;
         self.buffers = SceneBuffers::upload(&self.ctx, &gpu, &triangle_ids)?;
         self.spec = specialization(&gpu);
         self.gpu = gpu;
@@ -790,6 +798,12 @@ fn add_prev_transforms(
     let buffer = p.write(buffer, lucid_engine::graph::Access::TransferWrite);
     p.execute(move |ctx| ctx.update_buffer(buffer, &data));
     buffer
+}
+
+/// An error when the packed BVH of `scene` is deeper than the GPU traversal can walk.
+fn check_depths(scene: &Scene, gpu: &GpuScene) -> Result<()> {
+    gpu.check_depths()
+        .map_err(|e| EngineError::InvalidArgument(format!("scene {}: {e}", scene.name)))
 }
 
 fn check_size(width: u32, height: u32) -> Result<()> {

@@ -13,7 +13,7 @@
 //!   BLASes concatenated with absolute node and triangle indices; TLAS
 //!   leaves index `instances`, which are stored in the packed TLAS's order.
 //! - `instances` ([`GpuInstance`]): transforms, BLAS root, material.
-//! - `spheres` ([`GpuSphere`]) in sphere-BLAS leaf order.
+//! - `spheres` ([`GpuSphere`]) in the packed sphere BLAS's order.
 //! - `materials`, `textures` (records into the flat `texels` word buffer).
 //! - `lights` + `light_table`: the NEE light list with its alias table / CDF
 //!   (power and uniform selection, see [`crate::scene::LightDistribution`]).
@@ -280,6 +280,25 @@ impl GpuScene {
     /// The longest root-to-leaf paths of the packed trees.
     pub fn bvh_depths(&self) -> BvhDepths {
         self.depths
+    }
+
+    /// An error naming the tree when a packed tree is deeper than the GPU walks of its layout can
+    /// stack for ([`BvhLayout::max_depths`]): they would skip subtrees.
+    pub fn check_depths(&self) -> Result<(), String> {
+        let max = self.layout().max_depths();
+        for (level, depth, most) in [
+            ("bottom", self.depths.blas, max.blas),
+            ("top", self.depths.tlas, max.tlas),
+        ] {
+            if depth > most {
+                return Err(format!(
+                    "a {level}-level BVH is {depth} nodes deep; the GPU traversal of the {} layout \
+                     handles at most {most}",
+                    self.layout()
+                ));
+            }
+        }
+        Ok(())
     }
 
     /// Whether the packed scene is exactly one triangle instance (no spheres): rays may then skip

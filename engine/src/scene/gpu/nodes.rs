@@ -5,6 +5,7 @@ use std::fmt;
 
 use super::bvh_pack::{self, GpuBvhNode};
 use super::wide::{self, WideNode};
+use super::BvhDepths;
 use crate::bvh::BvhNode;
 
 /// How the GPU's BVH nodes are laid out (the shaders' `WIDE_BVH` specialization constant). With the
@@ -21,6 +22,17 @@ pub enum BvhLayout {
 impl BvhLayout {
     /// Both layouts.
     pub const ALL: [BvhLayout; 2] = [BvhLayout::Binary, BvhLayout::Wide];
+
+    /// The deepest trees (nodes on the longest root-to-leaf path) the GPU walks of this layout can
+    /// stack for (`shaders/common/traverse_binary.glsl`'s `BLAS_STACK` and `TLAS_STACK`: one entry
+    /// per interior node of a path; `traverse_wide.glsl`'s `WIDE_STACK`: one per node below the
+    /// root).
+    pub fn max_depths(self) -> BvhDepths {
+        match self {
+            BvhLayout::Binary => BvhDepths { blas: 40, tlas: 24 },
+            BvhLayout::Wide => BvhDepths { blas: 33, tlas: 33 },
+        }
+    }
 
     /// The name on the command line and in reports (`binary`, `wide`).
     pub fn name(self) -> &'static str {
