@@ -7,16 +7,32 @@ use lucid_engine::bvh::{ray_sphere, ray_triangle, Aabb};
 use lucid_engine::scene::builtin::{self, BuildOptions};
 use lucid_engine::scene::gpu::bvh_pack::{Child, EMPTY};
 use lucid_engine::scene::gpu::{
-    apply_flattening, decode_normal, light_kind, pack_flat, texture_format, GpuBvhNode, GpuLight,
-    GpuScene, INSTANCE_FLATTENED,
+    apply_flattening, decode_normal, light_kind, pack_flat, texture_format, wide, BvhLayout,
+    GpuBvhNode, GpuLight, GpuNodes, GpuScene, INSTANCE_FLATTENED,
 };
 use lucid_engine::scene::{Bvh, FlatScene, Scene};
 
 const REDUCED: BuildOptions = BuildOptions { detail: 0.01 };
 
-/// Stack walk over the GPU layout `nodes` from the child word `root`, calling `leaf(first, count)`
-/// for every leaf whose box the ray enters (the root is entered without a box test).
-fn walk(nodes: &[GpuBvhNode], root: u32, o: Vec3, d: Vec3, mut leaf: impl FnMut(u32, u32)) {
+/// Walks `nodes` from `root` in their layout, calling `leaf(first, count)` for every leaf whose box
+/// the ray enters (the wide walk is `wide::walk`, the shader's; it names primitives one by one).
+fn walk(nodes: &GpuNodes, root: u32, o: Vec3, d: Vec3, mut leaf: impl FnMut(u32, u32)) {
+    match nodes {
+        GpuNodes::Binary(nodes) => walk_binary(nodes, root, o, d, leaf),
+        GpuNodes::Wide(nodes) => {
+            let mut t_max = f32::INFINITY;
+            wide::walk(nodes, root, o, d, &mut t_max, |k, _| {
+                leaf(k, 1);
+                false
+            });
+        }
+    }
+}
+
+/// Stack walk over the binary GPU layout `nodes` from the child word `root`, calling
+/// `leaf(first, count)` for every leaf whose box the ray enters (the root is entered without a box
+/// test).
+fn walk_binary(nodes: &[GpuBvhNode], root: u32, o: Vec3, d: Vec3, mut leaf: impl FnMut(u32, u32)) {
     if root == EMPTY {
         return;
     }
@@ -116,27 +132,38 @@ fn compare(scene: &Scene, bvh: &Bvh, g: &GpuScene) {
 
 #[test]
 fn gpu_buffers_trace_like_the_cpu_bvh() {
-    for name in [
-        "cornell-box",
-        "cornell-teapot",
-        "caustics",
-        "classroom",
-        "furnace",
-        "covered-light",
-    ] {
-        let scene = builtin::build_with(name, &REDUCED).unwrap();
-        let bvh = Bvh::build(&scene);
-        let g = GpuScene::new(&scene, &bvh);
-        assert_eq!(g.indices.len() / 3, scene.unique_triangle_count());
-        compare(&scene, &bvh, &g);
+    for layout in BvhLayout::ALL {
+        for name in [
+            "cornell-box",
+            "cornell-teapot",
+            "caustics",
+            "classroom",
+            "furnace",
+            "covered-light",
+        ] {
+            let scene = builtin::build_with(name, &REDUCED).unwrap();
+            let bvh = Bvh::build(&scene);
+            let g = GpuScene::with_layout(&scene, &bvh, layout);
+            assert_eq!(g.layout(), layout);
+            assert_eq!(g.tlas_nodes.layout(), layout);
+            g.check_depths().unwrap();
+            assert_eq!(g.indices.len() / 3, scene.unique_triangle_count());
+            compare(&scene, &bvh, &g);
+        }
     }
 }
 
 #[test]
 fn moving_an_instance_updates_the_top_level_only() {
+    for layout in BvhLayout::ALL {
+        move_an_instance(layout);
+    }
+}
+
+fn move_an_instance(layout: BvhLayout) {
     let mut scene = builtin::build_with("cornell-teapot", &REDUCED).unwrap();
     let mut bvh = Bvh::build(&scene);
-    let mut g = GpuScene::new(&scene, &bvh);
+    let mut g = GpuScene::with_layout(&scene, &bvh, layout);
     let (blas, vertices) = (g.blas_nodes.clone(), g.vertices.clone());
     let last = scene.instances.len() - 1;
     scene.instances[last].transform =
@@ -222,9 +249,19 @@ fn textures_and_params_pack() {
 #[test]
 fn memory_per_triangle_is_under_100_bytes() {
     let scene = builtin::build_with("covered-light", &REDUCED).unwrap();
-    let g = GpuScene::new(&scene, &Bvh::build(&scene));
-    let bpt = g.bytes_per_triangle();
-    assert!(bpt > 30.0 && bpt < 100.0, "{bpt}");
+    let bvh = Bvh::build(&scene);
+    let binary = GpuScene::with_layout(&scene, &bvh, BvhLayout::Binary);
+    let wide = GpuScene::with_layout(&scene, &bvh, BvhLayout::Wide);
+    for g in [&binary, &wide] {
+        let bpt = g.bytes_per_triangle();
+        assert!(bpt > 30.0 && bpt < 100.0, "{}: {bpt}", g.layout());
+    }
+    assert!(
+        wide.bvh_bytes() * 3 < binary.bvh_bytes(),
+        "compressed wide nodes take under a third of the binary ones: {} vs {}",
+        wide.bvh_bytes(),
+        binary.bvh_bytes()
+    );
 }
 
 #[test]
@@ -304,11 +341,18 @@ fn check_light_triangle(g: &GpuScene, ids: &[[u32; 2]], scene: &Scene, l: &GpuLi
 }
 
 /// The flattened packing (emitters merged, `dynamic` instances separate) has the same NEE lights as
-/// the packing of the original scene, and each light addresses its packed triangle.
+/// the packing of the original scene, and each light addresses its packed triangle, in both
+/// layouts (each orders the triangles its own way).
 fn check_flat_lights(scene: &Scene, dynamic: &[bool]) {
-    let reference = GpuScene::new(scene, &Bvh::build(scene));
+    for layout in BvhLayout::ALL {
+        check_flat_lights_in(scene, dynamic, layout);
+    }
+}
+
+fn check_flat_lights_in(scene: &Scene, dynamic: &[bool], layout: BvhLayout) {
+    let reference = GpuScene::with_layout(scene, &Bvh::build(scene), BvhLayout::Binary);
     let flat = FlatScene::new(scene, dynamic);
-    let (g, ids) = pack_flat(&flat, scene, &Bvh::build(&flat.scene));
+    let (g, ids) = pack_flat(&flat, scene, &Bvh::build(&flat.scene), layout);
     assert!(!g.lights.is_empty(), "{}: has lights", scene.name);
     assert_eq!(
         light_records(&g),
@@ -353,7 +397,12 @@ fn flattening_keeps_the_emitting_side_of_mirrored_lights() {
 fn a_flattened_static_scene_is_a_single_instance() {
     let scene = builtin::build("cornell-box").unwrap();
     let flat = FlatScene::new(&scene, &[]);
-    let (g, _) = pack_flat(&flat, &scene, &Bvh::build(&flat.scene));
+    let (g, _) = pack_flat(
+        &flat,
+        &scene,
+        &Bvh::build(&flat.scene),
+        BvhLayout::default(),
+    );
     assert!(g.single_instance());
     assert!(!GpuScene::new(&scene, &Bvh::build(&scene)).single_instance());
 }
@@ -368,7 +417,7 @@ fn moving_a_dynamic_light_moves_its_light_entries() {
     dynamic[light] = true;
     let mut flat = FlatScene::new(&scene, &dynamic);
     let mut bvh = Bvh::build(&flat.scene);
-    let (mut g, ids) = pack_flat(&flat, &scene, &bvh);
+    let (mut g, ids) = pack_flat(&flat, &scene, &bvh, BvhLayout::default());
     let before = light_records(&g);
     let moved =
         Affine3A::from_translation(Vec3::new(0.1, -0.2, 0.05)) * scene.instances[light].transform;

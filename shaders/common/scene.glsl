@@ -6,7 +6,8 @@
 #define LUCID_SCENE_GLSL
 
 struct Vertex { float px, py, pz; uint normal; uint uv; };
-// An interior BVH node: both children's boxes and child words (lucid_engine::scene::gpu::bvh_pack).
+// An interior node of the binary BVH layout: both children's boxes and child words
+// (lucid_engine::scene::gpu::bvh_pack), unpacked from four uvec4 of b_blas / b_tlas.
 struct BvhNode {
     vec3 left_min; uint left;
     vec3 left_max; uint right;
@@ -80,8 +81,10 @@ layout(constant_id = 111) const bool HAS_TEXTURE_TRANSFORMS = true;
 
 layout(set = 0, binding = 0, std430) readonly buffer Vertices { Vertex v[]; } b_vertices;
 layout(set = 0, binding = 1, std430) readonly buffer Indices { uint i[]; } b_indices;
-layout(set = 0, binding = 2, std430) readonly buffer BlasNodes { BvhNode n[]; } b_blas;
-layout(set = 0, binding = 3, std430) readonly buffer TlasNodes { BvhNode n[]; } b_tlas;
+// BVH nodes in the scene's layout (traverse.glsl's WIDE_BVH): a binary node is four uvec4 (BvhNode),
+// a wide node five (lucid_engine::scene::gpu::wide::WideNode).
+layout(set = 0, binding = 2, std430) readonly buffer BlasNodes { uvec4 n[]; } b_blas;
+layout(set = 0, binding = 3, std430) readonly buffer TlasNodes { uvec4 n[]; } b_tlas;
 layout(set = 0, binding = 4, std430) readonly buffer Instances { Instance i[]; } b_instances;
 layout(set = 0, binding = 5, std430) readonly buffer Spheres { Sphere s[]; } b_spheres;
 layout(set = 0, binding = 6, std430) readonly buffer Materials { Material m[]; } b_materials;

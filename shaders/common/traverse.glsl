@@ -1,7 +1,9 @@
-// Ray queries over the two-level BVH (TLAS over instances, BLAS over triangles or spheres):
-// stack-based, near child first, with early exit for shadow rays; a single triangle instance is
-// walked without the top level (SINGLE_INSTANCE); hits on cut-out materials count only where the
-// surface is there (common/opacity.glsl, HAS_ALPHA_TEST). Requires scene.glsl.
+// Ray queries over the two-level BVH (TLAS over instances, BLAS over triangles or spheres) in
+// either GPU layout (WIDE_BVH): stack-based, near child first, with early exit for shadow rays; a
+// single triangle instance is walked without the top level (SINGLE_INSTANCE); hits on cut-out
+// materials count only where the surface is there (common/opacity.glsl, HAS_ALPHA_TEST). The
+// binary walks are in traverse_binary.glsl, the wide ones in traverse_wide.glsl. Requires
+// scene.glsl.
 #ifndef LUCID_TRAVERSE_GLSL
 #define LUCID_TRAVERSE_GLSL
 
@@ -11,10 +13,12 @@ layout(constant_id = 100) const bool HAS_SPHERES = true;
 // The scene is packed as exactly one triangle instance (GpuScene::single_instance, e.g. a fully
 // flattened static scene): trace_ray walks its BLAS directly, without the top level.
 layout(constant_id = 108) const bool SINGLE_INSTANCE = false;
+// The BVH nodes are compressed 8-wide ones (lucid_engine::scene::gpu::BvhLayout::Wide), not binary.
+layout(constant_id = 116) const bool WIDE_BVH = true;
 
-const uint TLAS_STACK = 24u;
-const uint BLAS_STACK = 40u;
 const float T_INFINITY = 3.0e38;
+// The root of an empty tree, in both layouts.
+const uint BVH_EMPTY = 0xffffffffu;
 
 struct Hit {
     float t;
@@ -88,95 +92,53 @@ float intersect_sphere(uint s, vec3 o, vec3 d, float t_max) {
     return (t > 1e-5 * cr.w / sqrt(a) && t < t_max) ? t : T_INFINITY;
 }
 
-// Child words (lucid_engine::scene::gpu::bvh_pack): an interior node's index, or with BVH_LEAF set
-// a leaf's first primitive (27 bits) and count - 1 (4 bits); BVH_EMPTY is an empty tree's root.
-const uint BVH_LEAF = 0x80000000u;
-const uint BVH_EMPTY = 0xffffffffu;
-
-uint leaf_first(uint word) {
-    return word & 0x07ffffffu;
-}
-
-uint leaf_count(uint word) {
-    return ((word >> 27u) & 15u) + 1u;
-}
-
-// Visits an interior node's children: returns the word of the nearer child the ray enters before
-// t_max (BVH_EMPTY when neither), and in far_child the other one when both are entered (else
-// BVH_EMPTY).
-uint order_children(BvhNode node, vec3 scaled_origin, vec3 inv_dir, float t_max, out uint far_child) {
-    float t_left = box_entry(node.left_min, node.left_max, scaled_origin, inv_dir, t_max);
-    float t_right = box_entry(node.right_min, node.right_max, scaled_origin, inv_dir, t_max);
-    far_child = BVH_EMPTY;
-    if (min(t_left, t_right) == T_INFINITY) {
-        return BVH_EMPTY;
+// Intersects primitive `prim` (a triangle, or a sphere of the sphere instance) of instance
+// `inst_index` in object space; updates hit and returns true when it is closer.
+bool intersect_primitive(uint inst_index, Instance inst, uint prim, vec3 o, vec3 d, inout Hit hit) {
+    vec2 bary = vec2(0.0);
+    float t;
+    if (HAS_SPHERES && inst.kind == INSTANCE_SPHERES) {
+        t = intersect_sphere(prim, o, d, hit.t);
+    } else {
+        t = intersect_triangle(prim, o, d, hit.t, bary);
+        if (HAS_ALPHA_TEST && t < hit.t) {
+            uint material = inst.kind == INSTANCE_FLATTENED ? b_triangle_ids.t[prim].x : inst.material;
+            if (!hit_counts(material, prim, bary, o, d)) {
+                t = T_INFINITY;
+            }
+        }
     }
-    bool left_first = t_left <= t_right;
-    if (max(t_left, t_right) < T_INFINITY) {
-        far_child = left_first ? node.right : node.left;
+    if (t < hit.t) {
+        hit.t = t;
+        hit.instance = inst_index;
+        hit.primitive = prim;
+        hit.bary = bary;
+        return true;
     }
-    return left_first ? node.left : node.right;
+    return false;
 }
+
+// Intersects instance `inst_index` (its BLAS, through its transform) with the world-space ray;
+// defined below, used by the top-level walks.
+bool intersect_instance(uint inst_index, vec3 origin, vec3 dir, bool any_hit, inout Hit hit);
+
+#include "common/traverse_binary.glsl"
+#include "common/traverse_wide.glsl"
 
 // Traverses one instance's BLAS in object space. Updates hit when closer; with any_hit, stops at
 // the first hit and returns true.
 bool traverse_blas(uint inst_index, Instance inst, vec3 o, vec3 d, bool any_hit, inout Hit hit) {
-    vec3 inv_dir = safe_inverse(d);
-    vec3 scaled_origin = o * inv_dir;
-    uint stack[BLAS_STACK];
-    uint sp = 0u;
-    uint word = inst.blas_root;
-    bool found = false;
-    if (word == BVH_EMPTY) {
-        return false;
+    if (WIDE_BVH) {
+        return traverse_blas_wide(inst_index, inst, o, d, any_hit, hit);
     }
-    while (true) {
-        if ((word & BVH_LEAF) != 0u) {
-            uint first = leaf_first(word);
-            uint count = leaf_count(word);
-            for (uint k = 0u; k < count; ++k) {
-                uint prim = first + k;
-                vec2 bary = vec2(0.0);
-                float t;
-                if (HAS_SPHERES && inst.kind == INSTANCE_SPHERES) {
-                    t = intersect_sphere(prim, o, d, hit.t);
-                } else {
-                    t = intersect_triangle(prim, o, d, hit.t, bary);
-                    if (HAS_ALPHA_TEST && t < hit.t) {
-                        uint material = inst.kind == INSTANCE_FLATTENED ? b_triangle_ids.t[prim].x : inst.material;
-                        if (!hit_counts(material, prim, bary, o, d)) {
-                            t = T_INFINITY;
-                        }
-                    }
-                }
-                if (t < hit.t) {
-                    hit.t = t;
-                    hit.instance = inst_index;
-                    hit.primitive = prim;
-                    hit.bary = bary;
-                    found = true;
-                    if (any_hit) {
-                        return true;
-                    }
-                }
-            }
-        } else {
-            uint far_child;
-            uint near_child = order_children(b_blas.n[word], scaled_origin, inv_dir, hit.t, far_child);
-            if (near_child != BVH_EMPTY) {
-                if (far_child != BVH_EMPTY && sp < BLAS_STACK) {
-                    stack[sp++] = far_child;
-                }
-                word = near_child;
-                continue;
-            }
-        }
-        if (sp == 0u) {
-            break;
-        }
-        word = stack[--sp];
-    }
-    return found;
+    return traverse_blas_binary(inst_index, inst, o, d, any_hit, hit);
+}
+
+bool intersect_instance(uint inst_index, vec3 origin, vec3 dir, bool any_hit, inout Hit hit) {
+    Instance inst = b_instances.i[inst_index];
+    vec3 o = transform_point(inst.world_to_object, origin);
+    vec3 d = transform_vector(inst.world_to_object, dir);
+    return traverse_blas(inst_index, inst, o, d, any_hit, hit);
 }
 
 // Closest hit along origin + t * dir for t in (0, t_max). Returns false on a miss.
@@ -185,7 +147,7 @@ bool trace_ray(vec3 origin, vec3 dir, float t_max, bool any_hit, out Hit hit) {
     hit.instance = 0xffffffffu;
     hit.primitive = 0u;
     hit.bary = vec2(0.0);
-    uint word = b_scene.p.counts1.z; // the TLAS root
+    uint word = b_scene.p.counts1.z; // the TLAS root (a binary child word or a wide node)
     if (word == BVH_EMPTY) {
         return false;
     }
@@ -199,44 +161,10 @@ bool trace_ray(vec3 origin, vec3 dir, float t_max, bool any_hit, out Hit hit) {
         vec3 d = transform_vector(inst.world_to_object, dir);
         return traverse_blas(0u, inst, o, d, any_hit, hit);
     }
-    vec3 inv_dir = safe_inverse(dir);
-    vec3 scaled_origin = origin * inv_dir;
-    uint stack[TLAS_STACK];
-    uint sp = 0u;
-    bool found = false;
-    while (true) {
-        if ((word & BVH_LEAF) != 0u) {
-            uint first = leaf_first(word);
-            uint count = leaf_count(word);
-            for (uint k = 0u; k < count; ++k) {
-                uint inst_index = first + k;
-                Instance inst = b_instances.i[inst_index];
-                vec3 o = transform_point(inst.world_to_object, origin);
-                vec3 d = transform_vector(inst.world_to_object, dir);
-                if (traverse_blas(inst_index, inst, o, d, any_hit, hit)) {
-                    found = true;
-                    if (any_hit) {
-                        return true;
-                    }
-                }
-            }
-        } else {
-            uint far_child;
-            uint near_child = order_children(b_tlas.n[word], scaled_origin, inv_dir, hit.t, far_child);
-            if (near_child != BVH_EMPTY) {
-                if (far_child != BVH_EMPTY && sp < TLAS_STACK) {
-                    stack[sp++] = far_child;
-                }
-                word = near_child;
-                continue;
-            }
-        }
-        if (sp == 0u) {
-            break;
-        }
-        word = stack[--sp];
+    if (WIDE_BVH) {
+        return trace_wide_tlas(word, origin, dir, any_hit, hit);
     }
-    return found;
+    return trace_binary_tlas(word, origin, dir, any_hit, hit);
 }
 
 bool trace_closest(vec3 origin, vec3 dir, float t_max, out Hit hit) {

@@ -1,7 +1,9 @@
-//! The GPU BVH traversal returns the same hits as the CPU traversal, on random rays through every
-//! built-in scene (reduced tessellation for the large ones). The GPU traverses the renderer's
-//! packing (static instances flattened into one BLAS, some kept as instances); hits must name the
-//! same original instance as the CPU's two-level BVH over the original scene.
+//! The GPU BVH traversal returns the same hits as the CPU traversal, in both GPU layouts (binary and
+//! compressed wide), on random rays through every built-in scene (reduced tessellation for the
+//! large ones), axis-parallel rays and rays grazing triangles (aimed just inside an edge, or running
+//! just above a surface, nearly parallel to it). The GPU traverses the renderer's packing (static
+//! instances flattened into one BLAS, some kept as instances); hits must name the same original
+//! instance as the CPU's two-level BVH over the original scene.
 
 use ash::vk;
 use glam::{Affine3A, Quat, Vec3};
@@ -9,7 +11,7 @@ use lucid_engine::bvh::{HitKind, Ray};
 use lucid_engine::graph::{Executor, RenderGraph};
 use lucid_engine::memory::Buffer;
 use lucid_engine::scene::builtin::{self, BuildOptions};
-use lucid_engine::scene::gpu::pack_flat;
+use lucid_engine::scene::gpu::{pack_flat, BvhLayout};
 use lucid_engine::scene::{Bvh, FlatScene, Scene};
 use lucid_engine::shader::ShaderLibrary;
 use lucid_passes::debug::ray_query::{self, QueryHit, QueryRay, SPHERE_BIT};
@@ -36,25 +38,69 @@ impl Rng {
     }
 }
 
-/// Checks built-in scene `name` (reduced tessellation) with the renderer's packing: static
-/// instances flattened, those flagged in `dynamic` kept separate.
-fn check_builtin(name: &str, dynamic: impl Fn(usize) -> bool, rays_per_scene: usize) -> bool {
+/// Checks built-in scene `name` (reduced tessellation) with the renderer's packing in `layout`:
+/// static instances flattened, those flagged in `dynamic` kept separate.
+fn check_builtin(
+    name: &str,
+    dynamic: impl Fn(usize) -> bool,
+    rays_per_scene: usize,
+    layout: BvhLayout,
+) -> bool {
     let options = BuildOptions { detail: 0.02 };
     let mut scene = builtin::build_with(name, &options).unwrap();
     scene.validate().unwrap();
     let dynamic: Vec<bool> = (0..scene.instances.len()).map(dynamic).collect();
-    check_scene(&scene, &dynamic, rays_per_scene)
+    check_scene(&scene, &dynamic, rays_per_scene, layout)
 }
 
-/// Traces random rays through the validated `scene` packed as the renderer packs it, with the scene's
-/// specialization (the single-instance fast path included); returns whether the packing was a
-/// single instance.
-fn check_scene(scene: &Scene, dynamic: &[bool], rays_per_scene: usize) -> bool {
-    let name = scene.name.as_str();
+/// A ray grazing a random triangle of `scene`: aimed from `from` at a point just inside one of its
+/// edges, or (every other one) running parallel to it just above its surface (through the flat
+/// boxes of axis-aligned surfaces). Not closer to the triangle than a thousandth of its size:
+/// nearer, the CPU's object-space and the GPU's world-space arithmetic round hits apart.
+fn grazing_ray(
+    scene: &Scene,
+    rng: &mut Rng,
+    from: Vec3,
+    along_surface: bool,
+) -> Option<(Vec3, Vec3)> {
+    if scene.instances.is_empty() {
+        return None;
+    }
+    let instance = &scene.instances[(rng.next() * scene.instances.len() as f32) as usize];
+    let mesh = &scene.meshes[instance.mesh as usize];
+    if mesh.indices.is_empty() {
+        return None;
+    }
+    let t = ((rng.next() * mesh.indices.len() as f32) as usize).min(mesh.indices.len() - 1);
+    let [a, b, c] = mesh
+        .triangle(t)
+        .map(|p| instance.transform.transform_point3(p));
+    let normal = (b - a).cross(c - a).normalize_or_zero();
+    if normal == Vec3::ZERO {
+        return None;
+    }
+    // A point a thousandth of the way in from edge ab.
+    let along = rng.next();
+    let target = a + (b - a) * along * 0.999 + (c - a) * 1e-3;
+    if !along_surface {
+        return Some((from, (target - from).normalize()));
+    }
+    let size = (b - a).length().max((c - a).length());
+    let dir = (b - a).normalize();
+    Some((target + normal * 1e-3 * size - dir * size, dir))
+}
+
+/// Traces random, axis-parallel and grazing rays through the validated `scene` packed as the
+/// renderer packs it in `layout`, with the scene's specialization (the single-instance fast path
+/// included); returns whether the packing was a single instance.
+fn check_scene(scene: &Scene, dynamic: &[bool], rays_per_scene: usize, layout: BvhLayout) -> bool {
+    let name = format!("{} ({layout})", scene.name);
+    let name = name.as_str();
     let bvh = Bvh::build(scene);
     let flat = FlatScene::new(scene, dynamic);
     let flat_bvh = Bvh::build(&flat.scene);
-    let (gpu, triangle_ids) = pack_flat(&flat, scene, &flat_bvh);
+    let (gpu, triangle_ids) = pack_flat(&flat, scene, &flat_bvh, layout);
+    assert_eq!(gpu.layout(), layout);
     assert_eq!(
         gpu.features,
         scene.features(),
@@ -81,16 +127,20 @@ fn check_scene(scene: &Scene, dynamic: &[bool], rays_per_scene: usize) -> bool {
         } else {
             1e30
         };
-        // Every eighth ray runs along an axis (infinite reciprocal components in the slab test).
-        let dir = if i % 8 == 7 {
-            let axis = [Vec3::X, Vec3::Y, Vec3::Z][(i / 8) % 3];
-            if (i / 24) % 2 == 0 {
-                axis
-            } else {
-                -axis
-            }
+        // Every eighth ray runs along an axis (infinite reciprocal components in the slab test),
+        // every eighth other one grazes a triangle.
+        let grazing = if i % 8 == 3 {
+            grazing_ray(scene, &mut rng, origin, i % 16 == 3)
         } else {
-            rng.direction()
+            None
+        };
+        let (origin, dir) = if let Some(ray) = grazing {
+            ray
+        } else if i % 8 == 7 {
+            let axis = [Vec3::X, Vec3::Y, Vec3::Z][(i / 8) % 3];
+            (origin, if (i / 24) % 2 == 0 { axis } else { -axis })
+        } else {
+            (origin, rng.direction())
         };
         rays.push(Ray {
             origin,
@@ -181,15 +231,24 @@ fn check_scene(scene: &Scene, dynamic: &[bool], rays_per_scene: usize) -> bool {
 #[test]
 fn gpu_traversal_matches_cpu_on_every_builtin_scene() {
     // Every third instance kept dynamic, so most scenes keep a top level.
-    for name in builtin::names() {
-        check_builtin(name, |i| i % 3 == 1, 4000);
+    for layout in BvhLayout::ALL {
+        for name in builtin::names() {
+            check_builtin(name, |i| i % 3 == 1, 4000, layout);
+        }
     }
 }
 
 #[test]
 fn single_instance_fast_path_matches_cpu() {
+    for layout in BvhLayout::ALL {
+        check_single_instance(layout);
+    }
+}
+
+/// The single-instance fast path in `layout`: a static Cornell box, and one dynamic instance.
+fn check_single_instance(layout: BvhLayout) {
     assert!(
-        check_builtin("cornell-box", |_| false, 4000),
+        check_builtin("cornell-box", |_| false, 4000, layout),
         "a static Cornell box is one flattened instance"
     );
     // One dynamic instance, mirrored and rotated: the fast path keeps its transform.
@@ -203,7 +262,7 @@ fn single_instance_fast_path_matches_cpu() {
         Vec3::new(0.2, -0.1, 0.05),
     );
     assert!(
-        check_scene(&scene, &[true], 4000),
+        check_scene(&scene, &[true], 4000, layout),
         "a lone dynamic instance is a single instance"
     );
 }

@@ -12,9 +12,11 @@
 //! Every tree is a compact binary BVH of 32-byte [`BvhNode`]s built with a
 //! multi-threaded binned SAH builder ([`build`]). Children of an interior
 //! node are adjacent, leaves hold up to 8 primitives as a contiguous range
-//! of the tree's primitive order. For the GPU, triangles are reordered in
-//! leaf order (see `scene::gpu`), so leaves index the triangle list
-//! directly and no indirection array is needed.
+//! of the tree's primitive order. For the GPU, these trees are packed in
+//! one of two layouts (binary, or collapsed into compressed 8-wide nodes)
+//! and triangles are reordered in the packed tree's order (see
+//! `scene::gpu`), so leaves index the triangle list directly and no
+//! indirection array is needed.
 //!
 //! The CPU traversal (`scene::Bvh::intersect`, `scene::Bvh::occluded`) handles
 //! triangles and spheres through instance transforms; it serves tests and

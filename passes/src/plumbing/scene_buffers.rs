@@ -4,7 +4,7 @@
 use bytemuck::Pod;
 use lucid_engine::graph::{BufferHandle, ComputePass, RenderGraph};
 use lucid_engine::memory::Buffer;
-use lucid_engine::scene::gpu::GpuScene;
+use lucid_engine::scene::gpu::{BvhLayout, GpuScene};
 use lucid_engine::scene::SceneFeatures;
 use lucid_engine::shader::Specialization;
 use lucid_engine::{Context, Result};
@@ -55,8 +55,8 @@ impl SceneBuffers {
             buffers: [
                 upload(ctx, NAMES[0], &gpu.vertices)?,
                 upload(ctx, NAMES[1], &gpu.indices)?,
-                upload(ctx, NAMES[2], &gpu.blas_nodes)?,
-                upload(ctx, NAMES[3], &gpu.tlas_nodes)?,
+                upload(ctx, NAMES[2], gpu.blas_nodes.bytes())?,
+                upload(ctx, NAMES[3], gpu.tlas_nodes.bytes())?,
                 upload(ctx, NAMES[4], &gpu.instances)?,
                 upload(ctx, NAMES[5], &gpu.spheres)?,
                 upload(ctx, NAMES[6], &gpu.materials)?,
@@ -76,7 +76,7 @@ impl SceneBuffers {
     /// Re-uploads what moving instances or the camera changes (TLAS, instances, lights, params).
     /// Frames in flight keep the old buffers alive until they finish.
     pub fn update_top_level(&mut self, ctx: &Context, gpu: &GpuScene) -> Result<()> {
-        self.buffers[3] = upload(ctx, NAMES[3], &gpu.tlas_nodes)?;
+        self.buffers[3] = upload(ctx, NAMES[3], gpu.tlas_nodes.bytes())?;
         self.buffers[4] = upload(ctx, NAMES[4], &gpu.instances)?;
         self.buffers[7] = upload(ctx, NAMES[7], &gpu.lights)?;
         self.buffers[8] = upload(ctx, NAMES[8], &gpu.light_table)?;
@@ -151,11 +151,13 @@ pub fn specialization(gpu: &GpuScene) -> Specialization {
 
 /// The constants of `shaders/common/traverse.glsl` alone, for passes that only trace (see
 /// [`crate::debug::ray_query`]): `HAS_SPHERES`, `HAS_ALPHA_TEST` (cut-out surfaces let rays
-/// through), and `SINGLE_INSTANCE` when the packing is one triangle instance
-/// ([`GpuScene::single_instance`]; the traversal then skips the top level).
+/// through), `SINGLE_INSTANCE` when the packing is one triangle instance
+/// ([`GpuScene::single_instance`]; the traversal then skips the top level), and `WIDE_BVH` for the
+/// layout of the nodes ([`GpuScene::layout`]).
 pub fn traversal_specialization(gpu: &GpuScene) -> Specialization {
     Specialization::new()
         .set("HAS_SPHERES", gpu.features.spheres)
         .set("HAS_ALPHA_TEST", gpu.features.alpha_test)
         .set("SINGLE_INSTANCE", gpu.single_instance())
+        .set("WIDE_BVH", gpu.layout() == BvhLayout::Wide)
 }

@@ -32,7 +32,7 @@ use crate::plumbing::scene_buffers::{specialization, SceneBuffers, SceneHandles}
 use crate::post::tonemap;
 use lucid_engine::capture::ImageData;
 use lucid_engine::graph::{BufferHandle, Executor, FrameId, ImageHandle, ReadbackId, RenderGraph};
-use lucid_engine::scene::gpu::{self, apply_flattening, pack_flat, GpuCamera, GpuScene};
+use lucid_engine::scene::gpu::{self, apply_flattening, pack_flat, BvhLayout, GpuCamera, GpuScene};
 use lucid_engine::scene::{Bvh, Camera, FlatScene, Material, Scene};
 use lucid_engine::shader::{ShaderLibrary, Specialization};
 use lucid_engine::{Context, EngineError, Result};
@@ -136,7 +136,8 @@ impl ActiveDenoiser {
 static INSTANCES: std::sync::atomic::AtomicU32 = std::sync::atomic::AtomicU32::new(0);
 
 impl Renderer {
-    /// Validates `scene`, builds its BVH, uploads it and prepares rendering at `width`×`height`.
+    /// Validates `scene`, builds its BVH, uploads it (in the default [`BvhLayout`]) and prepares
+    /// rendering at `width`×`height`.
     pub fn new(
         ctx: &Context,
         mut scene: Scene,
@@ -151,7 +152,8 @@ impl Renderer {
         let flat = FlatScene::new(&scene, &[]);
         let flat_len = scene.instances.len();
         let bvh = Bvh::build(&flat.scene);
-        let (gpu, triangle_ids) = pack_flat(&flat, &scene, &bvh);
+        let (gpu, triangle_ids) = pack_flat(&flat, &scene, &bvh, BvhLayout::default());
+        check_depths(&scene, &gpu)?;
         let buffers = SceneBuffers::upload(ctx, &gpu, &triangle_ids)?;
         let spec = specialization(&gpu);
         let library = ShaderLibrary::new(ctx, None)?;
@@ -335,6 +337,7 @@ impl Renderer {
                     .rebuild_top_level(&self.flat.scene)
                     .map_err(|e| EngineError::InvalidArgument(e.to_string()))?;
                 apply_flattening(&mut self.gpu, &self.flat, &self.scene, &self.bvh);
+                check_depths(&self.scene, &self.gpu)?;
                 self.buffers.update_top_level(&self.ctx, &self.gpu)
             }
             None => {
@@ -371,11 +374,47 @@ impl Renderer {
         Ok(())
     }
 
+    /// The layout of the BVH nodes on the GPU.
+    pub fn bvh_layout(&self) -> BvhLayout {
+        self.gpu.layout()
+    }
+
+    /// The scene as packed for the GPU (its buffers' sizes: [`GpuScene::bytes_per_triangle`], ...).
+    pub fn gpu_scene(&self) -> &GpuScene {
+        &self.gpu
+    }
+
+    /// Packs and uploads the BVH in `layout` (frames in flight keep the old buffers); restarts
+    /// accumulation. The image stays the same up to how rays graze box edges: both layouts find
+    /// the same closest hits.
+    ///
+    /// ```no_run
+    /// # fn demo() -> lucid_engine::Result<()> {
+    /// # let mut renderer: lucid_passes::renderer::Renderer = unimplemented!();
+    /// use lucid_engine::scene::gpu::BvhLayout;
+    /// renderer.set_bvh_layout(BvhLayout::Binary)?;
+    /// # Ok(()) }
+    /// ```
+    pub fn set_bvh_layout(&mut self, layout: BvhLayout) -> Result<()> {
+        if layout != self.gpu.layout() {
+            self.upload_gpu_scene(layout)?;
+            self.accumulated = 0;
+            self.scene_changed = true;
+        }
+        Ok(())
+    }
+
     /// Flattens, builds and uploads the scene again (frames in flight keep the old buffers).
     fn rebuild_gpu_scene(&mut self) -> Result<()> {
         self.flat = FlatScene::new(&self.scene, &self.dynamic);
         self.bvh = Bvh::build(&self.flat.scene);
-        let (gpu, triangle_ids) = pack_flat(&self.flat, &self.scene, &self.bvh);
+        self.upload_gpu_scene(self.gpu.layout())
+    }
+
+    /// Packs the flattened scene and its BVH in `layout` and uploads it.
+    fn upload_gpu_scene(&mut self, layout: BvhLayout) -> Result<()> {
+        let (gpu, triangle_ids) = pack_flat(&self.flat, &self.scene, &self.bvh, layout);
+        check_depths(&self.scene, &gpu)?;
         self.buffers = SceneBuffers::upload(&self.ctx, &gpu, &triangle_ids)?;
         self.spec = specialization(&gpu);
         self.gpu = gpu;
@@ -764,6 +803,12 @@ fn add_prev_transforms(
     let buffer = p.write(buffer, lucid_engine::graph::Access::TransferWrite);
     p.execute(move |ctx| ctx.update_buffer(buffer, &data));
     buffer
+}
+
+/// An error when the packed BVH of `scene` is deeper than the GPU traversal can walk.
+fn check_depths(scene: &Scene, gpu: &GpuScene) -> Result<()> {
+    gpu.check_depths()
+        .map_err(|e| EngineError::InvalidArgument(format!("scene {}: {e}", scene.name)))
 }
 
 fn check_size(width: u32, height: u32) -> Result<()> {

@@ -5,6 +5,7 @@ use super::size::Size;
 use clap::builder::TypedValueParser;
 use clap::Args;
 use lucid_engine::capture::{PngEncoding, ToneCurve};
+use lucid_engine::scene::gpu::BvhLayout;
 use lucid_engine::scene::Scene;
 use lucid_engine::Context;
 use lucid_passes::denoise::neural::{InferencePath, NetworkWeights};
@@ -49,6 +50,9 @@ pub struct RenderOptions {
     /// them, else portable).
     #[arg(long, value_enum)]
     pub neural_path: Option<InferencePath>,
+    /// Layout of the BVH nodes on the GPU (both find the same hits; for A/B timing).
+    #[arg(long, value_enum, default_value_t = BvhLayout::default())]
+    pub bvh: BvhLayout,
 }
 
 impl RenderOptions {
@@ -66,8 +70,9 @@ impl RenderOptions {
         }
     }
 
-    /// A renderer of `scene` at `width` x `height` with `settings` and, when given, the learned
-    /// denoiser's weights (a missing or malformed file is an error before anything renders).
+    /// A renderer of `scene` at `width` x `height` with `settings`, the BVH layout and, when given,
+    /// the learned denoiser's weights (a missing or malformed file is an error before anything
+    /// renders).
     pub fn renderer(
         &self,
         ctx: &Context,
@@ -76,6 +81,7 @@ impl RenderOptions {
         settings: Settings,
     ) -> anyhow::Result<Renderer> {
         let mut renderer = Renderer::new(ctx, scene, width, height, settings)?;
+        renderer.set_bvh_layout(self.bvh)?;
         if self.neural_weights.is_some() || self.neural_path.is_some() {
             let weights = match &self.neural_weights {
                 Some(path) => NetworkWeights::load(path)?,

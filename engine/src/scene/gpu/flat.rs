@@ -2,25 +2,26 @@
 //! their original ids, the merged mesh's triangles carry (material, original instance) in GPU
 //! order, and the NEE lights are those of the original scene, remapped to the packed one.
 
-use super::{emitter_inverse_orders, GpuScene, INSTANCE_TRIANGLES};
+use super::{emitter_inverse_orders, BvhLayout, GpuScene, INSTANCE_TRIANGLES};
 use crate::scene::{Bvh, FlatScene, Placement, Scene};
 
 /// `GpuInstance::kind` of the merged static instance: material and object id come per triangle from
 /// the triangle-ids buffer.
 pub const INSTANCE_FLATTENED: u32 = 2;
 
-/// Packs `flat` (made from `original`, with `bvh` built from `flat.scene`); returns the scene and
-/// the per-triangle ids of the merged mesh (`[material, original instance]`, indexed by GPU
-/// triangle; at least one entry).
-pub fn pack_flat(flat: &FlatScene, original: &Scene, bvh: &Bvh) -> (GpuScene, Vec<[u32; 2]>) {
-    let mut gpu = GpuScene::without_top_level(&flat.scene, bvh);
+/// Packs `flat` (made from `original`, with `bvh` built from `flat.scene`) with its BVH in
+/// `layout`; returns the scene and the per-triangle ids of the merged mesh (`[material, original
+/// instance]`, indexed by GPU triangle; at least one entry).
+pub fn pack_flat(
+    flat: &FlatScene,
+    original: &Scene,
+    bvh: &Bvh,
+    layout: BvhLayout,
+) -> (GpuScene, Vec<[u32; 2]>) {
+    let mut gpu = GpuScene::without_top_level(&flat.scene, bvh, layout);
     apply_flattening(&mut gpu, flat, original, bvh);
-    let mut ids = match (flat.merged, bvh.blases.first()) {
-        (true, Some(blas)) => blas
-            .order
-            .iter()
-            .map(|&t| flat.merged_ids[t as usize])
-            .collect(),
+    let mut ids = match (flat.merged, gpu.blas_orders.first()) {
+        (true, Some(order)) => order.iter().map(|&t| flat.merged_ids[t as usize]).collect(),
         _ => Vec::new(),
     };
     if ids.is_empty() {
@@ -42,7 +43,7 @@ pub fn apply_flattening(gpu: &mut GpuScene, flat: &FlatScene, original: &Scene, 
         Placement::Merged { .. } => 0,
         Placement::Separate { instance } => flat.scene.instances[instance as usize].mesh as usize,
     };
-    let inverse_orders = emitter_inverse_orders(original, bvh, flat_mesh);
+    let inverse_orders = emitter_inverse_orders(original, &gpu.blas_orders, flat_mesh);
     let instance_slots: Vec<u32> = flat
         .placement
         .iter()

@@ -2,9 +2,9 @@
 
 use glam::Vec2;
 
-use super::bvh_pack::{pack_tree, GpuBvhNode};
 use super::encode::{encode_color, encode_normal, encode_uv};
 use super::layout::{GpuSphere, GpuTriangle, GpuVertex, GpuVertexAttributes};
+use super::nodes::{BvhLayout, GpuNodes, PackedTree};
 use crate::scene::{Bvh, Mesh, Scene};
 
 /// Vertex `i`'s colour and alpha, and its tangent with the bitangent's sign.
@@ -33,22 +33,26 @@ pub struct PackedGeometry {
     /// mesh has none) when some mesh has vertex colours or tangents, else empty.
     pub vertex_attributes: Vec<GpuVertexAttributes>,
     /// Triangle vertex indices (absolute), each mesh's triangles in its
-    /// BLAS leaf order.
+    /// packed BLAS's order (`blas_orders`).
     pub indices: Vec<u32>,
     /// Every triangle's vertex and edges, in the order of `indices`.
     pub triangles: Vec<GpuTriangle>,
-    /// All BLAS interior nodes in the GPU layout, with absolute node and triangle indices.
-    pub blas_nodes: Vec<GpuBvhNode>,
-    /// Root child word of each BLAS (same order as `Bvh::blases`; see [`super::bvh_pack`]).
+    /// All BLAS nodes in the GPU layout, with absolute node and triangle indices.
+    pub blas_nodes: GpuNodes,
+    /// Root of each BLAS (same order as `Bvh::blases`; see [`super::nodes::PackedTree::root`]).
     pub blas_roots: Vec<u32>,
+    /// Per BLAS, the source primitive of each packed primitive.
+    pub blas_orders: Vec<Vec<u32>>,
+    /// Nodes on the longest root-to-leaf path of any BLAS.
+    pub blas_depth: u32,
     /// First global triangle of each mesh.
     pub triangle_base: Vec<u32>,
-    /// Spheres in sphere-BLAS leaf order.
+    /// Spheres in the packed sphere BLAS's order.
     pub spheres: Vec<GpuSphere>,
 }
 
-/// Packs all meshes and spheres of `scene` using the BLAS leaf orders of `bvh`.
-pub fn pack(scene: &Scene, bvh: &Bvh) -> PackedGeometry {
+/// Packs all meshes and spheres of `scene` with the BLASes of `bvh` in `layout`.
+pub fn pack(scene: &Scene, bvh: &Bvh, layout: BvhLayout) -> PackedGeometry {
     let vertex_total: usize = scene.meshes.iter().map(|m| m.positions.len()).sum();
     let attributed = scene
         .meshes
@@ -59,8 +63,10 @@ pub fn pack(scene: &Scene, bvh: &Bvh) -> PackedGeometry {
         vertex_attributes: Vec::new(),
         indices: Vec::with_capacity(scene.unique_triangle_count() * 3),
         triangles: Vec::with_capacity(scene.unique_triangle_count()),
-        blas_nodes: Vec::with_capacity(bvh.blases.iter().map(|b| b.nodes.len() / 2).sum()),
+        blas_nodes: GpuNodes::new(layout),
         blas_roots: Vec::with_capacity(bvh.blases.len()),
+        blas_orders: Vec::with_capacity(bvh.blases.len()),
+        blas_depth: 0,
         triangle_base: Vec::with_capacity(scene.meshes.len()),
         spheres: Vec::new(),
     };
@@ -78,12 +84,14 @@ pub fn pack(scene: &Scene, bvh: &Bvh) -> PackedGeometry {
         }
         let tri_base = (out.indices.len() / 3) as u32;
         out.triangle_base.push(tri_base);
+        let packed = out.blas_nodes.pack_tree(&blas.nodes, &blas.order, tri_base);
         out.indices.extend(
-            blas.order
+            packed
+                .order
                 .iter()
                 .flat_map(|&t| (mesh.indices[t as usize] + vertex_base).to_array()),
         );
-        out.triangles.extend(blas.order.iter().map(|&t| {
+        out.triangles.extend(packed.order.iter().map(|&t| {
             let [p0, p1, p2] = mesh.triangle(t as usize);
             GpuTriangle {
                 p0: p0.to_array(),
@@ -91,11 +99,11 @@ pub fn pack(scene: &Scene, bvh: &Bvh) -> PackedGeometry {
                 e2: (p2 - p0).to_array(),
             }
         }));
-        let root = pack_tree(&blas.nodes, tri_base, &mut out.blas_nodes);
-        out.blas_roots.push(root);
+        out.add_blas(packed);
     }
     if let Some(blas) = bvh.blases.get(scene.meshes.len()) {
-        out.spheres = blas
+        let packed = out.blas_nodes.pack_tree(&blas.nodes, &blas.order, 0);
+        out.spheres = packed
             .order
             .iter()
             .map(|&s| {
@@ -108,8 +116,16 @@ pub fn pack(scene: &Scene, bvh: &Bvh) -> PackedGeometry {
                 }
             })
             .collect();
-        let root = pack_tree(&blas.nodes, 0, &mut out.blas_nodes);
-        out.blas_roots.push(root);
+        out.add_blas(packed);
     }
     out
+}
+
+impl PackedGeometry {
+    /// Records a packed BLAS's root, order and depth.
+    fn add_blas(&mut self, packed: PackedTree) {
+        self.blas_roots.push(packed.root);
+        self.blas_orders.push(packed.order);
+        self.blas_depth = self.blas_depth.max(packed.depth);
+    }
 }

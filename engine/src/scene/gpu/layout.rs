@@ -31,7 +31,7 @@ pub struct GpuVertex {
 }
 
 /// A triangle as ray intersection reads it, 36 bytes (nine floats, read as `float t[]` in GLSL:
-/// first vertex, second minus first, third minus first), in BLAS leaf order: contiguous reads
+/// first vertex, second minus first, third minus first), in the packed BLAS's order: contiguous reads
 /// instead of indices then vertices.
 #[repr(C)]
 #[derive(Clone, Copy, Debug, Default, PartialEq, Pod, Zeroable)]
@@ -49,7 +49,7 @@ pub struct GpuTriangle {
 /// struct Instance {
 ///     vec4 object_to_world[3]; // rows of a 3x4 affine matrix
 ///     vec4 world_to_object[3];
-///     uint blas_root;          // child word of the BLAS root (see bvh_pack)
+///     uint blas_root;          // the BLAS root: a child word (bvh_pack) or a wide node (wide)
 ///     uint material;           // material index; ~0u for the sphere instance
 ///     uint kind;               // 0 = triangles, 1 = spheres, 2 = flattened static triangles
 ///     uint scene_instance;     // Scene::instances index; ~0u for spheres
@@ -62,7 +62,7 @@ pub struct GpuInstance {
     pub object_to_world: [[f32; 4]; 3],
     /// Rows of the world-to-object 3x4 matrix.
     pub world_to_object: [[f32; 4]; 3],
-    /// Child word of the instance's BLAS root (see [`super::bvh_pack`]).
+    /// The instance's BLAS root (see [`super::PackedTree::root`]).
     pub blas_root: u32,
     /// Material of every triangle (`u32::MAX` for spheres, which carry
     /// their own).
@@ -346,7 +346,7 @@ pub struct GpuSceneParams {
     pub sun: GpuSun,
     /// Triangles, instances, spheres, lights.
     pub counts0: [u32; 4],
-    /// Materials, textures, the TLAS root's child word (`bvh_pack::EMPTY` without instances),
+    /// Materials, textures, the TLAS root ([`super::PackedTree::root`]; `u32::MAX` without instances),
     /// BLAS nodes.
     pub counts1: [u32; 4],
     /// Total power of the light table (x), and the selection constants `uniform` (y) and

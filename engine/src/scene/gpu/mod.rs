@@ -4,15 +4,16 @@
 //! Buffers and how they reference each other:
 //! - `vertices` ([`GpuVertex`], 20 B) and `indices` (3 × `u32` per
 //!   triangle, absolute vertex indices); `vertex_attributes` ([`GpuVertexAttributes`], 16 B per
-//!   vertex: colour, alpha, tangent) only when a mesh has vertex colours or tangents. Each mesh's triangles are stored
-//!   in its BLAS leaf order, so a BLAS leaf `(first, count)` is directly a
-//!   global triangle range.
-//! - `blas_nodes` / `tlas_nodes` ([`GpuBvhNode`], 64 B, see [`bvh_pack`]):
-//!   interior nodes holding both children's boxes and child words; all
+//!   vertex: colour, alpha, tangent) only when a mesh has vertex colours or tangents. Each mesh's
+//!   triangles are stored in its packed BLAS's order, so a BLAS leaf names a global triangle
+//!   range directly.
+//! - `blas_nodes` / `tlas_nodes` ([`GpuNodes`], in one of two [`BvhLayout`]s): binary
+//!   ([`GpuBvhNode`], 64 B, see [`bvh_pack`]: interior nodes holding both children's boxes and
+//!   child words) or compressed 8-wide ([`wide::WideNode`], 80 B, see [`wide`]); all
 //!   BLASes concatenated with absolute node and triangle indices; TLAS
-//!   leaves index `instances`, which are stored in TLAS leaf order.
+//!   leaves index `instances`, which are stored in the packed TLAS's order.
 //! - `instances` ([`GpuInstance`]): transforms, BLAS root, material.
-//! - `spheres` ([`GpuSphere`]) in sphere-BLAS leaf order.
+//! - `spheres` ([`GpuSphere`]) in the packed sphere BLAS's order.
 //! - `materials`, `textures` (one record per texture a material uses: where its texels lie in
 //!   the flat `texels` word buffer, its coordinate transform and wrap modes).
 //! - `lights` + `light_table`: the NEE light list with its alias table / CDF
@@ -24,7 +25,11 @@ mod encode;
 mod flat;
 mod geometry;
 mod layout;
+#[cfg(feature = "clap")]
+mod layout_value_enum;
+mod nodes;
 mod params;
+pub mod wide;
 
 pub use bvh_pack::GpuBvhNode;
 pub use encode::{decode_normal, encode_color, encode_normal, encode_uv};
@@ -35,6 +40,7 @@ pub use layout::{
     GpuInstance, GpuLight, GpuMaterial, GpuSceneParams, GpuSphere, GpuSun, GpuTextureRecord,
     GpuTriangle, GpuVertex, GpuVertexAttributes,
 };
+pub use nodes::{BvhLayout, GpuNodes, PackedTree};
 pub use params::camera;
 
 use std::mem::size_of;
@@ -63,12 +69,12 @@ pub struct GpuScene {
     /// Triangles for ray intersection (first vertex and edges), in the order of `indices`.
     pub triangles: Vec<GpuTriangle>,
     /// All bottom-level nodes.
-    pub blas_nodes: Vec<GpuBvhNode>,
-    /// Top-level nodes.
-    pub tlas_nodes: Vec<GpuBvhNode>,
-    /// Root child word of the TLAS ([`bvh_pack::EMPTY`] without instances).
+    pub blas_nodes: GpuNodes,
+    /// Top-level nodes (in the layout of `blas_nodes`).
+    pub tlas_nodes: GpuNodes,
+    /// Root of the TLAS (see [`PackedTree::root`]; `u32::MAX` without instances).
     pub tlas_root: u32,
-    /// Instances in TLAS leaf order.
+    /// Instances in the packed TLAS's order.
     pub instances: Vec<GpuInstance>,
     /// Analytic spheres.
     pub spheres: Vec<GpuSphere>,
@@ -88,23 +94,42 @@ pub struct GpuScene {
     pub features: SceneFeatures,
     /// Where each scene texture's texels lie (identity transform, repeating).
     images: Vec<GpuTextureRecord>,
-    /// Root child word of each BLAS.
+    /// Root of each BLAS.
     blas_roots: Vec<u32>,
+    /// Per BLAS, the source primitive of each packed primitive.
+    blas_orders: Vec<Vec<u32>>,
+    /// Nodes on the longest root-to-leaf path of any BLAS and of the TLAS.
+    depths: BvhDepths,
     triangle_base: Vec<u32>,
 }
 
+/// The longest root-to-leaf paths of a packed scene's trees, in nodes (the GPU traversal's stacks
+/// hold at most one entry per level, binary or wide).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct BvhDepths {
+    /// The deepest bottom level.
+    pub blas: u32,
+    /// The top level.
+    pub tlas: u32,
+}
+
 impl GpuScene {
-    /// Packs a validated scene with its BVH (built from that scene).
+    /// Packs a validated scene with its BVH (built from that scene) in the default layout.
     pub fn new(scene: &Scene, bvh: &Bvh) -> Self {
-        let mut out = Self::without_top_level(scene, bvh);
+        Self::with_layout(scene, bvh, BvhLayout::default())
+    }
+
+    /// Packs a validated scene with its BVH (built from that scene) in `layout`.
+    pub fn with_layout(scene: &Scene, bvh: &Bvh, layout: BvhLayout) -> Self {
+        let mut out = Self::without_top_level(scene, bvh, layout);
         out.update_top_level(scene, bvh);
         out
     }
 
-    /// Packs what does not depend on instance placement: geometry, bottom levels, materials,
-    /// textures and features. The instances, lights and params are left empty.
-    fn without_top_level(scene: &Scene, bvh: &Bvh) -> Self {
-        let geo = geometry::pack(scene, bvh);
+    /// Packs what does not depend on instance placement: geometry, bottom levels in `layout`,
+    /// materials, textures and features. The instances, lights and params are left empty.
+    fn without_top_level(scene: &Scene, bvh: &Bvh, layout: BvhLayout) -> Self {
+        let geo = geometry::pack(scene, bvh, layout);
         let (texels, images) = params::textures(scene);
         let (materials, textures) = params::materials(scene, &images);
         Self {
@@ -113,6 +138,7 @@ impl GpuScene {
             indices: geo.indices,
             triangles: geo.triangles,
             blas_nodes: geo.blas_nodes,
+            tlas_nodes: GpuNodes::new(layout),
             spheres: geo.spheres,
             materials,
             texels,
@@ -120,6 +146,11 @@ impl GpuScene {
             images,
             features: scene.features(),
             blas_roots: geo.blas_roots,
+            blas_orders: geo.blas_orders,
+            depths: BvhDepths {
+                blas: geo.blas_depth,
+                tlas: 0,
+            },
             triangle_base: geo.triangle_base,
             ..Default::default()
         }
@@ -137,8 +168,9 @@ impl GpuScene {
     /// [`Bvh::rebuild_top_level`].
     pub fn update_top_level(&mut self, scene: &Scene, bvh: &Bvh) {
         let gpu_of_instance = self.place_instances(scene, bvh);
-        let inverse_orders =
-            emitter_inverse_orders(scene, bvh, |i| scene.instances[i].mesh as usize);
+        let inverse_orders = emitter_inverse_orders(scene, &self.blas_orders, |i| {
+            scene.instances[i].mesh as usize
+        });
         let triangle = |instance: u32, t: u32| {
             let mesh = scene.instances[instance as usize].mesh as usize;
             self.triangle_base[mesh] + inverse_orders[mesh][t as usize]
@@ -147,14 +179,17 @@ impl GpuScene {
         self.set_lights(scene, lights, table, light);
     }
 
-    /// Packs the TLAS and the instances of `scene` (in TLAS leaf order); returns the GPU instance
-    /// slot of each scene instance.
+    /// Packs the TLAS and the instances of `scene` (in the packed TLAS's order); returns the GPU
+    /// instance slot of each scene instance.
     fn place_instances(&mut self, scene: &Scene, bvh: &Bvh) -> Vec<u32> {
-        self.tlas_nodes.clear();
-        self.tlas_root = bvh_pack::pack_tree(&bvh.tlas.nodes, 0, &mut self.tlas_nodes);
+        self.tlas_nodes = GpuNodes::new(self.layout());
+        let packed = self
+            .tlas_nodes
+            .pack_tree(&bvh.tlas.nodes, &bvh.tlas.order, 0);
+        self.tlas_root = packed.root;
+        self.depths.tlas = packed.depth;
         let mut gpu_of_instance = vec![u32::MAX; scene.instances.len()];
-        self.instances = bvh
-            .tlas
+        self.instances = packed
             .order
             .iter()
             .enumerate()
@@ -243,6 +278,35 @@ impl GpuScene {
         };
     }
 
+    /// The layout the BVH nodes are packed in.
+    pub fn layout(&self) -> BvhLayout {
+        self.blas_nodes.layout()
+    }
+
+    /// The longest root-to-leaf paths of the packed trees.
+    pub fn bvh_depths(&self) -> BvhDepths {
+        self.depths
+    }
+
+    /// An error naming the tree when a packed tree is deeper than the GPU walks of its layout can
+    /// stack for ([`BvhLayout::max_depths`]): they would skip subtrees.
+    pub fn check_depths(&self) -> Result<(), String> {
+        let max = self.layout().max_depths();
+        for (level, depth, most) in [
+            ("bottom", self.depths.blas, max.blas),
+            ("top", self.depths.tlas, max.tlas),
+        ] {
+            if depth > most {
+                return Err(format!(
+                    "a {level}-level BVH is {depth} nodes deep; the GPU traversal of the {} layout \
+                     handles at most {most}",
+                    self.layout()
+                ));
+            }
+        }
+        Ok(())
+    }
+
     /// Whether the packed scene is exactly one triangle instance (no spheres): rays may then skip
     /// the top level and walk that instance's BLAS directly (the `SINGLE_INSTANCE` specialization
     /// constant). A fully flattened static scene is one.
@@ -261,7 +325,8 @@ impl GpuScene {
 
     /// Bytes of both BVH levels and the instances.
     pub fn bvh_bytes(&self) -> usize {
-        (self.blas_nodes.len() + self.tlas_nodes.len()) * size_of::<GpuBvhNode>()
+        self.blas_nodes.bytes().len()
+            + self.tlas_nodes.bytes().len()
             + self.instances.len() * size_of::<GpuInstance>()
     }
 
@@ -289,25 +354,25 @@ impl GpuScene {
     }
 }
 
-/// Per BLAS of `bvh`: the position of each triangle in its leaf order when the BLAS holds an
-/// emitter of `scene` (whose instance `i` lies in BLAS `blas_of(i)`), else empty. Lights use it to
-/// find their GPU triangles.
+/// Per packed BLAS (`orders`: the source triangle of each packed triangle): the packed position of
+/// each triangle when the BLAS holds an emitter of `scene` (whose instance `i` lies in BLAS
+/// `blas_of(i)`), else empty. Lights use it to find their GPU triangles.
 fn emitter_inverse_orders(
     scene: &Scene,
-    bvh: &Bvh,
+    orders: &[Vec<u32>],
     blas_of: impl Fn(usize) -> usize,
 ) -> Vec<Vec<u32>> {
-    let mut lit = vec![false; bvh.blases.len()];
+    let mut lit = vec![false; orders.len()];
     for i in 0..scene.instances.len() {
         if scene.materials[scene.instance_material(i) as usize].is_emissive() {
             lit[blas_of(i)] = true;
         }
     }
     lit.iter()
-        .zip(&bvh.blases)
-        .map(|(&lit, blas)| {
+        .zip(orders)
+        .map(|(&lit, order)| {
             if lit {
-                inverse_order(&blas.order)
+                inverse_order(order)
             } else {
                 Vec::new()
             }
@@ -315,7 +380,7 @@ fn emitter_inverse_orders(
         .collect()
 }
 
-/// Position of each triangle in a BLAS leaf order (`order` maps position to triangle).
+/// Position of each triangle in a packed order (`order` maps position to triangle).
 fn inverse_order(order: &[u32]) -> Vec<u32> {
     let mut inverse = vec![0; order.len()];
     for (position, &t) in order.iter().enumerate() {
