@@ -14,7 +14,7 @@ layout(constant_id = 100) const bool HAS_SPHERES = true;
 // flattened static scene): trace_ray walks its BLAS directly, without the top level.
 layout(constant_id = 108) const bool SINGLE_INSTANCE = false;
 // The BVH nodes are compressed 8-wide ones (lucid_engine::scene::gpu::BvhLayout::Wide), not binary.
-layout(constant_id = 116) const bool WIDE_BVH = true;
+layout(constant_id = 116) const bool WIDE_BVH = false;
 
 const float T_INFINITY = 3.0e38;
 // The root of an empty tree, in both layouts.

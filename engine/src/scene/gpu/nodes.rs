@@ -12,10 +12,11 @@ use crate::bvh::BvhNode;
 /// `clap` feature, a `clap::ValueEnum` of its names.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
 pub enum BvhLayout {
-    /// Binary nodes holding both children's boxes as floats (64 bytes, [`bvh_pack`]).
+    /// Binary nodes holding both children's boxes as floats (64 bytes, [`bvh_pack`]): the default,
+    /// faster on an H100 for every built-in scene (`bench/README.md`).
+    #[default]
     Binary,
     /// Compressed 8-wide nodes with byte-quantized child boxes (80 bytes, [`wide`]).
-    #[default]
     Wide,
 }
 
