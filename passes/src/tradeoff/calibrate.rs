@@ -13,6 +13,8 @@ use super::measure::{self, Clock, Config, ConfigResult, Limits, Schedule};
 use super::metric::Metric;
 use super::pareto::pareto_front;
 use crate::renderer::{Algorithm, Denoiser, Renderer, SamplesPerPixel};
+use lucid_engine::context::DeviceKind;
+use lucid_engine::Context;
 use std::time::Instant;
 
 /// What the choice must achieve.
@@ -92,6 +94,24 @@ impl Default for CalibrationOptions {
 }
 
 impl CalibrationOptions {
+    /// The default options on a GPU; on a software device (lavapipe), where each candidate frame
+    /// takes CPU time, a shorter calibration: no learned denoiser (the slowest there), 1 and 2
+    /// samples per pixel, 4 frames each and a 64-sample reference.
+    pub fn for_device(ctx: &Context) -> Self {
+        let defaults = Self::default();
+        if ctx.info().kind != DeviceKind::Cpu {
+            return defaults;
+        }
+        let spp = |n| SamplesPerPixel::new(n).expect("not zero");
+        Self {
+            denoisers: vec![Denoiser::None, Denoiser::Svgf],
+            spp: vec![spp(1), spp(2)],
+            frames: 4,
+            reference_spp: spp(64),
+            ..defaults
+        }
+    }
+
     /// Frames [`calibrate`] renders in all for `candidates` configurations (for progress bars).
     pub fn total_frames(&self, candidates: usize) -> u64 {
         let reference = self
