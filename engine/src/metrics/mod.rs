@@ -17,7 +17,7 @@ mod ssim;
 mod temporal;
 
 pub use error::MetricsError;
-pub use flip::{flip, FlipResult, DEFAULT_PIXELS_PER_DEGREE};
+pub use flip::{flip, hdr_flip, FlipResult, HdrFlipParams, DEFAULT_PIXELS_PER_DEGREE};
 pub use pixelwise::{max_abs_error, mean_per_channel, mse, psnr, rel_mse, DEFAULT_REL_MSE_EPSILON};
 pub use sequence::{evaluate_frame, evaluate_sequence, FrameMetrics, SequenceMetrics};
 pub use ssim::{dssim, ssim, SsimMode};

@@ -1,6 +1,6 @@
 //! Structural similarity (Wang et al. 2004) and its DSSIM transform.
 
-use super::check::check_pair;
+use super::check::{check_pair, check_parameter};
 use super::plane::{clamp_unit, kernel, normalized, Plane};
 use super::MetricsError;
 use crate::capture::{rec709_luminance, ImageData};
@@ -25,8 +25,13 @@ pub enum SsimMode {
 }
 
 /// Mean SSIM of `test` against `reference`: 11x11 Gaussian window with
-/// sigma 1.5, `K1 = 0.01`, `K2 = 0.03`, dynamic range 1, edge pixels
-/// replicated at the borders.
+/// sigma 1.5, `K1 = 0.01`, `K2 = 0.03`, dynamic range 1, population
+/// (not sample) covariances, the mean taken over the pixels whose window
+/// lies inside the image (those at least 5 pixels from the border), as Wang
+/// et al.'s code and scikit-image's `structural_similarity(...,
+/// gaussian_weights=True, sigma=1.5, use_sample_covariance=False,
+/// data_range=1)` take it (`tests/metrics_reference/` checks the agreement).
+/// Images narrower or lower than the window (11 pixels) are an error.
 ///
 /// Values are clamped to `[0, 1]` (NaN counts as 0) before comparison, so
 /// the inputs should be display-referred: for linear HDR frames, compare
@@ -34,6 +39,13 @@ pub enum SsimMode {
 /// both images. Identical images give exactly 1.
 pub fn ssim(test: &ImageData, reference: &ImageData, mode: SsimMode) -> Result<f64, MetricsError> {
     check_pair(test, reference)?;
+    let side = 2 * WINDOW_RADIUS as u32 + 1;
+    check_parameter(
+        "image size",
+        f64::from(test.width.min(test.height)),
+        test.width >= side && test.height >= side,
+        "SSIM needs images of at least 11x11 pixels (its window)",
+    )?;
     let window = normalized(kernel(WINDOW_RADIUS, |x| {
         (-x * x / (2.0 * WINDOW_SIGMA * WINDOW_SIGMA)).exp()
     }));
@@ -68,7 +80,7 @@ pub fn dssim(ssim: f64) -> f64 {
     1.0 / ssim - 1.0
 }
 
-/// Mean of the SSIM map of two equally sized planes.
+/// Mean of the SSIM map of two equally sized planes over the pixels whose window lies inside.
 fn plane_ssim(x: &Plane, y: &Plane, window: &[f32]) -> f64 {
     let blur = |p: &Plane| p.filter(window, window);
     let mu_x = blur(x);
@@ -76,7 +88,11 @@ fn plane_ssim(x: &Plane, y: &Plane, window: &[f32]) -> f64 {
     let xx = blur(&x.zip_map(x, |a, b| a * b));
     let yy = blur(&y.zip_map(y, |a, b| a * b));
     let xy = blur(&x.zip_map(y, |a, b| a * b));
-    let sum: f64 = (0..x.data.len())
+    let r = WINDOW_RADIUS;
+    let (w, h) = (x.width, x.height);
+    let inside = (r..h - r).flat_map(|row| (r..w - r).map(move |col| row * w + col));
+    let count = (w - 2 * r) * (h - 2 * r);
+    let sum: f64 = inside
         .map(|i| {
             let (mx, my) = (f64::from(mu_x.data[i]), f64::from(mu_y.data[i]));
             let var_x = f64::from(xx.data[i]) - mx * mx;
@@ -86,5 +102,5 @@ fn plane_ssim(x: &Plane, y: &Plane, window: &[f32]) -> f64 {
                 / ((mx * mx + my * my + C1) * (var_x + var_y + C2))
         })
         .sum();
-    sum / x.data.len() as f64
+    sum / count as f64
 }

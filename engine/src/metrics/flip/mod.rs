@@ -11,6 +11,9 @@
 mod color;
 mod color_pipeline;
 mod feature_pipeline;
+mod hdr;
+
+pub use hdr::{hdr_flip, HdrFlipParams};
 
 use super::check::{check_pair, check_parameter};
 use super::plane::{clamp_unit, Plane};
@@ -21,9 +24,9 @@ use color_pipeline::{color_difference, CsfFilters, Opponent};
 use feature_pipeline::FeatureFilters;
 
 /// The reference implementation's default observer: a 0.7 m wide 3840-pixel
-/// monitor viewed from 0.7 m, `0.7 * (3840 / 0.7) * pi / 180` ≈ 67.02 pixels
+/// monitor viewed from 0.7 m, `0.7 * (3840 / 0.7) * pi / 180` ≈ 67.0206 pixels
 /// per degree of visual angle.
-pub const DEFAULT_PIXELS_PER_DEGREE: f64 = 67.02;
+pub const DEFAULT_PIXELS_PER_DEGREE: f64 = 3840.0 * std::f64::consts::PI / 180.0;
 
 /// Largest accepted pixels-per-degree: filter sizes grow linearly with it.
 const MAX_PIXELS_PER_DEGREE: f64 = 1000.0;
