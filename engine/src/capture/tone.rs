@@ -6,6 +6,7 @@
 //! implements the same transform and is tested against this one.
 
 use super::{srgb_encode, ImageData};
+use rayon::prelude::*;
 
 /// Inputs above this are treated as this, so that `+inf` maps to white and
 /// the rational tone curves never divide infinity by infinity.
@@ -166,10 +167,10 @@ impl PngEncoding {
     }
 }
 
-fn map_image(image: &ImageData, f: impl Fn([f32; 4]) -> [f32; 4]) -> ImageData {
+fn map_image(image: &ImageData, f: impl Fn([f32; 4]) -> [f32; 4] + Sync) -> ImageData {
     ImageData {
         width: image.width,
         height: image.height,
-        pixels: image.pixels.iter().map(|&p| f(p)).collect(),
+        pixels: image.pixels.par_iter().map(|&p| f(p)).collect(),
     }
 }

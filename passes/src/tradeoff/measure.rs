@@ -3,9 +3,8 @@
 
 use super::error::TradeoffError;
 use crate::renderer::{Algorithm, Denoiser, Renderer, SamplesPerPixel, Settings};
-use lucid_engine::capture::ImageData;
 use lucid_engine::graph::RenderGraph;
-use lucid_engine::metrics::evaluate_frame;
+use lucid_engine::metrics::PreparedReference;
 use lucid_engine::{Context, EngineError};
 use std::time::Instant;
 
@@ -175,14 +174,15 @@ pub fn measured(frame: u32) -> bool {
 
 /// Renders the reference: `algorithm` without a denoiser, `spp` samples per pixel accumulated
 /// over frames of [`REFERENCE_SPP_PER_FRAME`], with the seed of `base` xor [`REFERENCE_SEED_XOR`]
-/// so its noise is independent of the configurations'. `on_frame` is called after each frame.
+/// so its noise is independent of the configurations'; prepared for [`measure`] with the display
+/// mapping of `base`. `on_frame` is called after each frame.
 pub fn render_reference(
     renderer: &mut Renderer,
     base: Settings,
     algorithm: Algorithm,
     spp: SamplesPerPixel,
     on_frame: &mut dyn FnMut(),
-) -> Result<ImageData, TradeoffError> {
+) -> Result<PreparedReference, TradeoffError> {
     renderer.set_settings(Settings {
         algorithm,
         denoiser: Denoiser::None,
@@ -202,17 +202,21 @@ pub fn render_reference(
     if image.has_non_finite() {
         return Err(TradeoffError::NonFiniteReference);
     }
-    Ok(image)
+    PreparedReference::new(&image, &base.display).map_err(|source| TradeoffError::Metrics {
+        config: "reference".into(),
+        source,
+    })
 }
 
 /// Renders `limits.warmup` frames of `settings`, then frames from a fresh start until
 /// `limits.budget_ms` is spent or `limits.max_frames` reached, measuring the error of the frame's
-/// HDR image (accumulated and denoised as `settings` say) against `reference` at the frames
-/// `schedule` picks and at the last. `on_frame` is called after each measured-time frame.
+/// HDR image (accumulated and denoised as `settings` say) against `reference` (prepared with the
+/// display mapping of `settings`) at the frames `schedule` picks and at the last. `on_frame` is
+/// called after each measured-time frame.
 pub fn measure(
     renderer: &mut Renderer,
     settings: Settings,
-    reference: &ImageData,
+    reference: &PreparedReference,
     limits: Limits,
     schedule: Schedule,
     clock: Clock,
@@ -262,12 +266,12 @@ pub fn measure(
         let last = frame == max_frames || gpu_ms >= limits.budget_ms;
         if last || (schedule == Schedule::Geometric && measured(frame)) {
             let image = outputs.image(hdr)?;
-            let m = evaluate_frame(&image, reference, &settings.display).map_err(|source| {
-                TradeoffError::Metrics {
+            let m = reference
+                .evaluate(&image)
+                .map_err(|source| TradeoffError::Metrics {
                     config: config.name(),
                     source,
-                }
-            })?;
+                })?;
             rows.push(Measurement {
                 frame,
                 gpu_ms,
