@@ -8,7 +8,7 @@
 //! # fn demo(renderer: &mut lucid_passes::renderer::Renderer) -> Result<(), lucid_passes::tradeoff::TradeoffError> {
 //! use lucid_passes::tradeoff::{calibrate, CalibrationOptions, Goal, Metric};
 //! let calibration = calibrate(renderer, &CalibrationOptions::default(), &mut || {})?;
-//! let choice = calibration.choose(Goal::Budget { metric: Metric::Dssim, ms: 8.0 });
+//! let choice = calibration.choose(Goal::Budget { metric: Metric::Dssim, ms: 8.0 })?;
 //! println!("{}: {}", choice.config.name(), choice.reason);
 //! renderer.set_settings(choice.config.apply(*renderer.settings()));
 //! # Ok(()) }
