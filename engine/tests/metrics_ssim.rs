@@ -128,3 +128,19 @@ fn mismatched_sizes_are_errors() {
     );
     assert!(matches!(result, Err(MetricsError::SizeMismatch { .. })));
 }
+
+#[test]
+fn images_smaller_than_the_window_are_an_error() {
+    for (w, h) in [(10, 40), (40, 10)] {
+        let image =
+            ImageData::from_pixels(w, h, vec![[0.5, 0.5, 0.5, 1.0]; (w * h) as usize]).unwrap();
+        let err = ssim(&image, &image, SsimMode::Luminance).unwrap_err();
+        assert!(
+            matches!(err, MetricsError::InvalidParameter { .. }),
+            "{w}x{h}: {err}"
+        );
+        assert!(err.to_string().contains("11x11"), "{err}");
+    }
+    let side = ImageData::from_pixels(11, 11, vec![[0.5, 0.5, 0.5, 1.0]; 121]).unwrap();
+    assert_eq!(ssim(&side, &side, SsimMode::Luminance).unwrap(), 1.0);
+}

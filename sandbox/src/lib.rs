@@ -17,6 +17,7 @@
 //!     render: left,
 //!     split: Some(left.compared()), // the other algorithm on the right half
 //!     window_test: false,
+//!     calibrate: false,
 //! };
 //! lucid_sandbox::run_with(options, startup)?;
 //! # anyhow::Ok(())
@@ -26,6 +27,7 @@
 //! (two of them side by side in the split view), or the engine's test pattern while no scene could
 //! be loaded.
 
+mod auto;
 mod camera;
 mod capture;
 mod compose;

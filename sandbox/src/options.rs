@@ -70,4 +70,7 @@ pub struct Startup {
     /// surface lost, printing each step (a self-test of presentation; the screenshot, if any, fails
     /// unless every step was taken first).
     pub window_test: bool,
+    /// Before the first frame, run the `--algo auto` calibration on the scene (the panel's goal:
+    /// 60 frames per second, least DSSIM) and start with its choice.
+    pub calibrate: bool,
 }

@@ -86,7 +86,7 @@ impl Session {
         state.split = startup.split;
         let extent = swapchain.extent();
         let source = frame_source_for(&ctx, &state, [extent.width, extent.height])?;
-        Ok(Self {
+        let mut session = Self {
             state,
             input: Input::default(),
             stats: FrameStats::default(),
@@ -107,7 +107,11 @@ impl Session {
             capture_requested: false,
             exit: false,
             window_test: startup.window_test.then(|| WindowTest::new(options.size)),
-        })
+        };
+        if startup.calibrate {
+            session.calibrate();
+        }
+        Ok(session)
     }
 
     /// The context (for the validation check after the session ends).
@@ -216,6 +220,9 @@ impl Session {
             }
         }
         self.capture_requested |= requests.capture;
+        if requests.calibrate {
+            self.calibrate();
+        }
         if requests.record {
             self.state.path = PathMode::Recording(Default::default(), now);
             self.state.message = Some("recording the camera path".into());
@@ -236,6 +243,31 @@ impl Session {
                 });
             }
         }
+    }
+
+    /// Runs the calibration on the current view and switches the renderer (the left half in a
+    /// split view) to its choice; the panel shows the choice and the reason, or the error.
+    fn calibrate(&mut self) {
+        let goal = self.state.auto.goal();
+        let result = self
+            .finish_all()
+            .and_then(|()| self.source.calibrate(goal))
+            .map(|(calibration, choice)| {
+                let render = &mut self.state.render;
+                render.algorithm = choice.config.algorithm;
+                render.denoiser = choice.config.denoiser;
+                render.spp = choice.config.spp;
+                crate::auto::Calibrated {
+                    choice,
+                    goal: goal.describe(),
+                    seconds: calibration.seconds,
+                }
+            });
+        self.state.message = Some(match &result {
+            Ok(c) => format!("auto: {}", c.choice.config.name()),
+            Err(e) => format!("calibration failed: {e:#}"),
+        });
+        self.state.auto.last = Some(result.map_err(|e| format!("{e:#}")));
     }
 
     /// Moves the camera by input, or along the replayed path, and records it if recording.

@@ -1,5 +1,6 @@
 //! Everything the user can change in the app, and the note shown to them.
 
+use super::auto::AutoState;
 use super::camera::{Bookmarks, FlyCamera, PathPlayer, PathRecorder, Pose};
 use super::scene::SceneInfo;
 use super::settings::{DisplaySettings, RenderSettings};
@@ -24,6 +25,8 @@ pub struct AppState {
     pub render: RenderSettings,
     /// The right half's renderer settings while the split view is on.
     pub split: Option<RenderSettings>,
+    /// The calibration's goal and last choice.
+    pub auto: AutoState,
     /// Display settings.
     pub display: DisplaySettings,
     /// The camera.
@@ -57,6 +60,7 @@ impl AppState {
             scene,
             render: RenderSettings::default(),
             split: None,
+            auto: AutoState::default(),
             display: DisplaySettings::default(),
             camera: FlyCamera::new(pose, 1.0),
             bookmarks: Bookmarks::default(),

@@ -6,6 +6,7 @@
 //! implements the same transform and is tested against this one.
 
 use super::{srgb_encode, ImageData};
+use rayon::prelude::*;
 
 /// Inputs above this are treated as this, so that `+inf` maps to white and
 /// the rational tone curves never divide infinity by infinity.
@@ -137,7 +138,12 @@ impl PngEncoding {
     /// One linear pixel after exposure and tone curve: linear display light
     /// in `[0, 1]`, alpha 1.
     pub fn tone_map_pixel(&self, pixel: [f32; 4]) -> [f32; 4] {
-        let scale = self.exposure.exp2();
+        self.tone_map_scaled(pixel, self.exposure.exp2())
+    }
+
+    /// [`Self::tone_map_pixel`] with the exposure's scale `2^exposure` given (computed once per
+    /// image).
+    fn tone_map_scaled(&self, pixel: [f32; 4], scale: f32) -> [f32; 4] {
         let [r, g, b] = self
             .tone
             .apply([pixel[0] * scale, pixel[1] * scale, pixel[2] * scale]);
@@ -156,20 +162,25 @@ impl PngEncoding {
     /// in `[0, 1]`, the input expected by [`crate::metrics::flip`] for HDR
     /// frames.
     pub fn tone_map(&self, image: &ImageData) -> ImageData {
-        map_image(image, |p| self.tone_map_pixel(p))
+        let scale = self.exposure.exp2();
+        map_image(image, |p| self.tone_map_scaled(p, scale))
     }
 
     /// The whole image through [`Self::encode_pixel`]: sRGB-encoded `[0, 1]`
     /// values, as stored in a PNG and as compared by display-referred SSIM.
     pub fn to_display(&self, image: &ImageData) -> ImageData {
-        map_image(image, |p| self.encode_pixel(p))
+        let scale = self.exposure.exp2();
+        map_image(image, |p| {
+            let [r, g, b, a] = self.tone_map_scaled(p, scale);
+            [srgb_encode(r), srgb_encode(g), srgb_encode(b), a]
+        })
     }
 }
 
-fn map_image(image: &ImageData, f: impl Fn([f32; 4]) -> [f32; 4]) -> ImageData {
+fn map_image(image: &ImageData, f: impl Fn([f32; 4]) -> [f32; 4] + Sync) -> ImageData {
     ImageData {
         width: image.width,
         height: image.height,
-        pixels: image.pixels.iter().map(|&p| f(p)).collect(),
+        pixels: image.pixels.par_iter().map(|&p| f(p)).collect(),
     }
 }

@@ -17,8 +17,13 @@ mod ssim;
 mod temporal;
 
 pub use error::MetricsError;
-pub use flip::{flip, FlipResult, DEFAULT_PIXELS_PER_DEGREE};
+pub use flip::{
+    flip, hdr_flip, FlipReference, FlipResult, HdrFlipParams, DEFAULT_PIXELS_PER_DEGREE,
+};
 pub use pixelwise::{max_abs_error, mean_per_channel, mse, psnr, rel_mse, DEFAULT_REL_MSE_EPSILON};
-pub use sequence::{evaluate_frame, evaluate_sequence, FrameMetrics, SequenceMetrics};
-pub use ssim::{dssim, ssim, SsimMode};
+pub use sequence::{
+    evaluate_frame, evaluate_sequence, evaluate_sequences, FrameMetrics, PreparedReference,
+    SequenceMetrics,
+};
+pub use ssim::{dssim, ssim, SsimMode, SsimReference};
 pub use temporal::{temporal_instability, TemporalInstability};

@@ -1,5 +1,7 @@
 //! Per-pixel error statistics: means, MSE, relative MSE, PSNR, max error.
 
+use rayon::prelude::*;
+
 use super::check::{check_image, check_pair, check_parameter};
 use super::MetricsError;
 use crate::capture::ImageData;
@@ -24,15 +26,18 @@ pub fn mean_per_channel(image: &ImageData) -> Result<[f64; 4], MetricsError> {
 fn mean_rgb_of(
     test: &ImageData,
     reference: &ImageData,
-    f: impl Fn(f64, f64) -> f64,
+    f: impl Fn(f64, f64) -> f64 + Sync,
 ) -> Result<f64, MetricsError> {
     check_pair(test, reference)?;
     let sum: f64 = test
         .pixels
-        .iter()
+        .par_iter()
         .zip(&reference.pixels)
-        .flat_map(|(t, r)| (0..3).map(move |c| (f64::from(t[c]), f64::from(r[c]))))
-        .map(|(t, r)| f(t, r))
+        .map(|(t, r)| {
+            (0..3)
+                .map(|c| f(f64::from(t[c]), f64::from(r[c])))
+                .sum::<f64>()
+        })
         .sum();
     Ok(sum / (3 * test.pixels.len()) as f64)
 }

@@ -56,24 +56,14 @@ impl Plane {
         rows.filter_columns(vertical)
     }
 
-    fn filter_rows(&self, kernel: &[f32]) -> Plane {
-        let radius = (kernel.len() / 2) as isize;
-        let last = self.width as isize - 1;
+    /// Correlates each row with `kernel` (odd length, centred), replicating edge samples.
+    pub fn filter_rows(&self, kernel: &[f32]) -> Plane {
+        let radius = kernel.len() / 2;
+        let width = self.width.max(1);
         let mut data = vec![0.0; self.data.len()];
-        data.par_chunks_mut(self.width.max(1))
-            .zip(self.data.par_chunks(self.width.max(1)))
-            .for_each(|(out, row)| {
-                for (x, o) in out.iter_mut().enumerate() {
-                    *o = kernel
-                        .iter()
-                        .enumerate()
-                        .map(|(k, w)| {
-                            let src = (x as isize + k as isize - radius).clamp(0, last);
-                            w * row[src as usize]
-                        })
-                        .sum();
-                }
-            });
+        data.par_chunks_mut(width)
+            .zip(self.data.par_chunks(width))
+            .for_each(|(out, row)| filter_row(row, kernel, radius, out));
         Plane {
             width: self.width,
             height: self.height,
@@ -81,7 +71,8 @@ impl Plane {
         }
     }
 
-    fn filter_columns(&self, kernel: &[f32]) -> Plane {
+    /// Correlates each column with `kernel` (odd length, centred), replicating edge samples.
+    pub fn filter_columns(&self, kernel: &[f32]) -> Plane {
         let radius = (kernel.len() / 2) as isize;
         let last = self.height as isize - 1;
         let width = self.width.max(1);
@@ -100,6 +91,40 @@ impl Plane {
             height: self.height,
             data,
         }
+    }
+}
+
+/// Correlates one row with `kernel` (centred, `radius` taps each side), replicating the edge
+/// samples; pixels whose window lies inside the row are summed tap by tap over the whole run (a
+/// loop the compiler vectorises), the few near the ends one by one.
+fn filter_row(row: &[f32], kernel: &[f32], radius: usize, out: &mut [f32]) {
+    let n = row.len();
+    let last = n as isize - 1;
+    let clamped = |x: usize| -> f32 {
+        kernel
+            .iter()
+            .enumerate()
+            .map(|(k, w)| {
+                let src = (x as isize + k as isize - radius as isize).clamp(0, last);
+                w * row[src as usize]
+            })
+            .sum()
+    };
+    if n <= 2 * radius {
+        for (x, o) in out.iter_mut().enumerate() {
+            *o = clamped(x);
+        }
+        return;
+    }
+    let inside = &mut out[radius..n - radius];
+    inside.fill(0.0);
+    for (k, w) in kernel.iter().enumerate() {
+        for (o, v) in inside.iter_mut().zip(&row[k..k + n - 2 * radius]) {
+            *o += w * v;
+        }
+    }
+    for x in (0..radius).chain(n - radius..n) {
+        out[x] = clamped(x);
     }
 }
 

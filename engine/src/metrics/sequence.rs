@@ -1,6 +1,10 @@
 //! Every metric of a rendered sequence against its reference sequence, per frame and summarised.
 
-use super::{dssim, flip, rel_mse, ssim, temporal_instability, MetricsError, SsimMode};
+use rayon::prelude::*;
+
+use super::check::check_pair;
+use super::{dssim, rel_mse, temporal_instability, MetricsError, SsimMode};
+use super::{FlipReference, SsimReference};
 use super::{DEFAULT_PIXELS_PER_DEGREE, DEFAULT_REL_MSE_EPSILON};
 use crate::capture::{ImageData, PngEncoding};
 
@@ -36,23 +40,55 @@ pub fn evaluate_frame(
     reference: &ImageData,
     display: &PngEncoding,
 ) -> Result<FrameMetrics, MetricsError> {
-    let s = ssim(
-        &display.to_display(test),
-        &display.to_display(reference),
-        SsimMode::Luminance,
-    )?;
-    Ok(FrameMetrics {
-        rel_mse: rel_mse(test, reference, DEFAULT_REL_MSE_EPSILON)?,
-        ssim: s,
-        dssim: dssim(s),
-        flip: flip(
-            &display.tone_map(test),
-            &display.tone_map(reference),
-            DEFAULT_PIXELS_PER_DEGREE,
-        )?
-        .mean,
-        temporal_instability: 0.0,
-    })
+    check_pair(test, reference)?;
+    PreparedReference::new(reference, display)?.evaluate(test)
+}
+
+/// A reference frame prepared once (its display images, SSIM's windowed statistics, FLIP's
+/// filtered colours and feature responses) for comparing many test frames with it as
+/// [`evaluate_frame`] does: each comparison then computes the test side only.
+pub struct PreparedReference {
+    linear: ImageData,
+    display: PngEncoding,
+    ssim: SsimReference,
+    flip: FlipReference,
+}
+
+impl PreparedReference {
+    /// Prepares `reference`, `display` mapping linear to display.
+    pub fn new(reference: &ImageData, display: &PngEncoding) -> Result<Self, MetricsError> {
+        let (ssim, flip) = rayon::join(
+            || SsimReference::new(&display.to_display(reference), SsimMode::Luminance),
+            || FlipReference::new(&display.tone_map(reference), DEFAULT_PIXELS_PER_DEGREE),
+        );
+        Ok(Self {
+            linear: reference.clone(),
+            display: *display,
+            ssim: ssim?,
+            flip: flip?,
+        })
+    }
+
+    /// The metrics of `test` against the reference, as [`evaluate_frame`] computes them.
+    pub fn evaluate(&self, test: &ImageData) -> Result<FrameMetrics, MetricsError> {
+        let (s, (flip, rel_mse)) = rayon::join(
+            || self.ssim.compare(&self.display.to_display(test)),
+            || {
+                rayon::join(
+                    || self.flip.compare(&self.display.tone_map(test)),
+                    || rel_mse(test, &self.linear, DEFAULT_REL_MSE_EPSILON),
+                )
+            },
+        );
+        let s = s?;
+        Ok(FrameMetrics {
+            rel_mse: rel_mse?,
+            ssim: s,
+            dssim: dssim(s),
+            flip: flip?.mean,
+            temporal_instability: 0.0,
+        })
+    }
 }
 
 /// Compares `test` with `reference` frame by frame; `display` maps linear frames to the display
@@ -62,30 +98,61 @@ pub fn evaluate_sequence(
     reference: &[ImageData],
     display: &PngEncoding,
 ) -> Result<SequenceMetrics, MetricsError> {
-    let instability = temporal_instability(test, reference)?;
-    let frames = test
+    let mut all = evaluate_sequences(&[test], reference, display)?;
+    Ok(all.remove(0))
+}
+
+/// [`evaluate_sequence`] of each of `tests` against the same `reference`, frames in parallel,
+/// each reference frame prepared once for all the tests.
+pub fn evaluate_sequences(
+    tests: &[&[ImageData]],
+    reference: &[ImageData],
+    display: &PngEncoding,
+) -> Result<Vec<SequenceMetrics>, MetricsError> {
+    let instabilities = tests
         .iter()
-        .zip(reference)
+        .map(|test| temporal_instability(test, reference))
+        .collect::<Result<Vec<_>, _>>()?;
+    let per_frame: Vec<Vec<FrameMetrics>> = reference
+        .par_iter()
         .enumerate()
-        .map(|(i, (t, r))| {
-            Ok(FrameMetrics {
-                temporal_instability: i
-                    .checked_sub(1)
-                    .map_or(0.0, |pair| instability.per_pair[pair]),
-                ..evaluate_frame(t, r, display)?
-            })
+        .map(|(i, r)| {
+            let prepared = PreparedReference::new(r, display)?;
+            tests
+                .iter()
+                .map(|test| {
+                    check_pair(&test[i], r)?;
+                    prepared.evaluate(&test[i])
+                })
+                .collect()
         })
-        .collect::<Result<Vec<_>, MetricsError>>()?;
-    let n = frames.len() as f64;
-    let mean_of = |f: fn(&FrameMetrics) -> f64| frames.iter().map(f).sum::<f64>() / n;
-    let mean = FrameMetrics {
-        rel_mse: mean_of(|f| f.rel_mse),
-        ssim: mean_of(|f| f.ssim),
-        dssim: mean_of(|f| f.dssim),
-        flip: mean_of(|f| f.flip),
-        temporal_instability: instability.mean,
-    };
-    Ok(SequenceMetrics { frames, mean })
+        .collect::<Result<_, MetricsError>>()?;
+    Ok(instabilities
+        .into_iter()
+        .enumerate()
+        .map(|(t, instability)| {
+            let frames: Vec<FrameMetrics> = per_frame
+                .iter()
+                .enumerate()
+                .map(|(i, metrics)| FrameMetrics {
+                    temporal_instability: i
+                        .checked_sub(1)
+                        .map_or(0.0, |pair| instability.per_pair[pair]),
+                    ..metrics[t]
+                })
+                .collect();
+            let n = frames.len() as f64;
+            let mean_of = |f: fn(&FrameMetrics) -> f64| frames.iter().map(f).sum::<f64>() / n;
+            let mean = FrameMetrics {
+                rel_mse: mean_of(|f| f.rel_mse),
+                ssim: mean_of(|f| f.ssim),
+                dssim: mean_of(|f| f.dssim),
+                flip: mean_of(|f| f.flip),
+                temporal_instability: instability.mean,
+            };
+            SequenceMetrics { frames, mean }
+        })
+        .collect())
 }
 
 #[cfg(test)]

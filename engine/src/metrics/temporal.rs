@@ -1,6 +1,8 @@
 //! Temporal instability (flicker) of a frame sequence against a reference
 //! sequence.
 
+use rayon::prelude::*;
+
 use super::check::check_pair;
 use super::MetricsError;
 use crate::capture::{rec709_luminance, ImageData};
@@ -48,10 +50,10 @@ pub fn temporal_instability(
     }
     let luminance = |frames: &[ImageData]| -> Vec<Vec<f64>> {
         frames
-            .iter()
+            .par_iter()
             .map(|f| {
                 f.pixels
-                    .iter()
+                    .par_iter()
                     .map(|&p| f64::from(rec709_luminance(p)))
                     .collect()
             })
@@ -67,10 +69,11 @@ pub fn temporal_instability(
     }
 
     let per_pair: Vec<f64> = test_lum
-        .windows(2)
-        .zip(ref_lum.windows(2))
+        .par_windows(2)
+        .zip(ref_lum.par_windows(2))
         .map(|(t, r)| {
             let sum: f64 = (0..t[0].len())
+                .into_par_iter()
                 .map(|i| ((t[1][i] - t[0][i]) - (r[1][i] - r[0][i])).abs())
                 .sum();
             sum / pixels / ref_mean

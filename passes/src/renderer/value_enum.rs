@@ -1,8 +1,9 @@
-//! `clap::ValueEnum` for [`Algorithm`], [`Denoiser`] and [`InferencePath`] (the `clap` feature): the command line
+//! `clap::ValueEnum` for [`Algorithm`], [`Denoiser`], [`InferencePath`] and [`Metric`] (the `clap` feature): the command line
 //! accepts their short names, case-insensitively where a caller asks.
 
 use super::{Algorithm, Denoiser};
 use crate::denoise::neural::InferencePath;
+use crate::tradeoff::Metric;
 use clap::builder::PossibleValue;
 use clap::ValueEnum;
 
@@ -49,6 +50,23 @@ impl ValueEnum for InferencePath {
     }
 }
 
+impl ValueEnum for Metric {
+    fn value_variants<'a>() -> &'a [Self] {
+        &Self::ALL
+    }
+
+    fn to_possible_value(&self) -> Option<PossibleValue> {
+        let value = PossibleValue::new(self.name());
+        Some(match self {
+            Metric::Dssim => value.help("1/SSIM - 1 of the luminance of the display images"),
+            Metric::Flip => value.help("Mean LDR-FLIP of the tone-mapped images"),
+            Metric::RelMse => value
+                .alias("relmse")
+                .help("Relative MSE of the linear images"),
+        })
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -68,5 +86,7 @@ mod tests {
         assert_eq!(Denoiser::from_str("svgf", false), Ok(Denoiser::Svgf));
         assert_eq!(Denoiser::from_str("none", false), Ok(Denoiser::None));
         assert!(Denoiser::from_str("oidn", true).is_err());
+        assert_eq!(Metric::from_str("flip", false), Ok(Metric::Flip));
+        assert_eq!(Metric::from_str("relmse", false), Ok(Metric::RelMse));
     }
 }

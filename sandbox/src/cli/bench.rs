@@ -81,7 +81,10 @@ pub fn run(args: &BenchArgs) -> anyhow::Result<()> {
     let (w, h) = (args.options.size.width, args.options.size.height);
     let mut settings = args.options.settings(false);
     settings.svgf.gradients_every_frame = args.dynamic;
-    let mut renderer = args.options.renderer(&ctx, scene, (w, h), settings)?;
+    let mut renderer = args
+        .options
+        .calibrated_renderer(&ctx, scene, (w, h), settings)?;
+    let settings = *renderer.settings();
     for _ in 0..args.warmup {
         renderer.render()?;
     }
@@ -120,7 +123,7 @@ pub fn run(args: &BenchArgs) -> anyhow::Result<()> {
     let wall_s = wall.elapsed().as_secs_f64();
     let mean_ms = frame_ms.iter().sum::<f64>() / frame_ms.len() as f64;
     let image_mean_ms = image_ms.iter().sum::<f64>() / image_ms.len() as f64;
-    let paths = w as f64 * h as f64 * f64::from(args.options.spp.get());
+    let paths = w as f64 * h as f64 * f64::from(settings.samples_per_pixel.get());
     let mean_rays = rays.iter().sum::<f64>() / rays.len() as f64;
     let pipelines = renderer.executor().library().pipeline_statistics();
     if capture_statistics {
@@ -139,7 +142,7 @@ pub fn run(args: &BenchArgs) -> anyhow::Result<()> {
         "gpu_scene_bytes": renderer.gpu_scene().total_bytes(),
         "gpu_bytes_per_triangle": renderer.gpu_scene().bytes_per_triangle(),
         "size": [w, h],
-        "spp": args.options.spp.get(),
+        "spp": settings.samples_per_pixel.get(),
         "max_depth": args.options.max_depth,
         "frames": args.frames,
         "dynamic": args.dynamic,

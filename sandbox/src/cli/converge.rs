@@ -4,24 +4,24 @@
 
 use super::converge_chart::{self, Series};
 use super::float_range::finite_f64;
+use super::lists::{spp_list, value_list, List};
 use super::output_path;
 use super::progress::Progress;
 use super::render_options::{exposure, samples_per_pixel};
 use super::scene_source;
-use super::sequence::REFERENCE_SPP_PER_FRAME;
 use super::size::Size;
 use anyhow::Context as _;
-use clap::{Args, ValueEnum};
+use clap::Args;
 use lucid_engine::atomic_write::write_atomic;
-use lucid_engine::capture::{ImageData, PngEncoding, ToneCurve};
-use lucid_engine::graph::RenderGraph;
-use lucid_engine::metrics::evaluate_frame;
+use lucid_engine::capture::{PngEncoding, ToneCurve};
 use lucid_engine::{Context, ContextDesc};
 use lucid_passes::denoise::neural::{InferencePath, NetworkWeights};
 use lucid_passes::renderer::{Algorithm, Denoiser, Renderer, SamplesPerPixel, Settings};
+use lucid_passes::tradeoff::measure::{measure, render_reference, REFERENCE_SPP_PER_FRAME};
+use lucid_passes::tradeoff::pareto::{pareto_front, time_to_converge};
+use lucid_passes::tradeoff::{Clock, Config, ConfigResult, Limits, Metric, Schedule};
 use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
-use std::time::Instant;
 
 /// Options of `lucid converge`.
 #[derive(Debug, Args)]
@@ -91,223 +91,6 @@ pub struct ConvergeArgs {
     json: bool,
 }
 
-/// A comma-separated list given on the command line: not empty, no entry twice.
-#[derive(Clone, Debug, PartialEq)]
-pub struct List<T>(pub Vec<T>);
-
-/// Parses a comma-separated list of `what`s, each by `parse`: an empty list, an empty entry or an
-/// entry given twice is an error.
-fn list<T: PartialEq>(
-    what: &'static str,
-    parse: impl Fn(&str) -> Result<T, String>,
-) -> impl Fn(&str) -> Result<List<T>, String> {
-    move |text| {
-        let mut items = Vec::new();
-        if text.trim().is_empty() {
-            return Err(format!("the list is empty: give at least one {what}"));
-        }
-        for entry in text.split(',').map(str::trim) {
-            if entry.is_empty() {
-                return Err(format!("an empty {what} in {text:?}"));
-            }
-            let item = parse(entry)?;
-            if items.contains(&item) {
-                return Err(format!("{what} {entry:?} is listed twice"));
-            }
-            items.push(item);
-        }
-        Ok(List(items))
-    }
-}
-
-/// Parses a list of a `clap::ValueEnum`'s names (any case).
-fn value_list<T: ValueEnum + PartialEq + Clone + Send + Sync + 'static>(
-    what: &'static str,
-) -> impl Fn(&str) -> Result<List<T>, String> + Clone + Send + Sync + 'static {
-    move |text| {
-        list(what, |entry| {
-            T::from_str(entry, true).map_err(|_| {
-                let names: Vec<String> = T::value_variants()
-                    .iter()
-                    .filter_map(|v| v.to_possible_value())
-                    .map(|v| v.get_name().to_string())
-                    .collect();
-                format!("unknown {what} {entry:?} (expected {})", names.join(", "))
-            })
-        })(text)
-    }
-}
-
-/// Parses `--spp`: a list of sample counts from 1 to 65536.
-fn spp_list() -> impl Fn(&str) -> Result<List<SamplesPerPixel>, String> + Clone + Send + Sync {
-    move |text| {
-        list("sample count", |entry| {
-            entry
-                .parse::<u32>()
-                .ok()
-                .filter(|n| (1..=65536).contains(n))
-                .and_then(SamplesPerPixel::new)
-                .ok_or_else(|| format!("{entry:?} is not a sample count from 1 to 65536"))
-        })(text)
-    }
-}
-
-/// The errors a configuration is measured by.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub enum Metric {
-    /// `1 / SSIM - 1` of the display-encoded images.
-    Dssim,
-    /// Mean LDR-FLIP of the tone-mapped images.
-    Flip,
-    /// Relative MSE of the linear images.
-    RelMse,
-}
-
-impl Metric {
-    /// Every metric, in the CSV's column order.
-    pub const ALL: [Metric; 3] = [Metric::Dssim, Metric::Flip, Metric::RelMse];
-
-    /// The name in the CSV, the JSON and file names.
-    pub fn name(self) -> &'static str {
-        match self {
-            Metric::Dssim => "dssim",
-            Metric::Flip => "flip",
-            Metric::RelMse => "rel_mse",
-        }
-    }
-
-    /// The name on charts.
-    pub fn label(self) -> &'static str {
-        match self {
-            Metric::Dssim => "DSSIM",
-            Metric::Flip => "FLIP",
-            Metric::RelMse => "relMSE",
-        }
-    }
-
-    /// This metric of a measurement.
-    pub fn of(self, row: &Row) -> f64 {
-        match self {
-            Metric::Dssim => row.dssim,
-            Metric::Flip => row.flip,
-            Metric::RelMse => row.rel_mse,
-        }
-    }
-}
-
-/// One configuration: what renders each frame.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub struct Config {
-    /// The light transport.
-    pub algorithm: Algorithm,
-    /// The denoiser.
-    pub denoiser: Denoiser,
-    /// Samples per pixel per frame.
-    pub spp: SamplesPerPixel,
-}
-
-impl Config {
-    /// `ALGO/DENOISER/SPP`, as `--split` takes it (`pt/svgf/2`).
-    pub fn name(&self) -> String {
-        format!(
-            "{}/{}/{}",
-            self.algorithm.short_name(),
-            self.denoiser.short_name(),
-            self.spp
-        )
-    }
-}
-
-/// The error of a configuration's image after `frame` frames.
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub struct Row {
-    /// Frames accumulated (1 for the first).
-    pub frame: u32,
-    /// GPU milliseconds of all frames up to and including this one (wall milliseconds on a device
-    /// without timestamps: the JSON's `time` says which).
-    pub gpu_ms: f64,
-    /// `1 / SSIM - 1`.
-    pub dssim: f64,
-    /// Mean FLIP.
-    pub flip: f64,
-    /// Relative MSE.
-    pub rel_mse: f64,
-}
-
-/// What one configuration did within its budget.
-#[derive(Clone, Debug, PartialEq)]
-pub struct ConfigResult {
-    /// The configuration.
-    pub config: Config,
-    /// The measurements, at frames [`measured`] picks and at the last frame.
-    pub rows: Vec<Row>,
-    /// Frames rendered.
-    pub frames: u32,
-    /// GPU milliseconds of all frames.
-    pub gpu_ms: f64,
-}
-
-impl ConfigResult {
-    /// Mean GPU milliseconds per frame.
-    pub fn ms_per_frame(&self) -> f64 {
-        self.gpu_ms / f64::from(self.frames.max(1))
-    }
-
-    /// The last measurement (at the last frame).
-    pub fn last(&self) -> Option<&Row> {
-        self.rows.last()
-    }
-}
-
-/// Whether the error is measured after `frame` frames (besides the last frame): geometrically
-/// spaced frames 1, 2, 3, 4, 6, 8, 12, 16, 24, ... (powers of two and three times them), so a
-/// long run costs few measurements.
-pub fn measured(frame: u32) -> bool {
-    frame.is_power_of_two() || (frame % 3 == 0 && (frame / 3).is_power_of_two())
-}
-
-/// The cumulative GPU time of the first row whose `metric` falls below `target`; `None` if none
-/// does.
-pub fn time_to_converge(rows: &[Row], metric: Metric, target: f64) -> Option<f64> {
-    rows.iter()
-        .find(|row| metric.of(row) < target)
-        .map(|row| row.gpu_ms)
-}
-
-/// The Pareto front of `points` (time, error), both to be small: the indices of the points no
-/// other point dominates (one at most as slow and at most as wrong, and better in one of the two),
-/// by increasing time. Points with a non-finite coordinate are neither on the front nor dominate.
-pub fn pareto_front(points: &[(f64, f64)]) -> Vec<usize> {
-    let finite = |&(x, y): &(f64, f64)| x.is_finite() && y.is_finite();
-    let dominates =
-        |q: (f64, f64), p: (f64, f64)| q.0 <= p.0 && q.1 <= p.1 && (q.0 < p.0 || q.1 < p.1);
-    let mut front: Vec<usize> = (0..points.len())
-        .filter(|&i| finite(&points[i]))
-        .filter(|&i| {
-            !points
-                .iter()
-                .filter(|q| finite(q))
-                .any(|&q| dominates(q, points[i]))
-        })
-        .collect();
-    front.sort_by(|&a, &b| {
-        points[a]
-            .0
-            .total_cmp(&points[b].0)
-            .then(points[a].1.total_cmp(&points[b].1))
-    });
-    front
-}
-
-/// How frame times are measured.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-enum Clock {
-    /// GPU timestamps around each pass, summed.
-    Gpu,
-    /// Wall time from submission to completion (devices without timestamp queries).
-    Wall,
-}
-
 /// Runs the measurement and writes its files.
 pub fn run(args: &ConvergeArgs) -> anyhow::Result<()> {
     output_path::create_folder("--out", &args.out)?;
@@ -331,30 +114,17 @@ pub fn run(args: &ConvergeArgs) -> anyhow::Result<()> {
         "no algorithm left to measure on {device}: {}",
         notes.join("; ")
     );
-    let clock = if ctx.info().timestamps {
-        Clock::Gpu
-    } else {
+    let clock = Clock::of(&ctx);
+    if clock == Clock::Wall {
         notes.push(format!(
             "{device} has no timestamp queries on its compute queue: times are wall times \
              (submission to completion), not GPU times"
         ));
-        Clock::Wall
-    };
+    }
     for note in &notes {
         eprintln!("note: {note}");
     }
-    let configs: Vec<Config> = algorithms
-        .iter()
-        .flat_map(|&algorithm| {
-            args.denoisers.0.iter().flat_map(move |&denoiser| {
-                args.spp.0.iter().map(move |&spp| Config {
-                    algorithm,
-                    denoiser,
-                    spp,
-                })
-            })
-        })
-        .collect();
+    let configs = Config::all(&algorithms, &args.denoisers.0, &args.spp.0);
     let (w, h) = (args.size.width, args.size.height);
     let display = PngEncoding {
         exposure: args.exposure,
@@ -371,11 +141,23 @@ pub fn run(args: &ConvergeArgs) -> anyhow::Result<()> {
     if let Some(weights) = &weights {
         renderer.set_neural_network(weights, InferencePath::best(&ctx))?;
     }
-    let reference = render_reference(&mut renderer, base, args.reference_spp)?;
-    anyhow::ensure!(
-        !reference.has_non_finite(),
-        "the reference has non-finite pixels"
+    let reference_frames = args
+        .reference_spp
+        .get()
+        .div_ceil(REFERENCE_SPP_PER_FRAME.get());
+    eprintln!(
+        "reference: {} spp in {reference_frames} frames",
+        args.reference_spp.get()
     );
+    let progress = Progress::new(u64::from(reference_frames), "reference frames");
+    let reference = render_reference(
+        &mut renderer,
+        base,
+        Algorithm::PathTracing,
+        args.reference_spp,
+        &mut || progress.inc(),
+    )?;
+    progress.finish();
     eprintln!(
         "{} configurations, up to {} frames or {} ms each",
         configs.len(),
@@ -383,16 +165,24 @@ pub fn run(args: &ConvergeArgs) -> anyhow::Result<()> {
         args.budget_ms
     );
     let progress = Progress::new(configs.len() as u64 * u64::from(args.max_frames), "frames");
+    let limits = Limits {
+        warmup: args.warmup,
+        max_frames: args.max_frames,
+        budget_ms: args.budget_ms,
+    };
     let mut results = Vec::new();
-    for &config in &configs {
-        let settings = Settings {
-            algorithm: config.algorithm,
-            denoiser: config.denoiser,
-            samples_per_pixel: config.spp,
-            ..base
-        };
-        let result = measure(&mut renderer, settings, &reference, args, clock, &progress)
-            .with_context(|| format!("measuring {}", config.name()))?;
+    for config in &configs {
+        let result = measure(
+            &mut renderer,
+            config.apply(base),
+            &reference,
+            limits,
+            Schedule::Geometric,
+            clock,
+            &mut || progress.inc(),
+        )
+        .with_context(|| format!("measuring {}", config.name()))?;
+        progress.inc_by(u64::from(args.max_frames - result.frames));
         results.push(result);
     }
     progress.finish();
@@ -424,111 +214,6 @@ pub fn run(args: &ConvergeArgs) -> anyhow::Result<()> {
         println!("-> {}", args.out.display());
     }
     Ok(())
-}
-
-/// Renders the reference: path tracing without a denoiser, `spp` samples per pixel accumulated
-/// over frames of 16 (as `lucid sequence` makes its references), with another seed than the
-/// configurations so its noise is independent of theirs.
-fn render_reference(
-    renderer: &mut Renderer,
-    base: Settings,
-    spp: SamplesPerPixel,
-) -> anyhow::Result<ImageData> {
-    renderer.set_settings(Settings {
-        algorithm: Algorithm::PathTracing,
-        denoiser: Denoiser::None,
-        samples_per_pixel: spp.min(REFERENCE_SPP_PER_FRAME),
-        seed: base.seed ^ 0x9e37_79b9,
-        ..base
-    });
-    renderer.cut();
-    let frames = spp.get().div_ceil(REFERENCE_SPP_PER_FRAME.get());
-    eprintln!("reference: {} spp in {frames} frames", spp.get());
-    let progress = Progress::new(u64::from(frames), "reference frames");
-    for _ in 1..frames {
-        renderer.render()?;
-        progress.inc();
-    }
-    let image = renderer.render_and_read()?;
-    progress.inc();
-    progress.finish();
-    Ok(image)
-}
-
-/// Renders `--warmup` frames of `settings`, then frames from a fresh start until the budget is spent or `--max-frames`
-/// reached, measuring the error of the accumulated (and denoised) HDR image at the frames
-/// [`measured`] picks and at the last.
-fn measure(
-    renderer: &mut Renderer,
-    settings: Settings,
-    reference: &ImageData,
-    args: &ConvergeArgs,
-    clock: Clock,
-    progress: &Progress,
-) -> anyhow::Result<ConfigResult> {
-    renderer.set_settings(settings);
-    for _ in 0..args.warmup {
-        renderer.render()?;
-    }
-    renderer.finish()?;
-    renderer.cut();
-    let mut rows = Vec::new();
-    let mut gpu_ms = 0.0;
-    let mut frames = 0;
-    for frame in 1..=args.max_frames {
-        let mut g = RenderGraph::new();
-        let (images, stats) = renderer.add_frame(&mut g);
-        // The displayed image leaves the graph as in `lucid bench` (its passes are part of a
-        // frame); the HDR image is what is measured.
-        g.readback(images.ldr);
-        let hdr = g.readback(images.hdr);
-        let started = Instant::now();
-        let submitted = renderer.executor_mut().execute(g.compile()?)?;
-        let outputs = renderer.executor_mut().wait(submitted)?;
-        let wall_ms = started.elapsed().as_secs_f64() * 1e3;
-        renderer.collect_stats(&outputs, stats)?;
-        gpu_ms += match clock {
-            // Pass times summed as `lucid bench` sums them, less the copies to the host, which
-            // here serve only the measurement.
-            Clock::Gpu => outputs
-                .timings
-                .iter()
-                .filter(|t| !t.name.starts_with("readback"))
-                .map(|t| t.ms)
-                .sum::<f64>(),
-            Clock::Wall => wall_ms,
-        };
-        frames = frame;
-        let last = frame == args.max_frames || gpu_ms >= args.budget_ms;
-        if measured(frame) || last {
-            let image = outputs.image(hdr)?;
-            let display = settings.display;
-            let m = evaluate_frame(&image, reference, &display)?;
-            rows.push(Row {
-                frame,
-                gpu_ms,
-                dssim: m.dssim,
-                flip: m.flip,
-                rel_mse: m.rel_mse,
-            });
-        }
-        progress.inc();
-        if last {
-            break;
-        }
-    }
-    progress.inc_by(u64::from(args.max_frames - frames));
-    renderer.finish()?;
-    Ok(ConfigResult {
-        config: Config {
-            algorithm: settings.algorithm,
-            denoiser: settings.denoiser,
-            spp: settings.samples_per_pixel,
-        },
-        rows,
-        frames,
-        gpu_ms,
-    })
 }
 
 fn write(path: &Path, bytes: &[u8]) -> anyhow::Result<()> {
@@ -781,86 +466,4 @@ fn write_charts(
     write(&out.join("speed_vs_accuracy.png"), &chart.png)?;
     write(&out.join("speed_vs_accuracy.svg"), chart.svg.as_bytes())?;
     Ok(())
-}
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-
-    #[test]
-    fn the_pareto_front_is_the_points_nothing_beats_in_both() {
-        // (ms per frame, error)
-        let points = [
-            (1.0, 0.50),     // 0: fastest: on the front
-            (2.0, 0.20),     // 1: on the front
-            (2.5, 0.30),     // 2: dominated by 1 (slower and worse)
-            (4.0, 0.05),     // 3: most accurate: on the front
-            (4.0, 0.06),     // 4: as slow as 3 and worse: dominated
-            (2.0, 0.20),     // 5: equal to 1: neither dominates the other
-            (0.5, f64::NAN), // 6: no error: not on the front, dominates nothing
-            (8.0, 0.05),     // 7: as accurate as 3, slower: dominated
-        ];
-        assert_eq!(pareto_front(&points), vec![0, 1, 5, 3]);
-        assert_eq!(pareto_front(&[]), Vec::<usize>::new());
-        assert_eq!(pareto_front(&[(3.0, 0.1)]), vec![0]);
-    }
-
-    #[test]
-    fn errors_are_measured_at_geometrically_spaced_frames() {
-        let frames: Vec<u32> = (1..=50).filter(|&f| measured(f)).collect();
-        assert_eq!(frames, [1, 2, 3, 4, 6, 8, 12, 16, 24, 32, 48]);
-    }
-
-    #[test]
-    fn time_to_converge_is_the_first_time_below_the_target() {
-        let row = |frame, gpu_ms, dssim| Row {
-            frame,
-            gpu_ms,
-            dssim,
-            flip: 0.5,
-            rel_mse: 0.5,
-        };
-        let rows = [
-            row(1, 2.0, 0.3),
-            row(2, 4.0, 0.09),
-            row(3, 6.0, 0.12),
-            row(4, 8.0, 0.05),
-        ];
-        assert_eq!(time_to_converge(&rows, Metric::Dssim, 0.1), Some(4.0));
-        assert_eq!(time_to_converge(&rows, Metric::Dssim, 0.09), Some(8.0));
-        assert_eq!(time_to_converge(&rows, Metric::Flip, 0.1), None);
-    }
-
-    #[test]
-    fn lists_are_checked() {
-        let algos = value_list::<Algorithm>("algorithm");
-        assert_eq!(
-            algos("pt, BDPT"),
-            Ok(List(vec![Algorithm::PathTracing, Algorithm::Bidirectional]))
-        );
-        assert_eq!(
-            algos("pt,mlt").unwrap_err(),
-            "unknown algorithm \"mlt\" (expected pt, bdpt)"
-        );
-        assert!(algos("").unwrap_err().contains("empty"));
-        assert!(algos("pt,,bdpt").unwrap_err().contains("empty"));
-        assert!(algos("pt,pt").unwrap_err().contains("twice"));
-        let spp = spp_list();
-        assert_eq!(
-            spp("1,4")
-                .unwrap()
-                .0
-                .iter()
-                .map(|s| s.get())
-                .collect::<Vec<_>>(),
-            [1, 4]
-        );
-        for bad in ["0", "1,0", "-1", "x", "65537"] {
-            assert!(spp(bad).is_err(), "{bad}");
-        }
-        let denoisers = value_list::<Denoiser>("denoiser");
-        assert!(denoisers("none,oidn")
-            .unwrap_err()
-            .contains("none, svgf, neural"));
-    }
 }

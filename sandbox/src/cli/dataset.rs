@@ -21,6 +21,7 @@ use lucid_engine::scene::{builtin, Camera, Scene};
 use lucid_engine::{Context, ContextDesc};
 use lucid_passes::denoise::neural::RECORD_CHANNELS;
 use lucid_passes::renderer::{Denoiser, Renderer, SamplesPerPixel, Settings};
+use lucid_passes::tradeoff::measure::REFERENCE_SPP_PER_FRAME;
 use safetensors::tensor::{Dtype, TensorView};
 use std::collections::HashMap;
 use std::path::{Path, PathBuf};
@@ -30,9 +31,6 @@ pub const HELD_OUT: [&str; 2] = ["classroom", "caustics"];
 
 /// Built-in scenes that teach nothing a denoiser needs (`furnace`: one sphere in a uniform sky).
 const SKIPPED: [&str; 1] = ["furnace"];
-
-/// Samples per pixel per frame of the reference renders (more are accumulated over frames).
-const REFERENCE_SPP_PER_FRAME: SamplesPerPixel = SamplesPerPixel::new(16).unwrap();
 
 /// Options of `lucid dataset`.
 #[derive(Debug, Args)]

@@ -7,7 +7,8 @@ use anyhow::Context as _;
 use clap::Args;
 use lucid_engine::atomic_write::write_atomic;
 use lucid_engine::capture::{self, ImageData, PngEncoding};
-use lucid_engine::metrics::{evaluate_sequence, FrameMetrics, SequenceMetrics};
+use lucid_engine::metrics::{evaluate_sequences, FrameMetrics, SequenceMetrics};
+use rayon::prelude::*;
 use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
 
@@ -52,13 +53,24 @@ const COLUMNS: [(&str, Metric); 5] = [
 pub fn evaluate_folder(dir: &Path, display: &PngEncoding) -> anyhow::Result<()> {
     let methods = method_folders(dir)?;
     let reference = load_frames(&dir.join("reference"))?;
-    let mut results = Vec::new();
-    for method in &methods {
-        let frames = load_frames(&dir.join(method))?;
-        let metrics = evaluate_sequence(&frames, &reference, display)
-            .with_context(|| format!("evaluating {method}"))?;
-        results.push((method.as_str(), metrics));
+    let frames = methods
+        .iter()
+        .map(|method| load_frames(&dir.join(method)))
+        .collect::<anyhow::Result<Vec<_>>>()?;
+    for (method, frames) in methods.iter().zip(&frames) {
+        anyhow::ensure!(
+            frames.len() == reference.len(),
+            "{method}/ has {} frames, reference/ {}",
+            frames.len(),
+            reference.len()
+        );
     }
+    // Each reference frame is prepared once for every method, frames in parallel.
+    let tests: Vec<&[ImageData]> = frames.iter().map(Vec::as_slice).collect();
+    let metrics = evaluate_sequences(&tests, &reference, display)
+        .with_context(|| format!("evaluating {}", methods.join(", ")))?;
+    let results: Vec<(&str, SequenceMetrics)> =
+        methods.iter().map(String::as_str).zip(metrics).collect();
     let csv = dir.join("metrics.csv");
     write_atomic(&csv, to_csv(&results).as_bytes())
         .with_context(|| format!("writing {}", csv.display()))?;
@@ -112,16 +124,20 @@ fn method_folders(dir: &Path) -> anyhow::Result<Vec<String>> {
     Ok(present)
 }
 
-/// Frames `0000.exr`, `0001.exr`, ... of a folder, until the first missing one.
+/// Frames `0000.exr`, `0001.exr`, ... of a folder, until the first missing one (read in
+/// parallel).
 fn load_frames(folder: &Path) -> anyhow::Result<Vec<ImageData>> {
-    let mut frames = Vec::new();
-    while frame_path(folder, frames.len()).exists() {
-        let path = frame_path(folder, frames.len());
-        frames
-            .push(capture::load_exr(&path).with_context(|| format!("reading {}", path.display()))?);
-    }
-    anyhow::ensure!(!frames.is_empty(), "no frames in {}", folder.display());
-    Ok(frames)
+    let count = (0..)
+        .take_while(|&i| frame_path(folder, i).exists())
+        .count();
+    anyhow::ensure!(count > 0, "no frames in {}", folder.display());
+    (0..count)
+        .into_par_iter()
+        .map(|i| {
+            let path = frame_path(folder, i);
+            capture::load_exr(&path).with_context(|| format!("reading {}", path.display()))
+        })
+        .collect()
 }
 
 /// One row per method and frame, then one `mean` row per method.

@@ -1,5 +1,6 @@
 //! The `lucid` subcommands.
 
+mod auto_options;
 mod bench;
 mod converge;
 mod converge_chart;
@@ -7,6 +8,7 @@ mod dataset;
 mod evaluate;
 mod float_range;
 mod info;
+mod lists;
 mod output_path;
 mod pipeline_stats;
 mod progress;

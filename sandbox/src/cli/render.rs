@@ -31,18 +31,22 @@ pub fn run(args: &RenderArgs) -> anyhow::Result<()> {
     let scene = scene_source::load(&args.options.scene)?;
     let ctx = Context::new(&ContextDesc::from_env())?;
     let (w, h) = (args.options.size.width, args.options.size.height);
-    let mut renderer = args
-        .options
-        .renderer(&ctx, scene, (w, h), args.options.settings(true))?;
+    let mut renderer =
+        args.options
+            .calibrated_renderer(&ctx, scene, (w, h), args.options.settings(true))?;
+    let settings = *renderer.settings();
     if args.dump_graph {
         print!("{}", renderer.frame_plan()?.dump());
     }
     eprintln!(
-        "rendering {} ({} triangles) {w}x{h}, {} frames x {} spp on {}; specialization: {}",
+        "rendering {} ({} triangles) {w}x{h}, {} frames x {} spp, {}, denoiser {} on {}; \
+         specialization: {}",
         renderer.scene().name,
         renderer.scene().triangle_count(),
         args.frames,
-        args.options.spp,
+        settings.samples_per_pixel,
+        settings.algorithm.label(),
+        settings.denoiser.label(),
         ctx.info().name,
         renderer.scene().features()
     );
@@ -64,7 +68,7 @@ pub fn run(args: &RenderArgs) -> anyhow::Result<()> {
         "{}: {} frames x {} spp in {seconds:.2} s, {} non-finite samples dropped -> {}",
         renderer.scene().name,
         args.frames,
-        args.options.spp,
+        settings.samples_per_pixel,
         renderer.stats().non_finite_samples,
         args.out.display()
     );

@@ -1,5 +1,7 @@
-//! Options shared by `render` and `bench`: scene, algorithm, samples, depth, size, seed, display.
+//! Options shared by `render`, `bench` and `sequence`: scene, algorithm (or `auto`), samples,
+//! depth, size, seed, display.
 
+use super::auto_options::{AlgoArg, AutoOptions};
 use super::float_range::finite_f32;
 use super::size::Size;
 use clap::builder::TypedValueParser;
@@ -18,12 +20,14 @@ pub struct RenderOptions {
     /// A built-in scene (see `lucid scenes`) or a .gltf/.glb file.
     #[arg(long, default_value = "cornell-box")]
     pub scene: String,
-    /// Light-transport algorithm.
-    #[arg(long, value_enum, default_value_t = Algorithm::PathTracing)]
-    pub algo: Algorithm,
-    /// Samples per pixel per frame.
-    #[arg(long, default_value_t = SamplesPerPixel::ONE, value_parser = samples_per_pixel(65536))]
-    pub spp: SamplesPerPixel,
+    /// Light-transport algorithm, or `auto`: a short calibration on the scene picks algorithm,
+    /// denoiser and samples per pixel for --quality or --budget-ms.
+    #[arg(long, value_enum, default_value = "pt")]
+    pub algo: AlgoArg,
+    /// Samples per pixel per frame [default: 1; with --algo auto: chosen among 1, 2 and 4 unless
+    /// given].
+    #[arg(long, value_parser = samples_per_pixel(65536))]
+    pub spp: Option<SamplesPerPixel>,
     /// Longest path (Mitsuba's convention: 1 = emitters only, 2 = direct light, ...).
     #[arg(long, default_value_t = 8, value_parser = clap::value_parser!(u32).range(1..=1024))]
     pub max_depth: u32,
@@ -39,9 +43,10 @@ pub struct RenderOptions {
     /// Tone curve for PNG output and display.
     #[arg(long, value_enum, default_value_t = ToneCurve::Aces)]
     pub tone: ToneCurve,
-    /// Denoiser applied after tracing.
-    #[arg(long, value_enum, default_value_t = Denoiser::None)]
-    pub denoise: Denoiser,
+    /// Denoiser applied after tracing [default: none; with --algo auto: chosen among all unless
+    /// given].
+    #[arg(long, value_enum)]
+    pub denoise: Option<Denoiser>,
     /// Weights of the learned denoiser (a file `training/train.py` wrote) instead of the
     /// committed ones.
     #[arg(long)]
@@ -53,21 +58,46 @@ pub struct RenderOptions {
     /// Layout of the BVH nodes on the GPU (both find the same hits; for A/B timing).
     #[arg(long, value_enum, default_value_t = BvhLayout::default())]
     pub bvh: BvhLayout,
+    #[command(flatten)]
+    pub auto: AutoOptions,
 }
 
 impl RenderOptions {
-    /// The renderer settings these options describe.
+    /// The renderer settings these options describe (with `--algo auto`, before the calibration
+    /// replaces algorithm, denoiser and samples per pixel: path tracing, and the defaults of the
+    /// ones not given).
     pub fn settings(&self, accumulate: bool) -> Settings {
         Settings {
-            algorithm: self.algo,
-            samples_per_pixel: self.spp,
+            algorithm: match self.algo {
+                AlgoArg::Fixed(algorithm) => algorithm,
+                AlgoArg::Auto => Algorithm::PathTracing,
+            },
+            samples_per_pixel: self.spp.unwrap_or(SamplesPerPixel::ONE),
             max_depth: self.max_depth,
             seed: self.seed,
             accumulate,
             display: self.display(),
-            denoiser: self.denoise,
+            denoiser: self.denoise.unwrap_or(Denoiser::None),
             ..Settings::default()
         }
+    }
+
+    /// A renderer of `scene` at `width` x `height` with `settings` as [`RenderOptions::renderer`]
+    /// makes it; with `--algo auto`, then calibrated and switched to the configuration chosen
+    /// (printed with the reason to stderr).
+    pub fn calibrated_renderer(
+        &self,
+        ctx: &Context,
+        scene: Scene,
+        size: (u32, u32),
+        settings: Settings,
+    ) -> anyhow::Result<Renderer> {
+        self.auto.check(self.algo)?;
+        let mut renderer = self.renderer(ctx, scene, size, settings)?;
+        if self.algo == AlgoArg::Auto {
+            self.auto.calibrate(&mut renderer, self.denoise, self.spp)?;
+        }
+        Ok(renderer)
     }
 
     /// A renderer of `scene` at `width` x `height` with `settings`, the BVH layout and, when given,

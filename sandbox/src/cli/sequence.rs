@@ -1,6 +1,7 @@
 //! `lucid sequence`: renders a scene's camera path as a reference and through each denoiser, then
 //! evaluates them (`lucid evaluate`).
 
+use super::auto_options::AlgoArg;
 use super::evaluate;
 use super::float_range::finite_f32;
 use super::output_path;
@@ -17,6 +18,7 @@ use lucid_passes::denoise::neural::{
 };
 use lucid_passes::denoise::svgf::{SvgfMode, SvgfParams};
 use lucid_passes::renderer::{Denoiser, Renderer, SamplesPerPixel, Settings};
+use lucid_passes::tradeoff::measure::REFERENCE_SPP_PER_FRAME;
 use std::path::{Path, PathBuf};
 
 /// Options of `lucid sequence`.
@@ -112,9 +114,6 @@ impl Method {
     }
 }
 
-/// Samples per pixel per frame of the reference renders (more are accumulated over frames).
-pub(super) const REFERENCE_SPP_PER_FRAME: SamplesPerPixel = SamplesPerPixel::new(16).unwrap();
-
 /// Renders every sequence and writes the evaluation.
 pub fn run(args: &SequenceArgs) -> anyhow::Result<()> {
     output_path::create_folder("--out", &args.out)?;
@@ -127,7 +126,7 @@ pub fn run(args: &SequenceArgs) -> anyhow::Result<()> {
         .map(|i| path.sample(i as f32 / args.fps))
         .collect();
     let ctx = Context::new(&ContextDesc::from_env())?;
-    let base = args.options.settings(false);
+    let base = sequence_settings(&ctx, &scene, args, cameras[0])?;
     let reference_settings = Settings {
         samples_per_pixel: args.reference_spp.min(REFERENCE_SPP_PER_FRAME),
         accumulate: true,
@@ -165,6 +164,39 @@ pub fn run(args: &SequenceArgs) -> anyhow::Result<()> {
         return Ok(());
     }
     evaluate::evaluate_folder(&args.out, &args.options.display())
+}
+
+/// The settings every method starts from: the options', or with `--algo auto` the algorithm and
+/// samples per pixel a calibration from the path's first camera picks (each method keeps its own
+/// denoiser).
+fn sequence_settings(
+    ctx: &Context,
+    scene: &Scene,
+    args: &SequenceArgs,
+    first: Camera,
+) -> anyhow::Result<Settings> {
+    let options = &args.options;
+    let base = options.settings(false);
+    if options.algo != AlgoArg::Auto {
+        options.auto.check(options.algo)?;
+        return Ok(base);
+    }
+    let (w, h) = (options.size.width, options.size.height);
+    let mut renderer = options.renderer(ctx, scene.clone(), (w, h), base)?;
+    renderer.set_camera(first);
+    let choice = options
+        .auto
+        .calibrate(&mut renderer, options.denoise, options.spp)?;
+    eprintln!(
+        "auto: every method renders with {} at {} spp",
+        choice.config.algorithm.label(),
+        choice.config.spp
+    );
+    Ok(Settings {
+        algorithm: choice.config.algorithm,
+        samples_per_pixel: choice.config.spp,
+        ..base
+    })
 }
 
 /// Renders `cameras` with `settings`, accumulating `frames_each` frames per camera, into

@@ -1,5 +1,6 @@
 //! `lucid view` (and `lucid` without a subcommand): the interactive sandbox window.
 
+use super::auto_options::AlgoArg;
 use super::render_options::samples_per_pixel;
 use super::size::Size;
 use super::split::SplitSpec;
@@ -26,9 +27,11 @@ pub struct ViewArgs {
     /// After N frames, save the window (UI included) as a PNG and exit.
     #[arg(long, num_args = 2, value_names = ["N", "FILE"])]
     screenshot_after: Option<Vec<String>>,
-    /// Light-transport algorithm (of the left half in a split view).
-    #[arg(long, value_enum, default_value_t = Algorithm::PathTracing)]
-    algo: Algorithm,
+    /// Light-transport algorithm (of the left half in a split view), or `auto`: calibrate on the
+    /// scene at the window's size before the first frame and pick algorithm, denoiser and samples
+    /// per pixel for 60 frames per second (the panel's "Auto configuration" re-runs it).
+    #[arg(long, value_enum, default_value = "pt")]
+    algo: AlgoArg,
     /// Denoiser (of the left half in a split view).
     #[arg(long, value_enum, default_value_t = Denoiser::Svgf)]
     denoise: Denoiser,
@@ -63,7 +66,10 @@ pub fn run(args: &ViewArgs) -> anyhow::Result<()> {
         _ => None,
     };
     let render = RenderSettings {
-        algorithm: args.algo,
+        algorithm: match args.algo {
+            AlgoArg::Fixed(algorithm) => algorithm,
+            AlgoArg::Auto => Algorithm::PathTracing,
+        },
         denoiser: args.denoise,
         spp: args.spp,
         max_depth: args.max_depth,
@@ -79,6 +85,7 @@ pub fn run(args: &ViewArgs) -> anyhow::Result<()> {
         render,
         split: args.split.map(|spec| spec.apply(&render)),
         window_test: args.window_test,
+        calibrate: args.algo == AlgoArg::Auto,
     };
     lucid_sandbox::run_with(options, startup)
 }

@@ -14,6 +14,7 @@ pub use test_pattern::TestPatternSource;
 use super::settings::RenderSettings;
 use lucid_engine::graph::{Executor, ImageHandle, PassTiming, RenderGraph};
 use lucid_engine::scene::Camera;
+use lucid_passes::tradeoff::{Calibration, Choice, Goal};
 
 /// Everything a frame source is asked to render one frame with.
 #[derive(Clone, Copy, Debug)]
@@ -63,6 +64,12 @@ pub trait FrameSource {
     /// The left and right halves' numbers while the output is a split view.
     fn split_stats(&self) -> Option<[SideStats; 2]> {
         None
+    }
+
+    /// Runs the `--algo auto` calibration on what the source renders (its frames in flight
+    /// finished first) and picks a configuration for `goal`; an error for a source without a scene.
+    fn calibrate(&mut self, _goal: Goal) -> anyhow::Result<(Calibration, Choice)> {
+        anyhow::bail!("{} has no scene to calibrate on", self.name())
     }
 }
 

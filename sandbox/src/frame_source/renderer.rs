@@ -9,6 +9,7 @@ use lucid_engine::graph::{Executor, ImageHandle, RenderGraph};
 use lucid_engine::scene::Scene;
 use lucid_engine::Context;
 use lucid_passes::renderer::{Renderer, Settings};
+use lucid_passes::tradeoff::{calibrate, Calibration, CalibrationOptions, Choice, Goal};
 
 /// Renders the loaded scene with the chosen algorithm and denoiser.
 pub struct RendererSource {
@@ -108,6 +109,13 @@ impl FrameSource for RendererSource {
 
     fn samples_accumulated(&self) -> u64 {
         samples_accumulated(&self.renderer)
+    }
+
+    fn calibrate(&mut self, goal: Goal) -> anyhow::Result<(Calibration, Choice)> {
+        let options = CalibrationOptions::for_device(self.renderer.executor().context());
+        let calibration = calibrate(&mut self.renderer, &options, &mut || {})?;
+        let choice = calibration.choose(goal)?;
+        Ok((calibration, choice))
     }
 
     fn split_stats(&self) -> Option<[SideStats; 2]> {

@@ -1,6 +1,7 @@
 //! The egui panels: settings on the right, live numbers and charts below them, and the split
 //! view's divider and labels over the image.
 
+mod auto_panel;
 mod charts;
 mod settings_panel;
 mod split_view;
@@ -48,6 +49,8 @@ pub struct Requests {
     pub replay: bool,
     /// Capture the HDR output.
     pub capture: bool,
+    /// Run the `--algo auto` calibration on the scene and switch to its choice.
+    pub calibrate: bool,
 }
 
 /// Draws the panels; returns what the user asked for.

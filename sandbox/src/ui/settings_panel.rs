@@ -1,4 +1,4 @@
-//! The editable sections: scene, renderer, display and camera.
+//! The editable sections: scene, renderer, auto configuration, split view, display and camera.
 
 use super::Requests;
 use crate::settings::{Algorithm, Denoiser, RenderSettings, SamplesPerPixel, ToneCurve};
@@ -17,6 +17,11 @@ pub fn show(ui: &mut egui::Ui, state: &mut AppState, requests: &mut Requests) {
                 ui.label("left half");
             }
             renderer(ui, &mut state.render)
+        });
+    egui::CollapsingHeader::new("Auto configuration")
+        .default_open(state.auto.last.is_some())
+        .show(ui, |ui| {
+            super::auto_panel::show(ui, &mut state.auto, requests)
         });
     egui::CollapsingHeader::new("Split view")
         .default_open(true)

@@ -30,23 +30,29 @@ const XYZ_TO_RGB: [[f32; 3]; 3] = [
 /// XYZ of the D65 white point (the image of RGB (1, 1, 1)).
 const WHITE: [f32; 3] = [0.950_428_5, 1.0, 1.088_900_4];
 
+#[inline]
 fn mul(m: &[[f32; 3]; 3], v: [f32; 3]) -> [f32; 3] {
-    [0, 1, 2].map(|r| m[r][0] * v[0] + m[r][1] * v[1] + m[r][2] * v[2])
+    let row = |r: &[f32; 3]| r[0] * v[0] + r[1] * v[1] + r[2] * v[2];
+    [row(&m[0]), row(&m[1]), row(&m[2])]
 }
 
 /// Linear sRGB → YCxCz: the linear-luminance opponent space that FLIP's
 /// contrast-sensitivity filters operate in.
 pub(super) fn linear_rgb_to_ycxcz(rgb: [f32; 3]) -> [f32; 3] {
-    let xyz = mul(&RGB_TO_XYZ, rgb);
-    let [x, y, z] = [0, 1, 2].map(|i| xyz[i] / WHITE[i]);
+    let [x, y, z] = mul(&RGB_TO_XYZ, rgb);
+    let (x, y, z) = (x / WHITE[0], y / WHITE[1], z / WHITE[2]);
     [116.0 * y - 16.0, 500.0 * (x - y), 200.0 * (y - z)]
 }
 
 /// YCxCz → linear sRGB, the inverse of [`linear_rgb_to_ycxcz`].
 pub(super) fn ycxcz_to_linear_rgb(ycxcz: [f32; 3]) -> [f32; 3] {
     let y = (ycxcz[0] + 16.0) / 116.0;
-    let normalized = [y + ycxcz[1] / 500.0, y, y - ycxcz[2] / 200.0];
-    mul(&XYZ_TO_RGB, [0, 1, 2].map(|i| normalized[i] * WHITE[i]))
+    let xyz = [
+        (y + ycxcz[1] / 500.0) * WHITE[0],
+        y * WHITE[1],
+        (y - ycxcz[2] / 200.0) * WHITE[2],
+    ];
+    mul(&XYZ_TO_RGB, xyz)
 }
 
 /// Relative luminance in `[0, 1]` carried by a YCxCz value's first channel.
@@ -65,8 +71,8 @@ pub(super) fn linear_rgb_to_hunt_lab(rgb: [f32; 3]) -> [f32; 3] {
             t / (3.0 * DELTA * DELTA) + 4.0 / 29.0
         }
     };
-    let xyz = mul(&RGB_TO_XYZ, rgb);
-    let [fx, fy, fz] = [0, 1, 2].map(|i| f(xyz[i] / WHITE[i]));
+    let [x, y, z] = mul(&RGB_TO_XYZ, rgb);
+    let (fx, fy, fz) = (f(x / WHITE[0]), f(y / WHITE[1]), f(z / WHITE[2]));
     let l = 116.0 * fy - 16.0;
     let hunt = 0.01 * l;
     [l, hunt * 500.0 * (fx - fy), hunt * 200.0 * (fy - fz)]

@@ -1,6 +1,7 @@
 //! FLIP's colour pipeline: contrast-sensitivity filtering in YCxCz, then the
 //! Hunt-adjusted HyAB difference, compressed and remapped to `[0, 1]`.
 
+use rayon::prelude::*;
 use std::f32::consts::PI;
 
 use super::super::plane::{kernel, normalized, Plane};
@@ -102,22 +103,30 @@ fn max_color_error() -> f32 {
     hyab(green, blue).powf(QC)
 }
 
-/// Per-pixel colour error in `[0, 1]` between two CSF-filtered images.
-///
-/// Filtered colours are brought back to linear RGB and clamped to the unit
-/// cube, compared with HyAB in Hunt-adjusted L*a*b*, compressed with the
-/// exponent 0.7, and remapped piecewise-linearly so that errors up to 40 %
-/// of the maximum fill `[0, 0.95]` and the rest `(0.95, 1]`.
-pub(super) fn color_difference(reference: &Opponent, test: &Opponent) -> Vec<f32> {
+/// The Hunt-adjusted L*a*b* colours of a CSF-filtered image: its filtered colours brought back to
+/// linear RGB and clamped to the unit cube (what [`color_difference`] compares; a reference's are
+/// computed once).
+pub(super) fn hunt_lab(image: &Opponent) -> Vec<[f32; 3]> {
+    (0..image.y.data.len())
+        .into_par_iter()
+        .map(|i| {
+            let rgb = ycxcz_to_linear_rgb([image.y.data[i], image.cx.data[i], image.cz.data[i]]);
+            linear_rgb_to_hunt_lab(rgb.map(|v| v.clamp(0.0, 1.0)))
+        })
+        .collect()
+}
+
+/// Per-pixel colour error in `[0, 1]` between the [`hunt_lab`] colours of two CSF-filtered
+/// images: HyAB, compressed with the exponent 0.7, and remapped piecewise-linearly so that errors
+/// up to 40 % of the maximum fill `[0, 0.95]` and the rest `(0.95, 1]`.
+pub(super) fn color_difference(reference: &[[f32; 3]], test: &[[f32; 3]]) -> Vec<f32> {
     let cmax = max_color_error();
     let knee = PC * cmax;
-    let lab = |image: &Opponent, i: usize| {
-        let rgb = ycxcz_to_linear_rgb([image.y.data[i], image.cx.data[i], image.cz.data[i]]);
-        linear_rgb_to_hunt_lab(rgb.map(|v| v.clamp(0.0, 1.0)))
-    };
-    (0..reference.y.data.len())
-        .map(|i| {
-            let error = hyab(lab(reference, i), lab(test, i)).powf(QC);
+    reference
+        .par_iter()
+        .zip(test)
+        .map(|(&r, &t)| {
+            let error = hyab(r, t).powf(QC);
             if error < knee {
                 error * PT / knee
             } else {

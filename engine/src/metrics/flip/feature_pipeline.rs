@@ -1,6 +1,7 @@
 //! FLIP's feature pipeline: edge and point detectors on the achromatic
 //! channel, compared between reference and test.
 
+use rayon::prelude::*;
 use std::f32::consts::SQRT_2;
 
 use super::super::plane::{kernel, normalized, Plane};
@@ -8,8 +9,6 @@ use super::super::plane::{kernel, normalized, Plane};
 /// Peak-to-trough width, in degrees, of the human edge detector (twice its
 /// standard deviation).
 const DETECTOR_WIDTH_DEGREES: f32 = 0.082;
-/// Exponent compressing the feature difference.
-const QF: f32 = 0.5;
 
 /// The three 1-D profiles whose products form the 2-D detectors.
 pub(super) struct FeatureFilters {
@@ -56,27 +55,36 @@ impl FeatureFilters {
     }
 
     /// Edge and point response magnitudes of a luminance plane in `[0, 1]`.
-    fn responses(&self, luminance: &Plane) -> (Plane, Plane) {
+    pub fn responses(&self, luminance: &Plane) -> Responses {
+        // Smoothed along x once: the y derivatives of both detectors start from it.
+        let smooth_rows = luminance.filter_rows(&self.smooth);
         let magnitude = |profile: &[f32]| {
-            let along_x = luminance.filter(profile, &self.smooth);
-            let along_y = luminance.filter(&self.smooth, profile);
-            along_x.zip_map(&along_y, |a, b| a.hypot(b))
+            let along_x = luminance.filter_rows(profile).filter_columns(&self.smooth);
+            let along_y = smooth_rows.filter_columns(profile);
+            along_x.zip_map(&along_y, |a, b| (a * a + b * b).sqrt())
         };
-        (magnitude(&self.edge), magnitude(&self.point))
+        Responses {
+            edges: magnitude(&self.edge),
+            points: magnitude(&self.point),
+        }
     }
+}
 
-    /// Per-pixel feature difference in `[0, 1]`: the larger of the edge and
-    /// point magnitude differences, scaled by `1 / sqrt(2)` and compressed
-    /// with the exponent 0.5.
-    pub fn difference(&self, reference: &Plane, test: &Plane) -> Vec<f32> {
-        let (ref_edges, ref_points) = self.responses(reference);
-        let (test_edges, test_points) = self.responses(test);
-        (0..reference.data.len())
-            .map(|i| {
-                let edge = (ref_edges.data[i] - test_edges.data[i]).abs();
-                let point = (ref_points.data[i] - test_points.data[i]).abs();
-                (edge.max(point) / SQRT_2).powf(QF)
-            })
-            .collect()
-    }
+/// The edge and point detector magnitudes of one image.
+pub(super) struct Responses {
+    edges: Plane,
+    points: Plane,
+}
+
+/// Per-pixel feature difference in `[0, 1]`: the larger of the edge and point magnitude
+/// differences, scaled by `1 / sqrt(2)` and compressed with the exponent 0.5 (a square root).
+pub(super) fn feature_difference(reference: &Responses, test: &Responses) -> Vec<f32> {
+    (0..reference.edges.data.len())
+        .into_par_iter()
+        .map(|i| {
+            let edge = (reference.edges.data[i] - test.edges.data[i]).abs();
+            let point = (reference.points.data[i] - test.points.data[i]).abs();
+            (edge.max(point) / SQRT_2).sqrt()
+        })
+        .collect()
 }

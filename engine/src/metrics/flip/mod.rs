@@ -11,19 +11,24 @@
 mod color;
 mod color_pipeline;
 mod feature_pipeline;
+mod hdr;
 
-use super::check::{check_pair, check_parameter};
+pub use hdr::{hdr_flip, HdrFlipParams};
+
+use rayon::prelude::*;
+
+use super::check::{check_image, check_pair, check_parameter};
 use super::plane::{clamp_unit, Plane};
 use super::MetricsError;
 use crate::capture::ImageData;
 use color::{linear_rgb_to_ycxcz, ycxcz_luminance};
-use color_pipeline::{color_difference, CsfFilters, Opponent};
-use feature_pipeline::FeatureFilters;
+use color_pipeline::{color_difference, hunt_lab, CsfFilters, Opponent};
+use feature_pipeline::{feature_difference, FeatureFilters, Responses};
 
 /// The reference implementation's default observer: a 0.7 m wide 3840-pixel
-/// monitor viewed from 0.7 m, `0.7 * (3840 / 0.7) * pi / 180` ≈ 67.02 pixels
+/// monitor viewed from 0.7 m, `0.7 * (3840 / 0.7) * pi / 180` ≈ 67.0206 pixels
 /// per degree of visual angle.
-pub const DEFAULT_PIXELS_PER_DEGREE: f64 = 67.02;
+pub const DEFAULT_PIXELS_PER_DEGREE: f64 = 3840.0 * std::f64::consts::PI / 180.0;
 
 /// Largest accepted pixels-per-degree: filter sizes grow linearly with it.
 const MAX_PIXELS_PER_DEGREE: f64 = 1000.0;
@@ -56,45 +61,88 @@ pub fn flip(
     pixels_per_degree: f64,
 ) -> Result<FlipResult, MetricsError> {
     check_pair(test, reference)?;
-    check_parameter(
-        "pixels_per_degree",
-        pixels_per_degree,
-        pixels_per_degree > 0.0 && pixels_per_degree <= MAX_PIXELS_PER_DEGREE,
-        "must be in (0, 1000]",
-    )?;
-    let (width, height) = (reference.width, reference.height);
-    let ppd = pixels_per_degree as f32;
-    let reference = opponent(reference);
-    let test = opponent(test);
-
-    let csf = CsfFilters::new(ppd);
-    let color_error = color_difference(&csf.apply(&reference), &csf.apply(&test));
-
-    let luminance = |image: &Opponent| image.y.map(ycxcz_luminance);
-    let feature_error =
-        FeatureFilters::new(ppd).difference(&luminance(&reference), &luminance(&test));
-
-    let error_map: Vec<f32> = color_error
-        .iter()
-        .zip(&feature_error)
-        .map(|(&c, &f)| c.powf(1.0 - f))
-        .collect();
-    let mean = error_map.iter().map(|&e| f64::from(e)).sum::<f64>() / error_map.len() as f64;
-    Ok(FlipResult {
-        mean,
-        width,
-        height,
-        error_map,
-    })
+    FlipReference::new(reference, pixels_per_degree)?.compare(test)
 }
 
-/// The image in YCxCz, its R, G, B clamped to `[0, 1]` first.
-fn opponent(image: &ImageData) -> Opponent {
-    let channel = |c: usize| {
-        Plane::from_image(image, |p| {
-            let rgb = [p[0], p[1], p[2]].map(clamp_unit);
-            linear_rgb_to_ycxcz(rgb)[c]
+/// A reference image prepared for [`flip`] against many test images: its contrast-sensitivity
+/// filtered opponent colours and its edge and point responses, computed once.
+pub struct FlipReference {
+    csf: CsfFilters,
+    features: FeatureFilters,
+    /// The reference's CSF-filtered colours in Hunt-adjusted L*a*b*.
+    lab: Vec<[f32; 3]>,
+    responses: Responses,
+    size: (u32, u32),
+}
+
+impl FlipReference {
+    /// Prepares `reference` (linear display light, clamped to [0, 1]) for an observer seeing
+    /// `pixels_per_degree` pixels per degree.
+    pub fn new(reference: &ImageData, pixels_per_degree: f64) -> Result<Self, MetricsError> {
+        check_image(reference)?;
+        check_parameter(
+            "pixels_per_degree",
+            pixels_per_degree,
+            pixels_per_degree > 0.0 && pixels_per_degree <= MAX_PIXELS_PER_DEGREE,
+            "must be in (0, 1000]",
+        )?;
+        let ppd = pixels_per_degree as f32;
+        let csf = CsfFilters::new(ppd);
+        let features = FeatureFilters::new(ppd);
+        let opponent = opponent(reference);
+        let responses = features.responses(&opponent.y.map(ycxcz_luminance));
+        Ok(Self {
+            lab: hunt_lab(&csf.apply(&opponent)),
+            csf,
+            features,
+            responses,
+            size: (reference.width, reference.height),
         })
+    }
+
+    /// LDR-FLIP of `test` (the reference's size) against the prepared reference.
+    pub fn compare(&self, test: &ImageData) -> Result<FlipResult, MetricsError> {
+        check_image(test)?;
+        let (width, height) = self.size;
+        if (test.width, test.height) != (width, height) {
+            return Err(MetricsError::SizeMismatch {
+                test_width: test.width,
+                test_height: test.height,
+                reference_width: width,
+                reference_height: height,
+            });
+        }
+        let test = opponent(test);
+        let color_error = color_difference(&self.lab, &hunt_lab(&self.csf.apply(&test)));
+        let test_responses = self.features.responses(&test.y.map(ycxcz_luminance));
+        let feature_error = feature_difference(&self.responses, &test_responses);
+        let error_map: Vec<f32> = color_error
+            .par_iter()
+            .zip(&feature_error)
+            .map(|(&c, &f)| c.powf(1.0 - f))
+            .collect();
+        let mean =
+            error_map.par_iter().map(|&e| f64::from(e)).sum::<f64>() / error_map.len() as f64;
+        Ok(FlipResult {
+            mean,
+            width,
+            height,
+            error_map,
+        })
+    }
+}
+
+/// The image in YCxCz, its R, G, B clamped to `[0, 1]` first (one conversion per pixel).
+fn opponent(image: &ImageData) -> Opponent {
+    let ycxcz: Vec<[f32; 3]> = image
+        .pixels
+        .par_iter()
+        .map(|p| linear_rgb_to_ycxcz([p[0], p[1], p[2]].map(clamp_unit)))
+        .collect();
+    let channel = |c: usize| Plane {
+        width: image.width as usize,
+        height: image.height as usize,
+        data: ycxcz.par_iter().map(|v| v[c]).collect(),
     };
     Opponent {
         y: channel(0),
