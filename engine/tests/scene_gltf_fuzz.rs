@@ -32,7 +32,7 @@ fn seed() -> u64 {
     std::env::var("LUCID_FUZZ_SEED")
         .ok()
         .and_then(|v| v.parse().ok())
-        .unwrap_or(0x6c75_6369_64)
+        .unwrap_or(20_261_123)
 }
 
 fn config() -> ProptestConfig {

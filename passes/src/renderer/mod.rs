@@ -658,6 +658,7 @@ impl Renderer {
         let mut g = RenderGraph::new();
         let (_, stats) = self.add_frame(&mut g);
         let frame = self.executor.execute(g.compile()?)?;
+        self.buffers.submitted();
         if let Some((old, old_stats)) = self.pending_stats.replace((frame, stats)) {
             let outputs = self.executor.wait(old)?;
             self.collect_stats(&outputs, old_stats)?;
@@ -706,6 +707,7 @@ impl Renderer {
             }
         };
         let frame = self.executor.execute(g.compile()?)?;
+        self.buffers.submitted();
         self.collect_pending_stats()?;
         let outputs = self.executor.wait(frame)?;
         self.collect_stats(&outputs, stats)?;
