@@ -27,6 +27,12 @@ impl MemoryTracker {
         }
     }
 
+    /// Bytes of every live allocation.
+    pub(crate) fn total_bytes(&self) -> u64 {
+        let map = self.0.lock().unwrap_or_else(|p| p.into_inner());
+        map.values().map(|&(_, bytes)| bytes).sum()
+    }
+
     pub(crate) fn report(&self, allocated: u64, reserved: u64) -> MemoryReport {
         let map = self.0.lock().unwrap_or_else(|p| p.into_inner());
         MemoryReport {

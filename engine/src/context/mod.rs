@@ -7,18 +7,22 @@
 mod cooperative_matrix;
 mod debug;
 mod device;
+mod device_loss;
 mod instance;
+mod memory_budget;
 pub(crate) mod memory_report;
 mod options;
 mod select;
 
 pub use debug::{ValidationLog, ValidationMessage};
 pub use device::DeviceInfo;
+pub use memory_budget::MemoryBudget;
 pub use options::{ContextDesc, Validation};
 pub use select::{select_device, DeviceCandidate, DeviceKind};
 
 use crate::error::{EngineError, Result, VkResultExt};
 use ash::vk;
+use device_loss::DeviceLoss;
 use gpu_allocator::vulkan::{Allocator, AllocatorCreateDesc};
 use memory_report::MemoryTracker;
 use std::ffi::CString;
@@ -65,8 +69,17 @@ pub(crate) struct Shared {
     pub info: DeviceInfo,
     pub memory: MemoryTracker,
     pub frames_in_flight: usize,
+    pub device_loss: DeviceLoss,
+    pub budget: MemoryBudget,
     validation_level: Validation,
     owns_vulkan: bool,
+}
+
+/// What [`Context`] construction takes from [`ContextDesc`] besides the device.
+struct AssembleOptions {
+    frames_in_flight: usize,
+    inject_device_lost_at_frame: Option<u64>,
+    memory_budget_mib: Option<u64>,
 }
 
 /// A cheaply clonable handle to the Vulkan device and everything created with it.
@@ -166,7 +179,11 @@ impl Context {
             created.debug_utils,
             created.messenger,
             (validation, created.validation),
-            desc.frames_in_flight,
+            AssembleOptions {
+                frames_in_flight: desc.frames_in_flight,
+                inject_device_lost_at_frame: desc.inject_device_lost_at_frame,
+                memory_budget_mib: desc.memory_budget_mib,
+            },
             true,
         )?;
         Ok((ctx, surface))
@@ -217,7 +234,11 @@ impl Context {
             None,
             vk::DebugUtilsMessengerEXT::null(),
             (ValidationLog::default(), Validation::Off),
-            frames_in_flight.max(1),
+            AssembleOptions {
+                frames_in_flight: frames_in_flight.max(1),
+                inject_device_lost_at_frame: None,
+                memory_budget_mib: None,
+            },
             false,
         )
     }
@@ -229,9 +250,10 @@ impl Context {
         debug_utils_instance: Option<ash::ext::debug_utils::Instance>,
         messenger: vk::DebugUtilsMessengerEXT,
         (validation, validation_level): (ValidationLog, Validation),
-        frames_in_flight: usize,
+        options: AssembleOptions,
         owns_vulkan: bool,
     ) -> Result<Self> {
+        let budget = MemoryBudget::query(&v.instance, v.physical_device, options.memory_budget_mib);
         let allocator = Allocator::new(&AllocatorCreateDesc {
             instance: v.instance.clone(),
             device: v.device.clone(),
@@ -265,7 +287,9 @@ impl Context {
                 validation,
                 info,
                 memory: MemoryTracker::default(),
-                frames_in_flight,
+                frames_in_flight: options.frames_in_flight,
+                device_loss: DeviceLoss::new(options.inject_device_lost_at_frame),
+                budget,
                 validation_level,
                 owns_vulkan,
             }),
@@ -330,11 +354,49 @@ impl Context {
             .unwrap_or_else(|poison| poison.into_inner())
     }
 
-    /// Submits work to the queue.
+    /// Submits work to the queue. After a device loss (see [`Context::is_device_lost`]) it fails
+    /// at once.
     pub fn submit(&self, submits: &[vk::SubmitInfo2<'_>], fence: vk::Fence) -> Result<()> {
+        let loss = &self.shared.device_loss;
+        if loss.is_lost() {
+            return Err(loss.error("vkQueueSubmit2, after the loss"));
+        }
         let queue = self.lock_queue();
         // SAFETY: the queue is locked; the submit infos reference live objects.
-        unsafe { self.device().queue_submit2(*queue, submits, fence) }.vk("vkQueueSubmit2")
+        unsafe { self.device().queue_submit2(*queue, submits, fence) }
+            .vk("vkQueueSubmit2")
+            .map_err(|e| loss.observe(e))
+    }
+
+    /// Submits a frame of the render graph: like [`Context::submit`], and where a fault is injected
+    /// ([`ContextDesc::inject_device_lost_at_frame`]) the chosen frame reports device loss instead.
+    pub(crate) fn submit_frame(&self, submits: &[vk::SubmitInfo2<'_>]) -> Result<()> {
+        let loss = &self.shared.device_loss;
+        if !loss.is_lost() && loss.frame_submitted() {
+            return Err(loss.error("vkQueueSubmit2"));
+        }
+        self.submit(submits, vk::Fence::null())
+    }
+
+    /// The memory limits allocations are checked against.
+    pub fn memory_budget(&self) -> MemoryBudget {
+        self.shared.budget
+    }
+
+    /// Whether the device was lost: a Vulkan call reported `VK_ERROR_DEVICE_LOST` (or a fault was
+    /// injected). Nothing more runs on it; recreate the context.
+    pub fn is_device_lost(&self) -> bool {
+        self.shared.device_loss.is_lost()
+    }
+
+    /// Records `error` (marking the device lost when it says so) and returns it.
+    pub(crate) fn observe(&self, error: EngineError) -> EngineError {
+        self.shared.device_loss.observe(error)
+    }
+
+    /// The error of a call made after a device loss, `during` what.
+    pub(crate) fn device_lost_error(&self, during: impl Into<String>) -> EngineError {
+        self.shared.device_loss.error(during)
     }
 
     /// Waits until the device is idle.
@@ -419,7 +481,7 @@ impl Context {
                             during: what.to_string(),
                             seconds: 60,
                         },
-                        other => crate::error::from_vk("vkWaitForFences", other),
+                        other => self.observe(crate::error::from_vk("vkWaitForFences", other)),
                     }
                 })
             });

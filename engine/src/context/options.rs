@@ -32,6 +32,13 @@ pub struct ContextDesc {
     /// `VK_KHR_pipeline_executable_properties` when the device supports it (the
     /// `LUCID_PIPELINE_STATISTICS` variable). Unsupported devices log a warning and capture nothing.
     pub pipeline_statistics: bool,
+    /// Fault injection: the frame submission with this 1-based index reports
+    /// `VK_ERROR_DEVICE_LOST` instead of running, and the device counts as lost from then on (the
+    /// `LUCID_INJECT_DEVICE_LOST` variable). For testing what happens on a device loss.
+    pub inject_device_lost_at_frame: Option<u64>,
+    /// Caps the device memory Lucid holds at once below the device-local heap, in MiB (the
+    /// `LUCID_MEMORY_BUDGET_MIB` variable): an allocation or a frame beyond it is an error.
+    pub memory_budget_mib: Option<u64>,
 }
 
 impl Default for ContextDesc {
@@ -48,6 +55,8 @@ impl Default for ContextDesc {
             instance_extensions: Vec::new(),
             frames_in_flight: 2,
             pipeline_statistics: false,
+            inject_device_lost_at_frame: None,
+            memory_budget_mib: None,
         }
     }
 }
@@ -55,13 +64,22 @@ impl Default for ContextDesc {
 impl ContextDesc {
     /// The default description, adjusted by `LUCID_DEVICE` (device name substring),
     /// `LUCID_VALIDATION` (`0`/`off`, `1`/`on`, `sync`) and `LUCID_PIPELINE_STATISTICS`
-    /// (`1`/`on`/`true` captures pipeline statistics).
+    /// (`1`/`on`/`true` captures pipeline statistics) and `LUCID_INJECT_DEVICE_LOST` (`N`: the N-th
+    /// frame reports a device loss, see [`ContextDesc::inject_device_lost_at_frame`]) and
+    /// `LUCID_MEMORY_BUDGET_MIB` (see [`ContextDesc::memory_budget_mib`]).
     pub fn from_env() -> Self {
         let mut desc = Self {
             device: std::env::var("LUCID_DEVICE").ok().filter(|s| !s.is_empty()),
             pipeline_statistics: std::env::var("LUCID_PIPELINE_STATISTICS").is_ok_and(|value| {
                 matches!(value.to_lowercase().as_str(), "1" | "on" | "true" | "yes")
             }),
+            inject_device_lost_at_frame: std::env::var("LUCID_INJECT_DEVICE_LOST")
+                .ok()
+                .and_then(|value| value.trim().parse().ok())
+                .filter(|&frame| frame > 0),
+            memory_budget_mib: std::env::var("LUCID_MEMORY_BUDGET_MIB")
+                .ok()
+                .and_then(|value| value.trim().parse().ok()),
             ..Self::default()
         };
         if let Ok(value) = std::env::var("LUCID_VALIDATION") {

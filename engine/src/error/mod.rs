@@ -30,18 +30,30 @@ pub enum EngineError {
         available: Vec<String>,
     },
     /// The device was lost (driver crash, GPU reset, or a shader fault such as an endless loop).
-    #[error("the Vulkan device was lost during {during}: the driver reset the GPU or a shader faulted. Recreate the renderer; if it repeats, run with validation (LUCID_VALIDATION=1) and report the log")]
+    /// Every later submission and wait on the context fails with this error too.
+    #[error("the GPU device was lost (VK_ERROR_DEVICE_LOST) during {during}: the driver reset the GPU or a shader faulted; nothing more runs on this device, so recreate the context and the renderer; if it repeats, run with validation (LUCID_VALIDATION=1) and report the log")]
     DeviceLost {
         /// What the engine was doing when the loss was reported.
         during: String,
     },
     /// Device (GPU) memory ran out.
-    #[error("out of device memory while allocating {what} ({bytes} bytes): lower the resolution or scene size, or free other GPU work")]
+    #[error("out of device memory while allocating {what} ({bytes} bytes): lower the resolution or the scene's size, or free other GPU work")]
     OutOfDeviceMemory {
         /// The allocation that failed.
         what: String,
         /// Its size in bytes.
         bytes: u64,
+    },
+    /// An allocation or a frame's memory does not fit in the device's memory; refused before
+    /// Vulkan is asked (see [`crate::context::MemoryBudget`]).
+    #[error("out of device memory: {:.1} MiB for {what} is more than {limit}: lower the resolution or the scene's size", *.bytes as f64 / (1024.0 * 1024.0))]
+    DoesNotFit {
+        /// What was to be allocated.
+        what: String,
+        /// Its size in bytes.
+        bytes: u64,
+        /// The limit it exceeds, in words (with what is left of it).
+        limit: String,
     },
     /// Any other Vulkan call failure.
     #[error("Vulkan call {call} failed: {result}")]

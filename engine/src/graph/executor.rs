@@ -165,6 +165,9 @@ impl Executor {
         if value == 0 {
             return Ok(());
         }
+        if self.ctx.is_device_lost() {
+            return Err(self.ctx.device_lost_error(during));
+        }
         let semaphores = [self.timeline];
         let values = [value];
         let info = vk::SemaphoreWaitInfo::default()
@@ -176,6 +179,9 @@ impl Executor {
                 during: during.to_string(),
                 seconds: 60,
             },
+            vk::Result::ERROR_DEVICE_LOST => self.ctx.observe(EngineError::DeviceLost {
+                during: during.to_string(),
+            }),
             other => crate::error::from_vk("vkWaitSemaphores", other),
         })
     }
@@ -258,7 +264,7 @@ impl Executor {
                 frame.0
             )));
         }
-        self.wait_value(frame.0, "waiting for a frame")?;
+        self.wait_value(frame.0, &format!("waiting for frame {}", frame.0))?;
         self.collect(slot)
     }
 
@@ -340,7 +346,18 @@ impl Executor {
             .command_buffer_infos(&cmds)
             .wait_semaphore_infos(&waits)
             .signal_semaphore_infos(&signals)];
-        self.ctx.submit(&info, vk::Fence::null())?;
+        if let Err(e) = self.ctx.submit_frame(&info) {
+            let e = match e {
+                EngineError::DeviceLost { .. } => self.ctx.device_lost_error(format!(
+                    "the submission of frame {value} (passes {})",
+                    slot.pass_names.join(", ")
+                )),
+                other => other,
+            };
+            slot.release();
+            slot.readbacks.clear();
+            return Err(e);
+        }
         slot.value = value;
         slot.collected = false;
         self.submitted = value;
@@ -738,7 +755,11 @@ fn record_readback(
 
 impl Drop for Executor {
     fn drop(&mut self) {
-        if let Err(e) = self.wait_value(self.submitted, "dropping the executor") {
+        if self.ctx.is_device_lost() {
+            // Waits for what the device still runs (an injected loss leaves it working); a lost
+            // device returns at once.
+            let _ = self.ctx.wait_idle();
+        } else if let Err(e) = self.wait_value(self.submitted, "dropping the executor") {
             tracing::error!("{e}");
             let _ = self.ctx.wait_idle();
         }

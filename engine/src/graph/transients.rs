@@ -50,7 +50,9 @@ impl TransientPool {
     }
 
     /// Recreates the pool for `plan`. The caller has waited for every frame using the old pool.
+    /// Fails, holding nothing, when the transients do not fit in the memory budget.
     pub fn rebuild(&mut self, ctx: &Context, plan: &Plan) -> Result<()> {
+        self.signature.clear();
         self.resources.clear();
         self.blocks.clear();
         let (sig, ids) = signature(plan);
@@ -80,6 +82,7 @@ impl TransientPool {
                 }
             }
         }
+        let mut blocks = Vec::new();
         for (s, slot) in plan.slots.iter().enumerate() {
             let members: Vec<usize> = (0..sig.len()).filter(|&i| sig[i].3 == s).collect();
             let mut req = vk::MemoryRequirements {
@@ -93,37 +96,55 @@ impl TransientPool {
                 req.memory_type_bits &= requirements[m].memory_type_bits;
             }
             // Members with incompatible memory types get blocks of their own.
-            let groups: Vec<Vec<usize>> = if req.memory_type_bits == 0 {
-                members.iter().map(|&m| vec![m]).collect()
+            if req.memory_type_bits == 0 {
+                blocks.extend(
+                    members
+                        .iter()
+                        .map(|&m| (s, slot.images, vec![m], requirements[m])),
+                );
             } else {
-                vec![members]
-            };
-            for group in groups {
-                let group_req = if group.len() == 1 {
-                    requirements[group[0]]
-                } else {
-                    req
-                };
-                let block = MemoryBlock::new(
-                    ctx,
-                    &format!("transient slot {s}"),
-                    "graph.transient",
-                    group_req,
-                    !slot.images,
-                )?;
-                let (memory, offset) = block.memory();
-                for &m in &group {
-                    match resources[m].as_mut() {
-                        Some(Physical::Image(image)) => {
-                            let image = Arc::get_mut(image).expect("new image is not shared");
-                            image.bind(ctx, memory, offset)?;
-                        }
-                        Some(Physical::Buffer(buffer)) => buffer.bind(memory, offset)?,
-                        None => {}
-                    }
-                }
-                self.blocks.push(block);
+                blocks.push((s, slot.images, members, req));
             }
+        }
+        let total: u64 = blocks.iter().map(|b| b.3.size).sum();
+        let largest = sig
+            .iter()
+            .zip(&ids)
+            .zip(&requirements)
+            .max_by_key(|(_, req)| req.size)
+            .map(|((_, id), _)| plan.resources[id.0 as usize].name.as_str())
+            .unwrap_or("none");
+        ctx.shared.budget.check(
+            &format!(
+                "the frame's {} transient images and buffers (aliased into {} blocks; the \
+                 largest: {largest})",
+                sig.len(),
+                blocks.len()
+            ),
+            total,
+            ctx.shared.memory.total_bytes(),
+            false,
+        )?;
+        for (s, images, group, group_req) in blocks {
+            let block = MemoryBlock::new(
+                ctx,
+                &format!("transient slot {s}"),
+                "graph.transient",
+                group_req,
+                !images,
+            )?;
+            let (memory, offset) = block.memory();
+            for &m in &group {
+                match resources[m].as_mut() {
+                    Some(Physical::Image(image)) => {
+                        let image = Arc::get_mut(image).expect("new image is not shared");
+                        image.bind(ctx, memory, offset)?;
+                    }
+                    Some(Physical::Buffer(buffer)) => buffer.bind(memory, offset)?,
+                    None => {}
+                }
+            }
+            self.blocks.push(block);
         }
         self.resources = resources.into_iter().flatten().collect();
         self.signature = sig;

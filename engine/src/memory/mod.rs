@@ -29,6 +29,12 @@ pub(crate) fn allocate(
     location: MemoryLocation,
     linear: bool,
 ) -> Result<Allocation> {
+    ctx.shared.budget.check(
+        name,
+        requirements.size,
+        ctx.shared.memory.total_bytes(),
+        true,
+    )?;
     let mut allocator = ctx
         .shared
         .allocator

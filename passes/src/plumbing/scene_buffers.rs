@@ -2,7 +2,7 @@
 //! frame's graph and bound by the names the shaders declare in `shaders/common/scene.glsl`.
 
 use bytemuck::Pod;
-use lucid_engine::graph::{BufferHandle, ComputePass, RenderGraph};
+use lucid_engine::graph::{Access, BufferHandle, ComputePass, RenderGraph};
 use lucid_engine::memory::Buffer;
 use lucid_engine::scene::gpu::{BvhLayout, GpuScene};
 use lucid_engine::scene::SceneFeatures;
@@ -32,17 +32,24 @@ const NAMES: [&str; 15] = [
 /// Device-local copies of a packed scene.
 pub struct SceneBuffers {
     buffers: [Arc<Buffer>; 15],
+    /// New contents of top-level buffers (by index), written in place by each frame's graph
+    /// until a frame with them is submitted ([`SceneBuffers::submitted`]).
+    pending: Vec<(usize, Arc<Vec<u8>>)>,
     /// The features the scene uses (drive shader specialization).
     pub features: SceneFeatures,
 }
 
 fn upload<T: Pod>(ctx: &Context, name: &str, data: &[T]) -> Result<Arc<Buffer>> {
+    upload_bytes(ctx, name, bytemuck::cast_slice(data))
+}
+
+fn upload_bytes(ctx: &Context, name: &str, data: &[u8]) -> Result<Arc<Buffer>> {
     Buffer::with_data(
         ctx,
         name,
         "scene",
         ash::vk::BufferUsageFlags::STORAGE_BUFFER,
-        bytemuck::cast_slice(data),
+        data,
     )
     .map(Arc::new)
 }
@@ -69,18 +76,34 @@ impl SceneBuffers {
                 upload(ctx, NAMES[13], &gpu.triangles)?,
                 upload(ctx, NAMES[14], &gpu.vertex_attributes)?,
             ],
+            pending: Vec::new(),
             features: gpu.features,
         })
     }
 
-    /// Re-uploads what moving instances or the camera changes (TLAS, instances, lights, params).
-    /// Frames in flight keep the old buffers alive until they finish.
+    /// Replaces what moving instances changes (TLAS, instances, lights, params). Arrays whose size
+    /// stays the same (every move of an instance) are written in place by the next frame's graph,
+    /// after the frames in flight on the queue: no upload waits for the GPU. Others get new
+    /// buffers at once (frames in flight keep the old ones alive until they finish).
     pub fn update_top_level(&mut self, ctx: &Context, gpu: &GpuScene) -> Result<()> {
-        self.buffers[3] = upload(ctx, NAMES[3], gpu.tlas_nodes.bytes())?;
-        self.buffers[4] = upload(ctx, NAMES[4], &gpu.instances)?;
-        self.buffers[7] = upload(ctx, NAMES[7], &gpu.lights)?;
-        self.buffers[8] = upload(ctx, NAMES[8], &gpu.light_table)?;
-        self.buffers[11] = upload(ctx, NAMES[11], std::slice::from_ref(&gpu.params))?;
+        let arrays: [(usize, &[u8]); 5] = [
+            (3, gpu.tlas_nodes.bytes()),
+            (4, bytemuck::cast_slice(&gpu.instances)),
+            (7, bytemuck::cast_slice(&gpu.lights)),
+            (8, bytemuck::cast_slice(&gpu.light_table)),
+            (11, bytemuck::bytes_of(&gpu.params)),
+        ];
+        for (i, data) in arrays {
+            self.pending.retain(|(j, _)| *j != i);
+            let in_place = !data.is_empty()
+                && data.len() % 4 == 0
+                && data.len() as u64 == self.buffers[i].size();
+            if in_place {
+                self.pending.push((i, Arc::new(data.to_vec())));
+            } else {
+                self.buffers[i] = upload_bytes(ctx, NAMES[i], data)?;
+            }
+        }
         Ok(())
     }
 
@@ -91,11 +114,34 @@ impl SceneBuffers {
         self.update_top_level(ctx, gpu)
     }
 
-    /// Imports the buffers into a frame's graph.
+    /// Imports the buffers into a frame's graph, with a pass writing the pending top-level
+    /// contents first.
     pub fn import(&self, g: &mut RenderGraph) -> SceneHandles {
-        SceneHandles {
-            handles: std::array::from_fn(|i| g.import_buffer(NAMES[i], self.buffers[i].clone())),
+        let mut handles =
+            std::array::from_fn(|i| g.import_buffer(NAMES[i], self.buffers[i].clone()));
+        if !self.pending.is_empty() {
+            let mut p = g.add_pass("scene.update_top_level");
+            let writes: Vec<(BufferHandle, Arc<Vec<u8>>)> = self
+                .pending
+                .iter()
+                .map(|(i, data)| {
+                    handles[*i] = p.write(handles[*i], Access::TransferWrite);
+                    (handles[*i], data.clone())
+                })
+                .collect();
+            p.execute(move |ctx| {
+                writes
+                    .iter()
+                    .try_for_each(|(buffer, data)| ctx.update_buffer(*buffer, data))
+            });
         }
+        SceneHandles { handles }
+    }
+
+    /// A frame with the pending top-level contents was submitted: later frames need not write
+    /// them again.
+    pub fn submitted(&mut self) {
+        self.pending.clear();
     }
 
     /// Bytes of scene data on the GPU.

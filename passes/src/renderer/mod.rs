@@ -697,6 +697,7 @@ impl Renderer {
         let mut g = RenderGraph::new();
         let (_, stats) = self.add_frame(&mut g);
         let frame = self.executor.execute(g.compile()?)?;
+        self.buffers.submitted();
         if let Some((old, old_stats)) = self.pending_stats.replace((frame, stats)) {
             let outputs = self.executor.wait(old)?;
             self.collect_stats(&outputs, old_stats)?;
@@ -745,6 +746,7 @@ impl Renderer {
             }
         };
         let frame = self.executor.execute(g.compile()?)?;
+        self.buffers.submitted();
         self.collect_pending_stats()?;
         let outputs = self.executor.wait(frame)?;
         self.collect_stats(&outputs, stats)?;

@@ -15,6 +15,8 @@ pub struct InfoArgs {
 pub fn run(args: &InfoArgs) -> anyhow::Result<()> {
     let ctx = Context::new(&ContextDesc::from_env())?;
     let info = ctx.info();
+    let budget = ctx.memory_budget();
+    let mib = |bytes: u64| bytes / (1024 * 1024);
     if args.json {
         let value = serde_json::json!({
             "device": info.name,
@@ -26,6 +28,9 @@ pub fn run(args: &InfoArgs) -> anyhow::Result<()> {
             "timestamp_period_ns": info.timestamp_period_ns,
             "shader_float16": info.shader_float16,
             "validation": format!("{:?}", ctx.validation()),
+            "device_local_heap_mib": mib(budget.heap_bytes),
+            "memory_budget_mib": mib(budget.bytes()),
+            "max_allocation_mib": mib(budget.max_allocation_bytes),
         });
         println!("{}", serde_json::to_string_pretty(&value)?);
     } else {
@@ -45,6 +50,12 @@ pub fn run(args: &InfoArgs) -> anyhow::Result<()> {
         );
         println!("float16:       {}", info.shader_float16);
         println!("validation:    {:?}", ctx.validation());
+        println!(
+            "memory:        {} MiB device-local heap, budget {} MiB, at most {} MiB per allocation",
+            mib(budget.heap_bytes),
+            mib(budget.bytes()),
+            mib(budget.max_allocation_bytes)
+        );
     }
     Ok(())
 }

@@ -10,7 +10,7 @@ use super::size::Size;
 use anyhow::{bail, Context as _};
 use clap::Args;
 use glam::{Affine3A, Vec3};
-use lucid_engine::{Context, ContextDesc};
+use lucid_engine::{Context, ContextDesc, Validation};
 use lucid_passes::renderer::{Algorithm, Denoiser, Renderer, Settings};
 use std::path::PathBuf;
 
@@ -120,7 +120,9 @@ pub fn run(args: &SoakArgs) -> anyhow::Result<()> {
         bail!("scene {} has no instance to move", scene.name);
     }
     let path = scene.camera_path.clone();
-    let home = scene.instances[0].transform;
+    // The last instance moves (in the built-in scenes, an object in view rather than the room).
+    let moving = scene.instances.len() - 1;
+    let home = scene.instances[moving].transform;
     let ctx = Context::new(&ContextDesc::from_env())?;
     let algorithms: Vec<Algorithm> = Algorithm::ALL
         .into_iter()
@@ -135,16 +137,30 @@ pub fn run(args: &SoakArgs) -> anyhow::Result<()> {
     let cycle = configurations.len() as u32 * args.switch_every;
     let settled = cycle;
     eprintln!(
-        "soak: {} frames of {}, {} configurations, memory compared from frame {settled}",
+        "soak: {} frames of {}, {} configurations, memory compared from frame {settled}, \
+         validation {:?}",
         args.frames,
         scene.name,
-        configurations.len()
+        configurations.len(),
+        ctx.validation()
     );
+    if ctx.validation() == Validation::Off {
+        eprintln!(
+            "note: validation is off, so validation messages are not checked: set LUCID_VALIDATION=1"
+        );
+    }
     let (w, h) = (args.size.width, args.size.height);
     let mut renderer = Renderer::new(&ctx, scene, w, h, Settings::default())?;
     let progress = Progress::new(u64::from(args.frames), "frames");
     let mut samples = Vec::new();
+    // Speed is measured after the first cycle (which creates pipelines and histories).
+    let timed_from = if args.frames > settled { settled } else { 0 };
+    let mut started = std::time::Instant::now();
+    let mut gpu_ms = 0.0;
     for frame in 0..args.frames {
+        if frame == timed_from {
+            started = std::time::Instant::now();
+        }
         let (algorithm, denoiser) =
             configurations[(frame / args.switch_every) as usize % configurations.len()];
         let settings = renderer.settings();
@@ -160,8 +176,17 @@ pub fn run(args: &SoakArgs) -> anyhow::Result<()> {
             renderer.set_camera(path.sample(t % path.duration().max(1e-3)));
         }
         let offset = Vec3::new(0.05 * (t * 2.0).sin(), 0.0, 0.0);
-        renderer.set_instance_transform(0, Affine3A::from_translation(offset) * home)?;
+        renderer.set_instance_transform(moving, Affine3A::from_translation(offset) * home)?;
         renderer.render()?;
+        // The passes of the frame completed last (each frame waits for the one before).
+        if frame >= timed_from {
+            gpu_ms += renderer
+                .executor()
+                .pass_timings()
+                .iter()
+                .map(|t| t.ms)
+                .sum::<f64>();
+        }
         if (frame + 1) % args.sample_every == 0 {
             renderer.finish()?;
             samples.push(Sample {
@@ -177,9 +202,23 @@ pub fn run(args: &SoakArgs) -> anyhow::Result<()> {
     }
     renderer.finish()?;
     progress.finish();
+    let timed_frames = f64::from(args.frames - timed_from);
+    let wall_ms_per_frame = started.elapsed().as_secs_f64() * 1e3 / timed_frames;
+    let gpu_ms_per_frame = gpu_ms / timed_frames;
+    println!(
+        "frames {timed_from} to {} at {w}x{h}: {wall_ms_per_frame:.2} ms per frame (wall), \
+         {gpu_ms_per_frame:.2} ms of it in the passes on the GPU",
+        args.frames
+    );
     if let Some(path) = &args.json {
-        let json =
-            serde_json::json!({ "scene": args.scene, "settled_from": settled, "samples": samples });
+        let json = serde_json::json!({
+            "scene": args.scene,
+            "size": [w, h],
+            "settled_from": settled,
+            "wall_ms_per_frame": wall_ms_per_frame,
+            "gpu_ms_per_frame": gpu_ms_per_frame,
+            "samples": samples,
+        });
         std::fs::write(path, serde_json::to_string_pretty(&json)?)
             .with_context(|| format!("writing {}", path.display()))?;
     }

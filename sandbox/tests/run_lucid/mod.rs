@@ -5,9 +5,15 @@ use std::process::{Command, Output};
 
 /// Runs `lucid` with `args` and validation on; its output.
 pub fn lucid(args: &[&str]) -> Output {
+    lucid_with_env(args, &[])
+}
+
+/// Runs `lucid` with `args`, validation on and the environment variables `env`; its output.
+pub fn lucid_with_env(args: &[&str], env: &[(&str, &str)]) -> Output {
     Command::new(env!("CARGO_BIN_EXE_lucid"))
         .args(args)
         .env("LUCID_VALIDATION", "1")
+        .envs(env.iter().copied())
         .output()
         .expect("run lucid")
 }
