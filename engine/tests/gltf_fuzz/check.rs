@@ -5,7 +5,7 @@ use std::path::PathBuf;
 use std::sync::mpsc::{self, RecvTimeoutError};
 use std::time::Duration;
 
-use lucid_engine::scene::gpu::pack_flat;
+use lucid_engine::scene::gpu::{pack_flat, BvhLayout};
 use lucid_engine::scene::{load_gltf_slice, Bvh, FlatScene};
 
 /// The longest an import of a small file (and the CPU preparation of what it loads) may take
@@ -42,6 +42,8 @@ fn import_and_prepare(data: &[u8], base: Option<PathBuf>, label: &str) -> Result
     let scene = load_gltf_slice(data, base.as_deref(), label).map_err(|e| e.to_string())?;
     let flat = FlatScene::new(&scene, &[]);
     let bvh = Bvh::build(&flat.scene);
-    let _ = pack_flat(&flat, &scene, &bvh);
+    for layout in BvhLayout::ALL {
+        let _ = pack_flat(&flat, &scene, &bvh, layout);
+    }
     Ok(())
 }
