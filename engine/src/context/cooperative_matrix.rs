@@ -17,8 +17,10 @@ fn is_f16_16x16x16(p: &vk::CooperativeMatrixPropertiesNV) -> bool {
 }
 
 /// Whether `physical` supports what the tensor-core kernels need: the extension (listed in
-/// `extensions`) and its `cooperativeMatrix` feature, `shaderFloat16`, `vulkanMemoryModel`,
-/// 32-wide subgroups and the fp16 16x16x16 shape. When it does, device creation enables them.
+/// `extensions`) and its `cooperativeMatrix` feature, `shaderFloat16`, `vulkanMemoryModel` with
+/// `vulkanMemoryModelDeviceScope` (with the memory model on, every shader's device-scope atomics,
+/// e.g. BDPT's, need the latter), 32-wide subgroups and the fp16 16x16x16 shape. When it does,
+/// device creation enables them.
 pub(crate) fn supports_tensor_cores(
     entry: &ash::Entry,
     instance: &ash::Instance,
@@ -39,6 +41,7 @@ pub(crate) fn supports_tensor_cores(
     if cooperative.cooperative_matrix == vk::FALSE
         || f12.shader_float16 == vk::FALSE
         || f12.vulkan_memory_model == vk::FALSE
+        || f12.vulkan_memory_model_device_scope == vk::FALSE
     {
         return false;
     }

@@ -198,6 +198,7 @@ pub(crate) fn create_device(
     let mut f12 = vk::PhysicalDeviceVulkan12Features::default()
         .timeline_semaphore(true)
         .vulkan_memory_model(tensor_cores)
+        .vulkan_memory_model_device_scope(tensor_cores)
         .scalar_block_layout(supported12.scalar_block_layout == vk::TRUE)
         .shader_float16(shader_float16)
         .shader_buffer_int64_atomics(int64_atomics)

@@ -56,7 +56,7 @@ impl InferencePath {
             InferencePath::TensorCores if !ctx.info().tensor_cores => {
                 Err(EngineError::InvalidArgument(format!(
                     "the learned denoiser's tensor-core path needs VK_NV_cooperative_matrix with \
-                     fp16 16x16x16 products, shaderFloat16, vulkanMemoryModel and 32-wide \
+                     fp16 16x16x16 products, shaderFloat16, vulkanMemoryModel with device scope and 32-wide \
                      subgroups; {} lacks one of them (use the portable path)",
                     ctx.info().name
                 )))
