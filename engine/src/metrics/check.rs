@@ -22,16 +22,25 @@ pub(super) fn check_image(image: &ImageData) -> Result<(), MetricsError> {
     Ok(())
 }
 
-/// Checks both images with [`check_image`] and that their sizes agree.
-pub(super) fn check_pair(test: &ImageData, reference: &ImageData) -> Result<(), MetricsError> {
-    if (test.width, test.height) != (reference.width, reference.height) {
+/// Checks that `test` has the reference's `(width, height)`.
+pub(super) fn check_size(
+    test: &ImageData,
+    (reference_width, reference_height): (u32, u32),
+) -> Result<(), MetricsError> {
+    if (test.width, test.height) != (reference_width, reference_height) {
         return Err(MetricsError::SizeMismatch {
             test_width: test.width,
             test_height: test.height,
-            reference_width: reference.width,
-            reference_height: reference.height,
+            reference_width,
+            reference_height,
         });
     }
+    Ok(())
+}
+
+/// Checks both images with [`check_image`] and that their sizes agree.
+pub(super) fn check_pair(test: &ImageData, reference: &ImageData) -> Result<(), MetricsError> {
+    check_size(test, (reference.width, reference.height))?;
     check_image(test)?;
     check_image(reference)
 }

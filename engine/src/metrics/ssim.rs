@@ -2,7 +2,7 @@
 
 use rayon::prelude::*;
 
-use super::check::{check_image, check_pair, check_parameter};
+use super::check::{check_image, check_pair, check_parameter, check_size};
 use super::plane::{clamp_unit, kernel, normalized, Plane};
 use super::MetricsError;
 use crate::capture::{rec709_luminance, ImageData};
@@ -88,15 +88,7 @@ impl SsimReference {
     /// Mean SSIM of `test` (the reference's size) against the prepared reference.
     pub fn compare(&self, test: &ImageData) -> Result<f64, MetricsError> {
         check_image(test)?;
-        let (width, height) = self.size;
-        if (test.width, test.height) != (width, height) {
-            return Err(MetricsError::SizeMismatch {
-                test_width: test.width,
-                test_height: test.height,
-                reference_width: width,
-                reference_height: height,
-            });
-        }
+        check_size(test, self.size)?;
         let tests = signals(test, self.mode);
         let total: f64 = tests
             .iter()

@@ -17,7 +17,7 @@ pub use hdr::{hdr_flip, HdrFlipParams};
 
 use rayon::prelude::*;
 
-use super::check::{check_image, check_pair, check_parameter};
+use super::check::{check_image, check_pair, check_parameter, check_size};
 use super::plane::{clamp_unit, Plane};
 use super::MetricsError;
 use crate::capture::ImageData;
@@ -103,15 +103,8 @@ impl FlipReference {
     /// LDR-FLIP of `test` (the reference's size) against the prepared reference.
     pub fn compare(&self, test: &ImageData) -> Result<FlipResult, MetricsError> {
         check_image(test)?;
+        check_size(test, self.size)?;
         let (width, height) = self.size;
-        if (test.width, test.height) != (width, height) {
-            return Err(MetricsError::SizeMismatch {
-                test_width: test.width,
-                test_height: test.height,
-                reference_width: width,
-                reference_height: height,
-            });
-        }
         let test = opponent(test);
         let color_error = color_difference(&self.lab, &hunt_lab(&self.csf.apply(&test)));
         let test_responses = self.features.responses(&test.y.map(ycxcz_luminance));
