@@ -6,8 +6,8 @@ Everything the shaders compute is defined here, in the same order and with the s
 the input features (with last frame's output and two running means of the noisy radiance, one of
 it and one of it range-compressed against fireflies, warped by the motion vectors and masked where
 reprojection fails), the U-Net of 3x3 convolutions, and the
-output (a blend of the network's prediction with the warped history, re-modulated by albedo plus
-emission). With
+output (a blend of the network's prediction with the warped history, re-modulated by the first
+hits' albedo plus emission averaged over time with the same warp, `antialias_surface`). With
 `fp16_storage=True` every tensor the shaders store in half precision is rounded to it here too,
 so the parity test can compare tightly.
 
@@ -55,6 +55,9 @@ MIN_WEIGHT = 0.01
 # exponential moving average with weight 1/N_MAX), and the luminance its moments are taken of
 # (Rec. 709, `luminance` in shaders/common/math.glsl).
 N_MAX = 32.0
+# The first hits' albedo and emission that re-modulate the output are averaged over time as SVGF's
+# temporal pass averages them: each frame's value weighs at least SURFACE_ALPHA.
+SURFACE_ALPHA = 0.1
 LUMINANCE = (0.2126, 0.7152, 0.0722)
 
 
@@ -171,6 +174,22 @@ def accumulate(demodulated, warped_accum, warped_moment, warped_robust, mask):
     return torch.cat([mean, n], 1), moment, robust
 
 
+def antialias_surface(albedo, emission, warped_albedo, warped_emission, n, mask):
+    """The first hits' albedo and emission that re-modulate this frame's output: each frame's
+    samples are jittered over the pixel, so one frame's are aliased and change from frame to frame
+    at texture, emitter and object edges (the output flickered there). Where reprojection holds
+    (`mask`), the warped means move towards this frame's values by max(1/n, SURFACE_ALPHA), n the
+    running mean's history length this frame; elsewhere they are this frame's. Returns (albedo,
+    emission), [B,3,H,W] each."""
+    ok = mask > 0.0
+    alpha = torch.clamp(1.0 / n, min=SURFACE_ALPHA)
+
+    def toward(prev, value):
+        return torch.where(ok, prev + (value - prev) * alpha, value)
+
+    return toward(warped_albedo, albedo), toward(warped_emission, emission)
+
+
 def features(rec, warped, mask, accum, moment, robust):
     """The network's 24 input channels for one frame: 15 as in `lucid-rae-v1` (log radiance,
     albedo, normal, roughness, log depth, warped output, mask), then log(1 + running mean) (3),
@@ -224,7 +243,8 @@ class RecurrentDenoiser(nn.Module):
         """One frame. `record` [B,RECORD_SIZE,H,W]; `state` None (no history) or the dict returned
         by the previous step (`output`: log radiance [B,3], `surface`: depth and normal [B,4],
         `accum`: running mean and its length [B,4], `moment`: second moment of luminance [B,1],
-        `robust`: the compressed running mean and its second moment [B,4]).
+        `robust`: the compressed running mean and its second moment [B,4], `albedo` and `emission`:
+        the first hits' averaged over time [B,3] each).
         Returns (radiance [B,3,H,W], new state)."""
         rec = split_record(record)
         if state is None:
@@ -232,15 +252,21 @@ class RecurrentDenoiser(nn.Module):
             warped, mask = torch.zeros_like(rec["demodulated"]), zero
             warped_accum, warped_moment = torch.zeros_like(record[:, 0:4]), zero
             warped_robust = torch.zeros_like(record[:, 0:4])
+            warped_albedo, warped_emission = torch.zeros_like(rec["albedo"]), torch.zeros_like(rec["emission"])
         else:
-            # One warp (the same taps and mask) for the output and the running means.
-            history = torch.cat([state["output"], state["accum"], state["moment"], state["robust"]], 1)
+            # One warp (the same taps and mask) for the output, the running means and the surface.
+            names = ("output", "accum", "moment", "robust", "albedo", "emission")
+            history = torch.cat([state[k] for k in names], 1)
             history, mask = warp_history(history, state["surface"], rec["motion"], rec["normal"], rec["depth"])
             warped, warped_accum = history[:, 0:3], history[:, 3:7]
             warped_moment, warped_robust = history[:, 7:8], history[:, 8:12]
+            warped_albedo, warped_emission = history[:, 12:15], history[:, 15:18]
         # The accumulation depends on the records only (no weights): no gradient through it.
         accum, moment, robust = accumulate(
             rec["demodulated"], warped_accum.detach(), warped_moment.detach(), warped_robust.detach(), mask
+        )
+        albedo, emission = antialias_surface(
+            rec["albedo"], rec["emission"], warped_albedo.detach(), warped_emission.detach(), accum[:, 3:4], mask
         )
         x = half(features(rec, warped, mask, accum, moment, robust), fp16_storage)
         warped, mask = x[:, 11:14], x[:, 14:15]  # as the output pass reads them: stored
@@ -256,9 +282,17 @@ class RecurrentDenoiser(nn.Module):
         blend = mask * torch.sigmoid(o[:, 3:4])
         log_out = (o[:, 0:3] * (1.0 - blend) + warped * blend).clamp_min(0.0)
         log_out = half(log_out, fp16_storage)
-        radiance = torch.expm1(log_out) * rec["albedo"] + rec["emission"]
+        radiance = torch.expm1(log_out) * albedo + emission
         surface = torch.cat([rec["depth"], rec["normal"]], 1)
-        state = {"output": log_out, "surface": surface, "accum": accum, "moment": moment, "robust": robust}
+        state = {
+            "output": log_out,
+            "surface": surface,
+            "accum": accum,
+            "moment": moment,
+            "robust": robust,
+            "albedo": albedo,
+            "emission": emission,
+        }
         return radiance, state
 
     def forward(self, records, fp16_storage=False):

@@ -6,7 +6,8 @@
 // N_MAX and log(1 + the standard deviation of luminance), then the running mean of the radiance
 // range-compressed against fireflies (`compress`): log(1 + its mean expanded back) and the
 // standard deviation of its luminance. Also writes this frame's surface (depth, normal), running
-// means and second moments for the next frame.
+// means and second moments for the next frame, and the first hits' albedo and emission averaged
+// over time with the same taps (`antialias_surface`), which output.comp re-modulates by.
 #include "common/image_coords.glsl"
 #include "common/math.glsl"
 #include "neural/record.glsl"
@@ -25,6 +26,10 @@ layout(set = 0, binding = 7, r32f) uniform readonly image2D u_prev_moment;
 layout(set = 0, binding = 8, r32f) uniform writeonly image2D u_moment;
 layout(set = 0, binding = 9, rgba32f) uniform readonly image2D u_prev_robust;
 layout(set = 0, binding = 10, rgba32f) uniform writeonly image2D u_robust;
+layout(set = 0, binding = 11, rgba32f) uniform readonly image2D u_prev_albedo;
+layout(set = 0, binding = 12, rgba32f) uniform writeonly image2D u_albedo;
+layout(set = 0, binding = 13, rgba32f) uniform readonly image2D u_prev_emission;
+layout(set = 0, binding = 14, rgba32f) uniform writeonly image2D u_emission;
 
 layout(push_constant) uniform Params {
     uint width;
@@ -37,6 +42,8 @@ const float NORMAL_COS = 0.9;
 const float MIN_WEIGHT = 0.01;
 // The longest history the running mean averages; after that it is an exponential moving average.
 const float N_MAX = 32.0;
+// The least weight of this frame's albedo and emission in their averages over time.
+const float SURFACE_ALPHA = 0.1;
 // The smallest 1 - luminance that `expand` divides by.
 const float EXPAND_MIN = 1e-3;
 
@@ -77,6 +84,8 @@ void main() {
     vec4 warped_accum = vec4(0.0);
     float warped_moment = 0.0;
     vec4 warped_robust = vec4(0.0);
+    vec3 warped_albedo = vec3(0.0);
+    vec3 warped_emission = vec3(0.0);
     float weight_sum = 0.0;
     if (params.history_valid != 0u) {
         vec2 prev_pos = vec2(pixel) + motion.xy;
@@ -99,6 +108,8 @@ void main() {
                 warped_accum += w * imageLoad(u_prev_accum, ivec2(q));
                 warped_moment += w * imageLoad(u_prev_moment, ivec2(q)).r;
                 warped_robust += w * imageLoad(u_prev_robust, ivec2(q));
+                warped_albedo += w * imageLoad(u_prev_albedo, ivec2(q)).rgb;
+                warped_emission += w * imageLoad(u_prev_emission, ivec2(q)).rgb;
                 weight_sum += w;
             }
         }
@@ -110,6 +121,8 @@ void main() {
         warped_accum /= norm;
         warped_moment /= norm;
         warped_robust /= norm;
+        warped_albedo /= norm;
+        warped_emission /= norm;
         mask = 1.0;
     } else {
         warped = vec3(0.0);
@@ -134,6 +147,20 @@ void main() {
     imageStore(u_accum, pixel, vec4(mean, n));
     imageStore(u_moment, pixel, vec4(moment, 0.0, 0.0, 0.0));
     imageStore(u_robust, pixel, robust);
+
+    // The first hits' albedo and emission averaged over time (`antialias_surface`).
+    vec3 albedo = channel3(RECORD_ALBEDO, pixel);
+    vec3 emission = channel3(RECORD_EMISSION, pixel);
+    vec3 albedo_mean = albedo;
+    vec3 emission_mean = emission;
+    if (mask > 0.0) {
+        float alpha = max(1.0 / n, SURFACE_ALPHA);
+        albedo_mean = warped_albedo + (albedo - warped_albedo) * alpha;
+        emission_mean = warped_emission + (emission - warped_emission) * alpha;
+    }
+    imageStore(u_albedo, pixel, vec4(albedo_mean, 1.0));
+    imageStore(u_emission, pixel, vec4(emission_mean, 1.0));
+
     float mean_lum = luminance(mean);
     float variance = n > 1.0 ? max(moment - mean_lum * mean_lum, 0.0) : 0.0;
     vec3 log_mean = log(vec3(1.0) + mean);
@@ -142,7 +169,6 @@ void main() {
     float robust_variance = n > 1.0 ? max(robust.a - robust_lum * robust_lum, 0.0) : 0.0;
     vec3 log_robust = log(vec3(1.0) + expand(robust.rgb));
 
-    vec3 albedo = channel3(RECORD_ALBEDO, pixel);
     float roughness = channel(RECORD_ROUGHNESS, pixel);
     vec3 log_radiance = log(vec3(1.0) + demodulated);
     float log_depth = log(1.0 + max(depth, 0.0));

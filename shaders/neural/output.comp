@@ -1,12 +1,11 @@
 #version 460
 // The learned denoiser's output (training/model.py, end of `step`): the network's log radiance
 // blended with the reprojected history by the mask times a learned weight, kept for the next frame,
-// and re-modulated by the first hit's albedo plus its emission. The direct decoder's log radiance
+// and re-modulated by the first hits' albedo plus emission averaged over time (features.comp). The direct decoder's log radiance
 // and blend weight are the output layer's channels 0-3; the kernel-predicting decoder's log radiance
 // is the full scale's filtered radiance composited with the half scale's detail
 // (kernel_detail.comp) by channel 25 of its head, the blend weight channel 26.
 #include "common/image_coords.glsl"
-#include "neural/record.glsl"
 #include "neural/tensor.glsl"
 #include "neural/upsample.glsl"
 
@@ -15,7 +14,6 @@ layout(local_size_x = 8, local_size_y = 8) in;
 layout(constant_id = 0) const bool KERNEL = false;
 layout(constant_id = 1) const uint NET_CHANNELS = 4;  // the output layer's channels, padded to 4
 
-layout(set = 0, binding = 0, std430) readonly buffer Record { float v[]; } b_record;
 layout(set = 0, binding = 1, std430) readonly buffer Features { uvec2 v[]; } b_features;
 layout(set = 0, binding = 2, std430) readonly buffer Net { uvec2 v[]; } b_net;
 layout(set = 0, binding = 3, rgba16f) uniform writeonly image2D u_output;
@@ -23,6 +21,9 @@ layout(set = 0, binding = 4, rgba32f) uniform writeonly image2D u_radiance;
 // The kernel decoder's full-scale filtered radiance and the half scale's detail (float32 rgb).
 layout(set = 0, binding = 5, std430) readonly buffer Filtered { vec4 v[]; } b_filtered;
 layout(set = 0, binding = 6, std430) readonly buffer Detail { vec4 v[]; } b_detail;
+// The first hits' albedo and emission averaged over time (`antialias_surface`).
+layout(set = 0, binding = 7, rgba32f) uniform readonly image2D u_albedo;
+layout(set = 0, binding = 8, rgba32f) uniform readonly image2D u_emission;
 
 layout(push_constant) uniform Params {
     uint width;
@@ -69,11 +70,7 @@ void main() {
     vec3 log_out = max(predicted * (1.0 - blend) + warped * blend, vec3(0.0));
     log_out = unpack_channels(pack_channels(vec4(log_out, 0.0))).rgb;
     imageStore(u_output, pixel, vec4(log_out, 0.0));
-    vec3 albedo = vec3(0.0);
-    vec3 emission = vec3(0.0);
-    for (uint i = 0u; i < 3u; ++i) {
-        albedo[i] = b_record.v[record_index(RECORD_ALBEDO + i, pixel, size)];
-        emission[i] = b_record.v[record_index(RECORD_EMISSION + i, pixel, size)];
-    }
+    vec3 albedo = imageLoad(u_albedo, pixel).rgb;
+    vec3 emission = imageLoad(u_emission, pixel).rgb;
     imageStore(u_radiance, pixel, vec4((exp(log_out) - 1.0) * albedo + emission, 1.0));
 }

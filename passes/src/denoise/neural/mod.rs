@@ -19,9 +19,12 @@
 //!    quarter resolution, composited coarse to fine (`shaders/neural/kernel_*.comp`).
 //! 5. **Output**: the predicted log radiance blended with the reprojected history by a learned
 //!    per-pixel weight (only where the mask allows), kept as the next frame's history, and
-//!    re-modulated by albedo plus emission.
+//!    re-modulated by the first hits' albedo plus emission averaged over time (reprojected with
+//!    the same taps as the running means): each frame's samples are jittered over the pixel, so
+//!    one frame's albedo and emission would make texture, emitter and object edges flicker.
 //!
-//! The history (last output, surface, running means and second moments) is the render graph's
+//! The history (last output, surface, running means and second moments, averaged albedo and
+//! emission) is the render graph's
 //! keyed temporal images under a per-denoiser prefix, so two denoisers in one graph keep their own;
 //! a resize, a scene change or
 //! [`Executor::reset_history`](lucid_engine::graph::Executor::reset_history) starts afresh.
@@ -132,6 +135,8 @@ impl FrameDenoiser for NeuralDenoiser {
             keys.accum,
             keys.moment,
             keys.robust,
+            keys.albedo,
+            keys.emission,
         ]
     }
 }
@@ -163,6 +168,8 @@ struct HistoryKeys {
     accum: String,
     moment: String,
     robust: String,
+    albedo: String,
+    emission: String,
 }
 
 impl HistoryKeys {
@@ -174,6 +181,8 @@ impl HistoryKeys {
             accum: key("accum"),
             moment: key("moment"),
             robust: key("robust"),
+            albedo: key("albedo"),
+            emission: key("emission"),
         }
     }
 }
@@ -212,8 +221,8 @@ struct Tensor {
 /// Adds the denoiser over the frame `record` (from [`add_record`], or uploaded by a test) at
 /// `width` x `height`, with its history under the keys `<prefix>.output`, `<prefix>.surface`,
 /// `<prefix>.accum` (running mean and its length), `<prefix>.moment` (second moment of
-/// luminance) and `<prefix>.robust` (the range-compressed running mean and its second moment);
-/// returns the denoised radiance and this frame's accumulation.
+/// luminance), `<prefix>.robust` (the range-compressed running mean and its second moment),
+/// `<prefix>.albedo` and `<prefix>.emission` (the first hits' averaged over time); returns the denoised radiance and this frame's accumulation.
 pub fn add_neural(
     g: &mut RenderGraph,
     network: &Network,
@@ -234,6 +243,8 @@ pub fn add_neural(
     let accum_history = g.temporal_image(&keys.accum, ImageDesc::rgba32f(width, height));
     let moment_history = g.temporal_image(&keys.moment, ImageDesc::r32f(width, height));
     let robust_history = g.temporal_image(&keys.robust, ImageDesc::rgba32f(width, height));
+    let albedo_history = g.temporal_image(&keys.albedo, ImageDesc::rgba32f(width, height));
+    let emission_history = g.temporal_image(&keys.emission, ImageDesc::rgba32f(width, height));
     let full = (width, height);
 
     let mut p = g.compute_pass(&format!("{prefix}.features"), &FEATURES_SHADER);
@@ -242,6 +253,8 @@ pub fn add_neural(
         accum_history.prev,
         moment_history.prev,
         robust_history.prev,
+        albedo_history.prev,
+        emission_history.prev,
     ];
     p.read("b_record", record)
         .read("u_prev_output", prev[0])
@@ -253,6 +266,8 @@ pub fn add_neural(
     let accum = p.history("u_prev_accum", "u_accum", accum_history);
     let moment = p.history("u_prev_moment", "u_moment", moment_history);
     let robust = p.history("u_prev_robust", "u_robust", robust_history);
+    let albedo = p.history("u_prev_albedo", "u_albedo", albedo_history);
+    let emission = p.history("u_prev_emission", "u_emission", emission_history);
     let features = Tensor {
         buffer: p.create_buffer(
             "b_features",
@@ -286,11 +301,12 @@ pub fn add_neural(
     let mut p = g.compute_pass(&format!("{prefix}.output"), &OUTPUT);
     // The direct decoder has no filtered scales: its output is bound in their place (not read).
     let [filtered, detail] = scales.unwrap_or([net.buffer; 2]);
-    p.read("b_record", record)
-        .read("b_features", features.buffer)
+    p.read("b_features", features.buffer)
         .read("b_net", net.buffer)
         .read("b_filtered", filtered)
         .read("b_detail", detail)
+        .read("u_albedo", albedo)
+        .read("u_emission", emission)
         .specialize("KERNEL", kernel)
         .specialize("NET_CHANNELS", net.channels)
         .push(&[width, height]);
