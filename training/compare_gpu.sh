@@ -15,8 +15,9 @@
 #                         its log and the parity fixture from them
 #   dataset.json          the dataset's index
 # (6 files: what the GPU machine sends back is limited to 8.)
-# A variant is MODEL:LOSS[:BURN_IN[:SEED]] (train.py's --model, --loss, --burn-in, --seed) and is
-# named MODEL-LOSS[-burnK][-seedN]. VARIANTS defaults to
+# A variant is MODEL:LOSS[:BURN_IN[:SEED[:WEIGHTS]]] (train.py's --model, --loss, --burn-in, --seed,
+# --weights: the loss terms' weights, comma-separated) and is named
+# MODEL-LOSS[-burnK][-seedN][-wA_B_C]. VARIANTS defaults to
 # "direct:l1grad:12 kernel:l1grad:12"; SEED (0) is the seed of variants that name none: the same
 # seed draws the same training windows. Also: LUCID, SHARDS, ROOMS, FRAMES, SEQUENCES
 # (dataset_gpu.sh), DATA, the dataset's folder; INIT, weights every variant starts from (e.g.
@@ -34,17 +35,17 @@ start=$(date +%s)
 names=()
 args=()
 for v in $variants; do
-  IFS=: read -r model loss burn seed extra <<< "$v"
+  IFS=: read -r model loss burn seed weights extra <<< "$v"
   if [ -z "$model" ] || [ -z "$loss" ] || [ -n "$extra" ]; then
-    echo "variant '$v' is not MODEL:LOSS[:BURN_IN[:SEED]]" >&2
+    echo "variant '$v' is not MODEL:LOSS[:BURN_IN[:SEED[:WEIGHTS]]]" >&2
     exit 2
   fi
-  name=$model-$loss${burn:+-burn$burn}${seed:+-seed$seed}
+  name=$model-$loss${burn:+-burn$burn}${seed:+-seed$seed}${weights:+-w${weights//,/_}}
   for n in "${names[@]}"; do
     if [ "$n" = "$name" ]; then echo "variant $name twice" >&2; exit 2; fi
   done
   names+=("$name")
-  args+=("--model $model --loss $loss --burn-in ${burn:-0} --seed ${seed:-${SEED:-0}}")
+  args+=("--model $model --loss $loss --burn-in ${burn:-0} --seed ${seed:-${SEED:-0}}${weights:+ --weights $weights}")
 done
 ship=${SHIP:-${names[0]}}
 mkdir -p "$out"
