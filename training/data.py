@@ -23,8 +23,8 @@ def dataset_folders(root):
 
 
 def load_split(root, split, device):
-    """The sequences of `split` ("train" or "validation") as a list of dicts with `record`,
-    `reference` (float16 on `device`) and `name`."""
+    """The sequences of `split` ("train", "validation" or "study") as a list of dicts with
+    `record`, `reference` (float16 on `device`) and `name`."""
     out = []
     for folder in dataset_folders(root):
         index = json.loads((folder / "index.json").read_text())

@@ -56,8 +56,10 @@ MIN_WEIGHT = 0.01
 # (Rec. 709, `luminance` in shaders/common/math.glsl).
 N_MAX = 32.0
 # The first hits' albedo and emission that re-modulate the output are averaged over time as SVGF's
-# temporal pass averages them: each frame's value weighs at least SURFACE_ALPHA.
+# temporal pass averages them: each frame's values weigh at least SURFACE_ALPHA, and this frame's
+# emission at least EMISSION_MOTION times the pixel's motion in pixels (`antialias_surface`).
 SURFACE_ALPHA = 0.1
+EMISSION_MOTION = 1.0
 LUMINANCE = (0.2126, 0.7152, 0.0722)
 
 
@@ -174,20 +176,36 @@ def accumulate(demodulated, warped_accum, warped_moment, warped_robust, mask):
     return torch.cat([mean, n], 1), moment, robust
 
 
-def antialias_surface(albedo, emission, warped_albedo, warped_emission, n, mask):
-    """The first hits' albedo and emission that re-modulate this frame's output: each frame's
-    samples are jittered over the pixel, so one frame's are aliased and change from frame to frame
-    at texture, emitter and object edges (the output flickered there). Where reprojection holds
-    (`mask`), the warped means move towards this frame's values by max(1/n, SURFACE_ALPHA), n the
-    running mean's history length this frame; elsewhere they are this frame's. Returns (albedo,
-    emission), [B,3,H,W] each."""
+def neighbourhood_range(x):
+    """The per-channel minimum and maximum of `x` [B,C,H,W] over each pixel's 3x3 neighbourhood
+    (the pixels inside the image)."""
+    return -F.max_pool2d(-x, 3, stride=1, padding=1), F.max_pool2d(x, 3, stride=1, padding=1)
+
+
+def antialias_surface(rec, warped_albedo, warped_emission, n, mask):
+    """The first hits' albedo and emission that re-modulate this frame's output, averaged over
+    time: each frame's samples are jittered over the pixel, so one frame's are aliased and change
+    from frame to frame at texture, emitter and object edges (the output flickered there).
+
+    Where reprojection holds (`mask`), the warped albedo moves towards this frame's by
+    max(1/n, SURFACE_ALPHA), n the running mean's history length this frame (as SVGF averages
+    it). The emission, as log(1 + emission), the same way but with a weight of at least the
+    pixel's motion in pixels (`EMISSION_MOTION`), and its history clamped to the range of this
+    frame's values over the pixel's 3x3 neighbourhood: under motion, at silhouettes, the
+    background moves otherwise than the surface, so a bright emitter's or the sky's share in last
+    frame's samples is not this frame's, and averaging it doubled the relMSE on `classroom`
+    (training/README.md); a still or slowly moving camera gets steady emitter edges, a light
+    switched off leaves no trail. Elsewhere both are this frame's. Returns (albedo, log emission),
+    [B,3,H,W] each."""
     ok = mask > 0.0
     alpha = torch.clamp(1.0 / n, min=SURFACE_ALPHA)
-
-    def toward(prev, value):
-        return torch.where(ok, prev + (value - prev) * alpha, value)
-
-    return toward(warped_albedo, albedo), toward(warped_emission, emission)
+    albedo = torch.where(ok, warped_albedo + (rec["albedo"] - warped_albedo) * alpha, rec["albedo"])
+    emission = torch.log1p(rec["emission"])
+    speed = torch.sqrt(rec["motion"][:, 0:1] ** 2 + rec["motion"][:, 1:2] ** 2)
+    alpha_emission = torch.maximum(alpha, torch.clamp(speed * EMISSION_MOTION, max=1.0))
+    low, high = neighbourhood_range(emission)
+    prev = torch.minimum(torch.maximum(warped_emission, low), high)
+    return albedo, torch.where(ok, prev + (emission - prev) * alpha_emission, emission)
 
 
 def features(rec, warped, mask, accum, moment, robust):
@@ -243,8 +261,8 @@ class RecurrentDenoiser(nn.Module):
         """One frame. `record` [B,RECORD_SIZE,H,W]; `state` None (no history) or the dict returned
         by the previous step (`output`: log radiance [B,3], `surface`: depth and normal [B,4],
         `accum`: running mean and its length [B,4], `moment`: second moment of luminance [B,1],
-        `robust`: the compressed running mean and its second moment [B,4], `albedo` and `emission`:
-        the first hits' averaged over time [B,3] each).
+        `robust`: the compressed running mean and its second moment [B,4], `albedo` and
+        `emission`: the first hits' albedo and log(1 + emission) averaged over time [B,3] each).
         Returns (radiance [B,3,H,W], new state)."""
         rec = split_record(record)
         if state is None:
@@ -252,9 +270,10 @@ class RecurrentDenoiser(nn.Module):
             warped, mask = torch.zeros_like(rec["demodulated"]), zero
             warped_accum, warped_moment = torch.zeros_like(record[:, 0:4]), zero
             warped_robust = torch.zeros_like(record[:, 0:4])
-            warped_albedo, warped_emission = torch.zeros_like(rec["albedo"]), torch.zeros_like(rec["emission"])
+            warped_albedo = torch.zeros_like(rec["albedo"])
+            warped_emission = torch.zeros_like(rec["emission"])
         else:
-            # One warp (the same taps and mask) for the output, the running means and the surface.
+            # One warp (the same taps and mask) for the output, the running means and the albedo.
             names = ("output", "accum", "moment", "robust", "albedo", "emission")
             history = torch.cat([state[k] for k in names], 1)
             history, mask = warp_history(history, state["surface"], rec["motion"], rec["normal"], rec["depth"])
@@ -265,9 +284,7 @@ class RecurrentDenoiser(nn.Module):
         accum, moment, robust = accumulate(
             rec["demodulated"], warped_accum.detach(), warped_moment.detach(), warped_robust.detach(), mask
         )
-        albedo, emission = antialias_surface(
-            rec["albedo"], rec["emission"], warped_albedo.detach(), warped_emission.detach(), accum[:, 3:4], mask
-        )
+        albedo, emission = antialias_surface(rec, warped_albedo.detach(), warped_emission.detach(), accum[:, 3:4], mask)
         x = half(features(rec, warped, mask, accum, moment, robust), fp16_storage)
         warped, mask = x[:, 11:14], x[:, 14:15]  # as the output pass reads them: stored
         c = self.convs
@@ -282,7 +299,7 @@ class RecurrentDenoiser(nn.Module):
         blend = mask * torch.sigmoid(o[:, 3:4])
         log_out = (o[:, 0:3] * (1.0 - blend) + warped * blend).clamp_min(0.0)
         log_out = half(log_out, fp16_storage)
-        radiance = torch.expm1(log_out) * albedo + emission
+        radiance = torch.expm1(log_out) * albedo + torch.expm1(emission)
         surface = torch.cat([rec["depth"], rec["normal"]], 1)
         state = {
             "output": log_out,

@@ -306,6 +306,42 @@ fn dataset_writes_records_and_references_with_an_index() {
     }
     let odd = lucid(&["dataset", "--out", dir.to_str().unwrap(), "--size", "18x12"]);
     assert!(stderr(&odd).contains("multiples of 4"), "{}", stderr(&odd));
+
+    // Named scenes only, held-out ones included, in the split training never reads.
+    let study = temp("dataset-study");
+    let out = lucid(&[
+        "dataset",
+        "--out",
+        study.to_str().unwrap(),
+        "--size",
+        "16x12",
+        "--frames",
+        "2",
+        "--sequences",
+        "1",
+        "--reference-spp",
+        "4",
+        "--scenes",
+        "caustics,cornell-box",
+    ]);
+    assert!(out.status.success(), "{}", stderr(&out));
+    let index: serde_json::Value =
+        serde_json::from_slice(&std::fs::read(study.join("index.json")).unwrap()).unwrap();
+    let scenes: Vec<(&str, &str)> = index["sequences"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|s| (s["scene"].as_str().unwrap(), s["split"].as_str().unwrap()))
+        .collect();
+    assert_eq!(scenes, [("caustics", "study"), ("cornell-box", "study")]);
+    let both = lucid(&[
+        "dataset", "--out", "x", "--scenes", "caustics", "--rooms", "2",
+    ]);
+    assert!(
+        stderr(&both).contains("cannot be used with"),
+        "{}",
+        stderr(&both)
+    );
 }
 
 #[test]

@@ -6,8 +6,8 @@
 // N_MAX and log(1 + the standard deviation of luminance), then the running mean of the radiance
 // range-compressed against fireflies (`compress`): log(1 + its mean expanded back) and the
 // standard deviation of its luminance. Also writes this frame's surface (depth, normal), running
-// means and second moments for the next frame, and the first hits' albedo and emission averaged
-// over time with the same taps (`antialias_surface`), which output.comp re-modulates by.
+// means and second moments for the next frame, and the first hits' albedo and log(1 + emission)
+// averaged over time with the same taps (`antialias_surface`), which output.comp re-modulates by.
 #include "common/image_coords.glsl"
 #include "common/math.glsl"
 #include "neural/record.glsl"
@@ -42,8 +42,10 @@ const float NORMAL_COS = 0.9;
 const float MIN_WEIGHT = 0.01;
 // The longest history the running mean averages; after that it is an exponential moving average.
 const float N_MAX = 32.0;
-// The least weight of this frame's albedo and emission in their averages over time.
+// The least weight of this frame's albedo and emission in their averages over time, and of its
+// emission per pixel of motion.
 const float SURFACE_ALPHA = 0.1;
+const float EMISSION_MOTION = 1.0;
 // The smallest 1 - luminance that `expand` divides by.
 const float EXPAND_MIN = 1e-3;
 
@@ -148,18 +150,34 @@ void main() {
     imageStore(u_moment, pixel, vec4(moment, 0.0, 0.0, 0.0));
     imageStore(u_robust, pixel, robust);
 
-    // The first hits' albedo and emission averaged over time (`antialias_surface`).
+    // The first hits' albedo and log(1 + emission) averaged over time (`antialias_surface`): the
+    // emission's weight at least the motion in pixels, its history clamped to the range of this
+    // frame's over the 3x3 neighbourhood.
     vec3 albedo = channel3(RECORD_ALBEDO, pixel);
-    vec3 emission = channel3(RECORD_EMISSION, pixel);
     vec3 albedo_mean = albedo;
+    vec3 emission = log(vec3(1.0) + channel3(RECORD_EMISSION, pixel));
     vec3 emission_mean = emission;
     if (mask > 0.0) {
         float alpha = max(1.0 / n, SURFACE_ALPHA);
         albedo_mean = warped_albedo + (albedo - warped_albedo) * alpha;
-        emission_mean = warped_emission + (emission - warped_emission) * alpha;
+        vec3 low = emission;
+        vec3 high = emission;
+        for (int dy = -1; dy <= 1; ++dy) {
+            for (int dx = -1; dx <= 1; ++dx) {
+                ivec2 q = pixel + ivec2(dx, dy);
+                if (pixel_in_bounds(q, ivec2(size()))) {
+                    vec3 e = log(vec3(1.0) + channel3(RECORD_EMISSION, q));
+                    low = min(low, e);
+                    high = max(high, e);
+                }
+            }
+        }
+        float alpha_emission = max(alpha, min(length(motion.xy) * EMISSION_MOTION, 1.0));
+        vec3 prev = clamp(warped_emission, low, high);
+        emission_mean = prev + (emission - prev) * alpha_emission;
     }
+    imageStore(u_emission, pixel, vec4(emission_mean, 0.0));
     imageStore(u_albedo, pixel, vec4(albedo_mean, 1.0));
-    imageStore(u_emission, pixel, vec4(emission_mean, 1.0));
 
     float mean_lum = luminance(mean);
     float variance = n > 1.0 ? max(moment - mean_lum * mean_lum, 0.0) : 0.0;

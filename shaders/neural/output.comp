@@ -1,10 +1,11 @@
 #version 460
 // The learned denoiser's output (training/model.py, end of `step`): the network's log radiance
 // blended with the reprojected history by the mask times a learned weight, kept for the next frame,
-// and re-modulated by the first hits' albedo plus emission averaged over time (features.comp). The direct decoder's log radiance
-// and blend weight are the output layer's channels 0-3; the kernel-predicting decoder's log radiance
-// is the full scale's filtered radiance composited with the half scale's detail
-// (kernel_detail.comp) by channel 25 of its head, the blend weight channel 26.
+// and re-modulated by the first hits' albedo plus emission averaged over time (features.comp). The
+// direct decoder's log radiance and blend weight are the output layer's channels
+// 0-3; the kernel-predicting decoder's log radiance is the full scale's filtered radiance
+// composited with the half scale's detail (kernel_detail.comp) by channel 25 of its head, the
+// blend weight channel 26.
 #include "common/image_coords.glsl"
 #include "neural/tensor.glsl"
 #include "neural/upsample.glsl"
@@ -21,7 +22,7 @@ layout(set = 0, binding = 4, rgba32f) uniform writeonly image2D u_radiance;
 // The kernel decoder's full-scale filtered radiance and the half scale's detail (float32 rgb).
 layout(set = 0, binding = 5, std430) readonly buffer Filtered { vec4 v[]; } b_filtered;
 layout(set = 0, binding = 6, std430) readonly buffer Detail { vec4 v[]; } b_detail;
-// The first hits' albedo and emission averaged over time (`antialias_surface`).
+// The first hits' albedo and log(1 + emission) averaged over time (`antialias_surface`).
 layout(set = 0, binding = 7, rgba32f) uniform readonly image2D u_albedo;
 layout(set = 0, binding = 8, rgba32f) uniform readonly image2D u_emission;
 
@@ -71,6 +72,6 @@ void main() {
     log_out = unpack_channels(pack_channels(vec4(log_out, 0.0))).rgb;
     imageStore(u_output, pixel, vec4(log_out, 0.0));
     vec3 albedo = imageLoad(u_albedo, pixel).rgb;
-    vec3 emission = imageLoad(u_emission, pixel).rgb;
+    vec3 emission = exp(imageLoad(u_emission, pixel).rgb) - 1.0;
     imageStore(u_radiance, pixel, vec4((exp(log_out) - 1.0) * albedo + emission, 1.0));
 }

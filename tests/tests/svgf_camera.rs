@@ -103,8 +103,9 @@ fn temporal_filter_flickers_far_less_than_the_per_frame_filter() {
     );
 }
 
-/// The same bound for the learned denoiser. Measured 0.148 (re-modulating with the first hits'
-/// albedo and emission averaged over time, as SVGF does; 0.935 with one frame's).
+/// The same bound for the learned denoiser. Measured 0.136 (re-modulating with the first hits'
+/// albedo and emission averaged over time, `training/model.py`'s `antialias_surface`; 0.935 with
+/// one frame's, 0.897 with only the albedo averaged).
 #[test]
 fn learned_denoiser_flickers_far_less_than_the_per_frame_filter() {
     let [per_frame, learned] = measure([Method::PerFrame, Method::Neural]);

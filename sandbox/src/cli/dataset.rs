@@ -4,7 +4,9 @@
 //! safetensors file per sequence plus `index.json` (read by `training/data.py`).
 //!
 //! Scenes: procedural rooms (`random-room-<seed>`) and the built-in scenes, except `classroom` and
-//! `caustics`, which stay held out for evaluation. Each sequence follows the scene's camera path
+//! `caustics`, which stay held out for evaluation; or, with `--scenes`, only the scenes named, in
+//! the split `study` that training never reads (to study the model on held-out frames, e.g.
+//! `training/surface_study.py`). Each sequence follows the scene's camera path
 //! from a random start at a random speed, with a random extra turn (slow pans to fast turns); a
 //! new sequence is a camera cut.
 
@@ -62,6 +64,10 @@ pub struct DatasetArgs {
     /// Seed of the camera choices and of the room seeds.
     #[arg(long, default_value_t = 0)]
     seed: u64,
+    /// Only these scenes (comma-separated built-in names or `random-room-<seed>`, held-out ones
+    /// included), `--sequences` each, in the split `study`, which training never reads.
+    #[arg(long, value_delimiter = ',', conflicts_with_all = ["rooms", "validation_rooms", "no_builtin"])]
+    scenes: Vec<String>,
 }
 
 /// One sequence to render.
@@ -143,18 +149,24 @@ impl Random {
 }
 
 /// The sequences: procedural rooms (training, then validation seeds) and the built-in scenes that
-/// are neither held out nor skipped, `--sequences` each, with random camera choices.
+/// are neither held out nor skipped, or only the `--scenes` (split `study`), `--sequences` each,
+/// with random camera choices.
 fn plan(args: &DatasetArgs) -> Vec<Job> {
     let mut random = Random(args.seed);
     let room_seed = args.seed.wrapping_mul(1000);
-    let mut scenes: Vec<(String, &'static str)> = (0..args.rooms)
-        .map(|i| (format!("random-room-{}", room_seed + u64::from(i)), "train"))
-        .collect();
-    scenes.extend((0..args.validation_rooms).map(|i| {
-        let seed = room_seed + u64::from(args.rooms + i);
-        (format!("random-room-{seed}"), "validation")
-    }));
-    if !args.no_builtin {
+    let mut scenes: Vec<(String, &'static str)> = Vec::new();
+    if !args.scenes.is_empty() {
+        scenes.extend(args.scenes.iter().map(|name| (name.clone(), "study")));
+    } else {
+        scenes.extend(
+            (0..args.rooms).map(|i| (format!("random-room-{}", room_seed + u64::from(i)), "train")),
+        );
+        scenes.extend((0..args.validation_rooms).map(|i| {
+            let seed = room_seed + u64::from(args.rooms + i);
+            (format!("random-room-{seed}"), "validation")
+        }));
+    }
+    if args.scenes.is_empty() && !args.no_builtin {
         scenes.extend(
             builtin::names()
                 .iter()

@@ -19,9 +19,10 @@
 //!    quarter resolution, composited coarse to fine (`shaders/neural/kernel_*.comp`).
 //! 5. **Output**: the predicted log radiance blended with the reprojected history by a learned
 //!    per-pixel weight (only where the mask allows), kept as the next frame's history, and
-//!    re-modulated by the first hits' albedo plus emission averaged over time (reprojected with
-//!    the same taps as the running means): each frame's samples are jittered over the pixel, so
-//!    one frame's albedo and emission would make texture, emitter and object edges flicker.
+//!    re-modulated by the first hits' albedo plus emission averaged over time (reprojected with the
+//!    same taps as the running means; each frame's samples are jittered over the pixel, so one
+//!    frame's would make texture, emitter and object edges flicker), the emission only as far as
+//!    the pixel moves less than a pixel a frame (`training/model.py`, `antialias_surface`).
 //!
 //! The history (last output, surface, running means and second moments, averaged albedo and
 //! emission) is the render graph's
@@ -222,7 +223,8 @@ struct Tensor {
 /// `width` x `height`, with its history under the keys `<prefix>.output`, `<prefix>.surface`,
 /// `<prefix>.accum` (running mean and its length), `<prefix>.moment` (second moment of
 /// luminance), `<prefix>.robust` (the range-compressed running mean and its second moment),
-/// `<prefix>.albedo` and `<prefix>.emission` (the first hits' averaged over time); returns the denoised radiance and this frame's accumulation.
+/// `<prefix>.albedo` and `<prefix>.emission` (the first hits' albedo and log emission averaged over
+/// time); returns the denoised radiance and this frame's accumulation.
 pub fn add_neural(
     g: &mut RenderGraph,
     network: &Network,
