@@ -40,7 +40,8 @@ use ash::vk;
 use frames::FrameRing;
 use surface::{create_context, WindowSurface};
 
-/// Turns a Vulkan result code into an engine error naming the call.
+/// Turns a Vulkan result code into an engine error naming the call (a device loss or memory
+/// exhaustion into their own variants).
 fn vk_error(call: &'static str) -> impl FnOnce(vk::Result) -> lucid_engine::EngineError {
-    move |result| lucid_engine::EngineError::Vulkan { call, result }
+    move |result| lucid_engine::error::from_vk(call, result)
 }

@@ -229,6 +229,7 @@ mod tests {
             .unwrap_err()
             .to_string();
         assert!(error.contains("vkAcquireNextImageKHR"), "{error}");
+        assert!(error.contains("the GPU device was lost"), "{error}");
         let error = state
             .presented(Err(vk::Result::ERROR_OUT_OF_HOST_MEMORY))
             .unwrap_err()

@@ -236,6 +236,15 @@ impl Swapchain {
             self.loader
                 .acquire_next_image(self.raw, 1_000_000_000, semaphore, vk::Fence::null())
         }
+        .inspect_err(|&result| self.observe("vkAcquireNextImageKHR", result))
+    }
+
+    /// Marks the context's device lost when presenting reported it, as the engine's own calls do:
+    /// every later submission and wait fails at once with the device-loss error.
+    fn observe(&self, call: &'static str, result: vk::Result) {
+        if result == vk::Result::ERROR_DEVICE_LOST {
+            self.ctx.observe(vk_error(call)(result));
+        }
     }
 
     /// Presents image `index` after its frame signalled [`Self::render_finished`]: whether the
@@ -251,6 +260,7 @@ impl Swapchain {
         // SAFETY: the image was acquired and its frame submitted with the semaphore to signal.
         self.ctx
             .with_queue(|queue| unsafe { self.loader.queue_present(queue, &info) })
+            .inspect_err(|&result| self.observe("vkQueuePresentKHR", result))
     }
 
     /// Replaces a lost surface with a new one for `window`, destroying the swapchain (recreate it

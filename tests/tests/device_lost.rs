@@ -1,8 +1,10 @@
 //! Device loss through the embedding API: a frame whose submission reports `VK_ERROR_DEVICE_LOST`
 //! (injected with `ContextDesc::inject_device_lost_at_frame`) makes `Renderer::render` return a
 //! clear error naming the frame and its passes; every later call fails the same way, without a
-//! panic or a hang, and dropping the renderer and the context is clean.
+//! panic or a hang, and dropping the renderer and the context is clean. So does a loss that
+//! presenting reports (`Context::observe`).
 
+use lucid_engine::error::from_vk;
 use lucid_engine::{Context, ContextDesc, EngineError};
 use lucid_passes::renderer::{Renderer, Settings};
 use lucid_tests::assert_no_validation_messages;
@@ -59,6 +61,26 @@ fn a_read_frame_that_loses_the_device_returns_the_error() {
         Renderer::new(&ctx, scene("cornell-box"), 16, 16, Settings::default()).expect("renderer");
     let message = assert_device_lost(renderer.render_and_read(), "frame 1");
     assert!(message.contains("frame 1"), "{message}");
+    drop(renderer);
+    assert_no_validation_messages(&ctx);
+}
+
+/// A loss reported by a call outside the engine on its device (presenting to a window, as
+/// `lucid_present` does) makes every later frame fail the same way.
+#[test]
+fn a_loss_reported_while_presenting_fails_every_later_frame() {
+    let ctx = Context::new(&ContextDesc::for_tests(false)).expect("create a Vulkan context");
+    let mut renderer =
+        Renderer::new(&ctx, scene("cornell-box"), 16, 16, Settings::default()).expect("renderer");
+    renderer.render().expect("frame 1 runs");
+    let reported = ctx.observe(from_vk(
+        "vkQueuePresentKHR",
+        ash::vk::Result::ERROR_DEVICE_LOST,
+    ));
+    let message = assert_device_lost(Err::<(), _>(reported), "the present");
+    assert!(message.contains("vkQueuePresentKHR"), "{message}");
+    assert!(ctx.is_device_lost());
+    assert_device_lost(renderer.render(), "the frame after the present");
     drop(renderer);
     assert_no_validation_messages(&ctx);
 }

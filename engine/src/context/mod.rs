@@ -383,14 +383,24 @@ impl Context {
         self.shared.budget
     }
 
+    /// Fails with [`EngineError::DoesNotFit`] when `bytes` more for `what` would not fit in the
+    /// memory budget next to what Lucid holds now: to refuse work that cannot fit before doing
+    /// it (e.g. building the BVH of a scene too big for the device).
+    pub fn check_fits(&self, what: &str, bytes: u64) -> Result<()> {
+        self.shared
+            .budget
+            .check(what, bytes, self.shared.memory.total_bytes(), false)
+    }
+
     /// Whether the device was lost: a Vulkan call reported `VK_ERROR_DEVICE_LOST` (or a fault was
     /// injected). Nothing more runs on it; recreate the context.
     pub fn is_device_lost(&self) -> bool {
         self.shared.device_loss.is_lost()
     }
 
-    /// Records `error` (marking the device lost when it says so) and returns it.
-    pub(crate) fn observe(&self, error: EngineError) -> EngineError {
+    /// Records `error` (marking the device lost when it says so) and returns it: also for errors
+    /// of Vulkan calls made outside the engine on its device and queue (presenting to a window).
+    pub fn observe(&self, error: EngineError) -> EngineError {
         self.shared.device_loss.observe(error)
     }
 

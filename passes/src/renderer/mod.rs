@@ -151,6 +151,7 @@ impl Renderer {
             .map_err(|e| EngineError::InvalidArgument(format!("scene {}: {e}", scene.name)))?;
         let flat = FlatScene::new(&scene, &[]);
         let flat_len = scene.instances.len();
+        check_scene_fits(ctx, &flat.scene)?;
         let bvh = Bvh::build(&flat.scene);
         let (gpu, triangle_ids) = pack_flat(&flat, &scene, &bvh, BvhLayout::default());
         check_depths(&scene, &gpu)?;
@@ -406,7 +407,9 @@ impl Renderer {
 
     /// Flattens, builds and uploads the scene again (frames in flight keep the old buffers).
     fn rebuild_gpu_scene(&mut self) -> Result<()> {
-        self.flat = FlatScene::new(&self.scene, &self.dynamic);
+        let flat = FlatScene::new(&self.scene, &self.dynamic);
+        check_scene_fits(&self.ctx, &flat.scene)?;
+        self.flat = flat;
         self.bvh = Bvh::build(&self.flat.scene);
         self.upload_gpu_scene(self.gpu.layout())
     }
@@ -805,6 +808,18 @@ fn add_prev_transforms(
     let buffer = p.write(buffer, lucid_engine::graph::Access::TransferWrite);
     p.execute(move |ctx| ctx.update_buffer(buffer, &data));
     buffer
+}
+
+/// An error when `scene` (flattened) cannot fit in the device's memory budget, known from its
+/// triangle and vertex counts before its BVH is built (which takes a minute and gigabytes of host
+/// memory for tens of millions of triangles).
+fn check_scene_fits(ctx: &Context, scene: &Scene) -> Result<()> {
+    let what = format!(
+        "the geometry of scene {} ({} triangles, at least)",
+        scene.name,
+        scene.unique_triangle_count()
+    );
+    ctx.check_fits(&what, GpuScene::least_bytes(scene))
 }
 
 /// An error when the packed BVH of `scene` is deeper than the GPU traversal can walk.

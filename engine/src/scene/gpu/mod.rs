@@ -119,6 +119,29 @@ impl GpuScene {
         Self::with_layout(scene, bvh, BvhLayout::default())
     }
 
+    /// A lower bound of the bytes packing `scene` takes on the device, from the triangle and vertex
+    /// counts of the meshes its instances use (each such mesh's indices, triangle records and
+    /// vertices, once; no BVH, instances, textures or lights), so known before the BVH is built.
+    pub fn least_bytes(scene: &Scene) -> u64 {
+        let mut used = vec![false; scene.meshes.len()];
+        for instance in &scene.instances {
+            if let Some(u) = used.get_mut(instance.mesh as usize) {
+                *u = true;
+            }
+        }
+        scene
+            .meshes
+            .iter()
+            .zip(used)
+            .filter(|(_, used)| *used)
+            .map(|(m, _)| {
+                let triangles = m.indices.len() as u64;
+                let per_triangle = (size_of::<[u32; 3]>() + size_of::<GpuTriangle>()) as u64;
+                triangles * per_triangle + m.positions.len() as u64 * size_of::<GpuVertex>() as u64
+            })
+            .sum()
+    }
+
     /// Packs a validated scene with its BVH (built from that scene) in `layout`.
     pub fn with_layout(scene: &Scene, bvh: &Bvh, layout: BvhLayout) -> Self {
         let mut out = Self::without_top_level(scene, bvh, layout);
