@@ -1,0 +1,56 @@
+#!/usr/bin/env bash
+# The published results (`docs/results/`), in one command, on the NVIDIA machine:
+#   docs/results/generate.sh OUT_DIR
+# Per scene of SCENES (default: every built-in scene but furnace):
+#   - `lucid converge` (still camera): error against GPU time per configuration (ALGOS x
+#     DENOISERS x SPP samples per pixel per frame, each for BUDGET_MS of GPU time, at SIZE, against
+#     a REFERENCE_SPP reference): OUT_DIR/<scene>/converge.{csv,json} and its charts (error
+#     against GPU time, speed against accuracy with the Pareto front);
+#   - `lucid bench` per algorithm at each of TABLE_SIZES (1 sample, FRAMES frames): the frame
+#     time table (the study's Table 4.1): OUT_DIR/<scene>/bench_<algo>_<size>.json.
+# Then the denoisers' time on classroom (or the first scene) at each of DENOISER_SIZES (the
+# study's Table 4.2): OUT_DIR/denoise_<denoiser>_<size>.json, and `tables.py` writes
+# OUT_DIR/README.md: the tables, DSSIM over accumulated GPU time (the study's Table 4.3), time to
+# converge, the charts, device, driver and every command. LUCID names the lucid binary (default
+# target/release/lucid). A small run on lavapipe is part of the tests (sandbox/tests/results.rs).
+set -euo pipefail
+out=${1:?usage: docs/results/generate.sh OUT_DIR}
+here=$(cd "$(dirname "$0")" && pwd)
+lucid=$(realpath "${LUCID:-target/release/lucid}")
+scenes=${SCENES:-cornell-box cornell-teapot covered-light blinds-room classroom caustics}
+size=${SIZE:-640x360}
+table_sizes=${TABLE_SIZES:-1280x720 1920x1080}
+denoiser_sizes=${DENOISER_SIZES:-640x360 854x480 1280x720 1920x1080}
+frames=${FRAMES:-50}
+mkdir -p "$out"
+out=$(realpath "$out")
+run() {
+  echo "$*" >> "$out/commands.txt"
+  "$@"
+}
+: > "$out/commands.txt"
+if command -v nvidia-smi > /dev/null; then
+  nvidia-smi --query-gpu=name,driver_version --format=csv,noheader | head -1 | sed 's/, / (driver /; s/$/)/' > "$out/device.txt"
+fi
+for scene in $scenes; do
+  mkdir -p "$out/$scene"
+  run "$lucid" converge --scene "$scene" --size "$size" --algos "${ALGOS:-pt,bdpt}" \
+    --denoisers "${DENOISERS:-none,svgf,neural}" --spp "${SPP:-1,4}" --budget-ms "${BUDGET_MS:-1300}" \
+    --reference-spp "${REFERENCE_SPP:-4096}" --out "$out/$scene" > "$out/$scene/converge.txt"
+  for algo in ${TABLE_ALGOS:-pt bdpt}; do
+    for s in $table_sizes; do
+      run "$lucid" bench --scene "$scene" --algo "$algo" --size "$s" --spp 1 --frames "$frames" \
+        --warmup 3 --json "$out/$scene/bench_${algo}_$s.json" > /dev/null
+    done
+  done
+done
+denoise_scene=classroom
+case " $scenes " in *" classroom "*) ;; *) denoise_scene=${scenes%% *} ;; esac
+for denoiser in ${TABLE_DENOISERS:-svgf neural}; do
+  for s in $denoiser_sizes; do
+    run "$lucid" bench --scene "$denoise_scene" --algo pt --denoise "$denoiser" --size "$s" --spp 1 \
+      --frames "$frames" --warmup 3 --json "$out/denoise_${denoiser}_$s.json" > /dev/null
+  done
+done
+python3 "$here/tables.py" "$out" > "$out/README.md"
+echo "-> $out/README.md"

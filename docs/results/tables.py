@@ -1,0 +1,147 @@
+"""Writes the results page (markdown, to stdout) from what `generate.sh` measured in OUT_DIR:
+
+    python3 docs/results/tables.py OUT_DIR > OUT_DIR/README.md
+
+Frame times per scene and algorithm (the study's Table 4.1), the denoisers' times per size
+(Table 4.2), DSSIM at the study's accumulated times per configuration (Table 4.3), each
+configuration's time to converge, links to `lucid converge`'s charts, and the device and commands.
+Python's standard library only.
+"""
+
+import json
+import sys
+from pathlib import Path
+
+# The study's Table 4.3 times, in GPU milliseconds (20 ms to 1.3 s of accumulation).
+CHECKPOINTS_MS = (20.0, 161.0, 343.0, 1292.0)
+
+
+def load(path):
+    return json.loads(path.read_text())
+
+
+def size_key(size):
+    w, h = size.split("x")
+    return int(w) * int(h)
+
+
+def median(entry):
+    return entry["median"] if isinstance(entry, dict) else float(entry)
+
+
+def frame_table(out, scenes):
+    rows, sizes, algos = {}, set(), set()
+    for scene in scenes:
+        for f in sorted((out / scene).glob("bench_*_*.json")):
+            _, algo, size = f.stem.split("_", 2)
+            rows[(scene, algo, size)] = median(load(f)["frame_ms"])
+            sizes.add(size)
+            algos.add(algo)
+    sizes = sorted(sizes, key=size_key)
+    algos = sorted(algos, key=lambda a: (a != "pt", a))
+    lines = ["| scene | size | " + " | ".join(f"{a} ms | {a} fps" for a in algos) + " |"]
+    lines.append("| --- | --- | " + " | ".join("--- | ---" for _ in algos) + " |")
+    for size in sizes:
+        for scene in scenes:
+            cells = []
+            for a in algos:
+                ms = rows.get((scene, a, size))
+                cells.append("- | -" if ms is None else f"{ms:.2f} | {1000.0 / ms:.0f}")
+            lines.append(f"| {scene} | {size} | " + " | ".join(cells) + " |")
+    return lines
+
+
+def denoiser_table(out):
+    times = {}
+    for f in sorted(out.glob("denoise_*_*.json")):
+        _, denoiser, size = f.stem.split("_", 2)
+        passes = load(f)["passes_ms"]
+        prefix = "svgf." if denoiser == "svgf" else f"{denoiser}."
+        times[(denoiser, size)] = sum(median(v) for k, v in passes.items() if k.startswith(prefix))
+    sizes = sorted({s for _, s in times}, key=size_key)
+    denoisers = sorted({d for d, _ in times})
+    lines = ["| denoiser | " + " | ".join(sizes) + " |", "| --- |" + " --- |" * len(sizes)]
+    for d in denoisers:
+        lines.append(f"| {d} | " + " | ".join(f"{times[(d, s)]:.2f} ms" if (d, s) in times else "-" for s in sizes) + " |")
+    return lines
+
+
+def at_time(config, ms):
+    """The last measured row at or before `ms` of GPU time, or None when the configuration did not
+    run that long."""
+    if config["gpu_ms"] < ms:
+        return None
+    best = None
+    for r in config["rows"]:
+        if r["gpu_ms"] <= ms * 1.0001:
+            best = r
+    return best
+
+
+def quality_table(summary):
+    lines = ["| configuration | " + " | ".join(f"DSSIM at {t / 1000:g} s" for t in CHECKPOINTS_MS) + " | frames at the end |"]
+    lines.append("| --- |" + " --- |" * (len(CHECKPOINTS_MS) + 1))
+    for c in summary["configurations"]:
+        cells = []
+        for t in CHECKPOINTS_MS:
+            r = at_time(c, t)
+            cells.append("-" if r is None else f"{r['dssim']:.4f} ({r['frame']})")
+        lines.append(f"| {c['config']} | " + " | ".join(cells) + f" | {c['frames']} |")
+    return lines
+
+
+def converge_table(summary):
+    targets = summary["targets"]
+    names = list(targets)
+    lines = [
+        "| configuration | ms per frame | final DSSIM | final FLIP | final relMSE | "
+        + " | ".join(f"GPU ms to {k} < {targets[k]}" for k in names)
+        + " |",
+        "| --- |" + " --- |" * (4 + len(names)),
+    ]
+    for c in summary["configurations"]:
+        f = c["final"]
+        reach = c.get("time_to_converge_ms") or {}
+        cells = [("-" if reach.get(k) is None else f"{reach[k]:.0f}") for k in names]
+        star = " (Pareto)" if any(c.get("pareto", {}).values()) else ""
+        lines.append(
+            f"| {c['config']}{star} | {c['gpu_ms_per_frame']:.2f} | {f['dssim']:.4f} | {f['flip']:.4f} | "
+            f"{f['rel_mse']:.4f} | " + " | ".join(cells) + " |"
+        )
+    return lines
+
+
+def main():
+    out = Path(sys.argv[1])
+    scenes = sorted(p.parent.name for p in out.glob("*/converge.json"))
+    device = "unknown"
+    for f in out.glob("*/bench_*.json"):
+        device = load(f)["device"]
+        break
+    driver = (out / "device.txt").read_text().strip() if (out / "device.txt").exists() else device
+    print("# Lucid: speed against accuracy\n")
+    print(f"Measured on {driver}. Every command is in `commands.txt`; `generate.sh` ran them all.\n")
+    print("## Frame time per scene and algorithm (the study's Table 4.1)\n")
+    print("One sample per pixel a frame, path depth 8, no denoiser; medians over the frames.\n")
+    print("\n".join(frame_table(out, scenes)) + "\n")
+    print("## Denoiser time per image size (the study's Table 4.2)\n")
+    print("The sum of the denoiser's passes (medians), on the first scene measured.\n")
+    print("\n".join(denoiser_table(out)) + "\n")
+    for scene in scenes:
+        summary = load(out / scene / "converge.json")
+        print(f"## {scene}\n")
+        print(
+            f"Still camera, {summary['size'][0]}x{summary['size'][1]}, reference "
+            f"{summary['reference_spp']} samples, each configuration (algorithm/denoiser/samples "
+            f"per pixel per frame) for {summary['budget_ms']:g} ms of GPU time.\n"
+        )
+        print("DSSIM (1/SSIM - 1) after the study's accumulated GPU times, frames in brackets "
+              "(the study's Table 4.3):\n")
+        print("\n".join(quality_table(summary)) + "\n")
+        print("\n".join(converge_table(summary)) + "\n")
+        print(f"![speed against accuracy]({scene}/speed_vs_accuracy.svg) "
+              f"![DSSIM against GPU time]({scene}/error_vs_time_dssim.svg)\n")
+
+
+if __name__ == "__main__":
+    main()
