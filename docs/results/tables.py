@@ -125,7 +125,8 @@ def main():
     print("One sample per pixel a frame, path depth 8, no denoiser; medians over the frames.\n")
     print("\n".join(frame_table(out, scenes)) + "\n")
     print("## Denoiser time per image size (the study's Table 4.2)\n")
-    print("The sum of the denoiser's passes (medians), on the first scene measured.\n")
+    print("The sum of the denoiser's passes (medians) on `classroom` (else the first scene), path "
+          "tracing, 1 sample per pixel.\n")
     print("\n".join(denoiser_table(out)) + "\n")
     for scene in scenes:
         summary = load(out / scene / "converge.json")
