@@ -50,39 +50,19 @@ fn grid(n: u32) -> Mesh {
     }
 }
 
-#[test]
-fn a_scene_whose_geometry_cannot_fit_is_refused_before_its_bvh_is_built() {
-    // 180 000 triangles need at least 10 MiB (indices, triangle records, vertices).
-    let ctx = context_with_budget(8);
+/// Renders the Cornell box with a 180 000-triangle grid under a budget of `mib`: the error's
+/// message, after checking that it says the budget and that nothing stays allocated.
+fn refuse_big_scene(mib: u64) -> String {
+    let ctx = context_with_budget(mib);
     let mut big = scene("cornell-box");
     big.add_mesh_instance(grid(300));
     let message = assert_does_not_fit(
         Renderer::new(&ctx, big, 16, 16, Settings::default()).map(drop),
-        "180 000 triangles in 8 MiB",
+        &format!("180 000 triangles in {mib} MiB"),
     );
-    assert!(message.contains("LUCID_MEMORY_BUDGET_MIB=8"), "{message}");
     assert!(
-        message.contains("for the geometry of scene") && message.contains("triangles, at least"),
-        "names the scene and says it is a lower bound: {message}"
-    );
-    assert_eq!(ctx.memory_report().allocated_bytes, 0);
-    assert_no_validation_messages(&ctx);
-}
-
-#[test]
-fn a_scene_beyond_the_budget_is_refused_naming_its_buffer() {
-    // The geometry alone (10 MiB) fits in 12 MiB; with its BVH the scene does not.
-    let ctx = context_with_budget(12);
-    let mut big = scene("cornell-box");
-    big.add_mesh_instance(grid(300));
-    let message = assert_does_not_fit(
-        Renderer::new(&ctx, big, 16, 16, Settings::default()).map(drop),
-        "180 000 triangles in 12 MiB",
-    );
-    assert!(message.contains("LUCID_MEMORY_BUDGET_MIB=12"), "{message}");
-    assert!(
-        message.contains(" MiB for b_"),
-        "names the scene buffer: {message}"
+        message.contains(&format!("LUCID_MEMORY_BUDGET_MIB={mib}")),
+        "{message}"
     );
     assert_eq!(
         ctx.memory_report().allocated_bytes,
@@ -90,6 +70,27 @@ fn a_scene_beyond_the_budget_is_refused_naming_its_buffer() {
         "nothing is left allocated"
     );
     assert_no_validation_messages(&ctx);
+    message
+}
+
+#[test]
+fn a_scene_whose_geometry_cannot_fit_is_refused_before_its_bvh_is_built() {
+    // 180 000 triangles need at least 10 MiB (indices, triangle records, vertices).
+    let message = refuse_big_scene(8);
+    assert!(
+        message.contains("for the geometry of scene") && message.contains("triangles, at least"),
+        "names the scene and says it is a lower bound: {message}"
+    );
+}
+
+#[test]
+fn a_scene_beyond_the_budget_is_refused_naming_its_buffer() {
+    // The geometry alone (10 MiB) fits in 12 MiB; with its BVH the scene does not.
+    let message = refuse_big_scene(12);
+    assert!(
+        message.contains(" MiB for b_"),
+        "names the scene buffer: {message}"
+    );
 }
 
 #[test]
