@@ -205,7 +205,9 @@ def antialias_surface(rec, warped_albedo, warped_emission, n, mask):
     alpha_emission = torch.maximum(alpha, torch.clamp(speed * EMISSION_MOTION, max=1.0))
     low, high = neighbourhood_range(emission)
     prev = torch.minimum(torch.maximum(warped_emission, low), high)
-    return albedo, torch.where(ok, prev + (emission - prev) * alpha_emission, emission)
+    # A weight of 1 (a pixel or more of motion) keeps this frame's emission exactly.
+    averaged = ok & (alpha_emission < 1.0)
+    return albedo, torch.where(averaged, prev + (emission - prev) * alpha_emission, emission)
 
 
 def features(rec, warped, mask, accum, moment, robust):

@@ -160,21 +160,24 @@ void main() {
     if (mask > 0.0) {
         float alpha = max(1.0 / n, SURFACE_ALPHA);
         albedo_mean = warped_albedo + (albedo - warped_albedo) * alpha;
-        vec3 low = emission;
-        vec3 high = emission;
-        for (int dy = -1; dy <= 1; ++dy) {
-            for (int dx = -1; dx <= 1; ++dx) {
-                ivec2 q = pixel + ivec2(dx, dy);
-                if (pixel_in_bounds(q, ivec2(size()))) {
-                    vec3 e = log(vec3(1.0) + channel3(RECORD_EMISSION, q));
-                    low = min(low, e);
-                    high = max(high, e);
+        float alpha_emission = max(alpha, min(length(motion.xy) * EMISSION_MOTION, 1.0));
+        // A pixel moving a pixel a frame or more keeps this frame's emission: no history to clamp.
+        if (alpha_emission < 1.0) {
+            vec3 low = emission;
+            vec3 high = emission;
+            for (int dy = -1; dy <= 1; ++dy) {
+                for (int dx = -1; dx <= 1; ++dx) {
+                    ivec2 q = pixel + ivec2(dx, dy);
+                    if (pixel_in_bounds(q, ivec2(size()))) {
+                        vec3 e = log(vec3(1.0) + channel3(RECORD_EMISSION, q));
+                        low = min(low, e);
+                        high = max(high, e);
+                    }
                 }
             }
+            vec3 prev = clamp(warped_emission, low, high);
+            emission_mean = prev + (emission - prev) * alpha_emission;
         }
-        float alpha_emission = max(alpha, min(length(motion.xy) * EMISSION_MOTION, 1.0));
-        vec3 prev = clamp(warped_emission, low, high);
-        emission_mean = prev + (emission - prev) * alpha_emission;
     }
     imageStore(u_emission, pixel, vec4(emission_mean, 0.0));
     imageStore(u_albedo, pixel, vec4(albedo_mean, 1.0));

@@ -341,53 +341,30 @@ impl Calibration {
             .filter(|&i| self.results[i].config.algorithm != algorithm)
             .filter(|&i| points[i].0.is_finite() && points[i].1.is_finite())
             .collect();
-        // The other algorithm's best answer to the same goal.
+        // The other algorithm's best answer to the same goal: its configuration that `keep`s with
+        // the least error (`by_error`) or time.
+        let other = algorithm.other().label();
+        let best = |keep: &dyn Fn(usize) -> bool, by_error: bool| {
+            let key = |i: usize| if by_error { points[i].1 } else { points[i].0 };
+            others
+                .iter()
+                .copied()
+                .filter(|&i| keep(i))
+                .min_by(|&a, &b| key(a).total_cmp(&key(b)))
+        };
+        let (time, error) = (false, true);
         let runner_up = match goal {
-            Goal::Quality { target, .. } => others
-                .iter()
-                .filter(|&&i| points[i].1 <= target)
-                .min_by(|&&a, &&b| points[a].0.total_cmp(&points[b].0))
-                .map(|&i| {
-                    format!(
-                        "the cheapest {} that does is {}",
-                        algorithm.other().label(),
-                        describe(i)
-                    )
-                })
+            Goal::Quality { target, .. } => best(&|i| points[i].1 <= target, time)
+                .map(|i| format!("the cheapest {other} that does is {}", describe(i)))
                 .or_else(|| {
-                    others
-                        .iter()
-                        .min_by(|&&a, &&b| points[a].1.total_cmp(&points[b].1))
-                        .map(|&i| {
-                            format!(
-                                "no {} does: its most accurate is {}",
-                                algorithm.other().label(),
-                                describe(i)
-                            )
-                        })
+                    best(&|_| true, error)
+                        .map(|i| format!("no {other} does: its most accurate is {}", describe(i)))
                 }),
-            Goal::Budget { ms, .. } => others
-                .iter()
-                .filter(|&&i| points[i].0 <= ms)
-                .min_by(|&&a, &&b| points[a].1.total_cmp(&points[b].1))
-                .map(|&i| {
-                    format!(
-                        "the most accurate {} within it is {}",
-                        algorithm.other().label(),
-                        describe(i)
-                    )
-                })
+            Goal::Budget { ms, .. } => best(&|i| points[i].0 <= ms, error)
+                .map(|i| format!("the most accurate {other} within it is {}", describe(i)))
                 .or_else(|| {
-                    others
-                        .iter()
-                        .min_by(|&&a, &&b| points[a].0.total_cmp(&points[b].0))
-                        .map(|&i| {
-                            format!(
-                                "no {} fits: its fastest is {}",
-                                algorithm.other().label(),
-                                describe(i)
-                            )
-                        })
+                    best(&|_| true, time)
+                        .map(|i| format!("no {other} fits: its fastest is {}", describe(i)))
                 }),
         };
         match runner_up {

@@ -148,25 +148,24 @@ impl Random {
     }
 }
 
-/// The sequences: procedural rooms (training, then validation seeds) and the built-in scenes that
-/// are neither held out nor skipped, or only the `--scenes` (split `study`), `--sequences` each,
-/// with random camera choices.
-fn plan(args: &DatasetArgs) -> Vec<Job> {
-    let mut random = Random(args.seed);
-    let room_seed = args.seed.wrapping_mul(1000);
-    let mut scenes: Vec<(String, &'static str)> = Vec::new();
+/// The scenes with their splits: only the `--scenes` (split `study`), or procedural rooms
+/// (training, then validation seeds) and the built-in scenes that are neither held out nor
+/// skipped.
+fn scene_splits(args: &DatasetArgs) -> Vec<(String, &'static str)> {
     if !args.scenes.is_empty() {
-        scenes.extend(args.scenes.iter().map(|name| (name.clone(), "study")));
-    } else {
-        scenes.extend(
-            (0..args.rooms).map(|i| (format!("random-room-{}", room_seed + u64::from(i)), "train")),
-        );
-        scenes.extend((0..args.validation_rooms).map(|i| {
-            let seed = room_seed + u64::from(args.rooms + i);
-            (format!("random-room-{seed}"), "validation")
-        }));
+        return args
+            .scenes
+            .iter()
+            .map(|name| (name.clone(), "study"))
+            .collect();
     }
-    if args.scenes.is_empty() && !args.no_builtin {
+    let room_seed = args.seed.wrapping_mul(1000);
+    let room = |i: u32| format!("random-room-{}", room_seed + u64::from(i));
+    let mut scenes: Vec<(String, &'static str)> = (0..args.rooms)
+        .map(|i| (room(i), "train"))
+        .chain((0..args.validation_rooms).map(|i| (room(args.rooms + i), "validation")))
+        .collect();
+    if !args.no_builtin {
         scenes.extend(
             builtin::names()
                 .iter()
@@ -174,8 +173,14 @@ fn plan(args: &DatasetArgs) -> Vec<Job> {
                 .map(|n| (n.to_string(), "train")),
         );
     }
+    scenes
+}
+
+/// The sequences: one job per scene of [`scene_splits`] and sequence, with random camera choices.
+fn plan(args: &DatasetArgs) -> Vec<Job> {
+    let mut random = Random(args.seed);
     let mut jobs = Vec::new();
-    for (scene, split) in scenes {
+    for (scene, split) in scene_splits(args) {
         for _ in 0..args.sequences {
             let speed = [0.5, 1.0, 2.0, 4.0][(random.next() * 4.0) as usize % 4];
             // Most sequences add no turn; some a slow pan, some a fast turn (up to 3 rad/s).

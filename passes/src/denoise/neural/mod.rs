@@ -129,16 +129,7 @@ impl FrameDenoiser for NeuralDenoiser {
     }
 
     fn reset_on_scene_change(&self) -> Vec<String> {
-        let keys = HistoryKeys::new(&self.prefix);
-        vec![
-            keys.output,
-            keys.surface,
-            keys.accum,
-            keys.moment,
-            keys.robust,
-            keys.albedo,
-            keys.emission,
-        ]
+        HistoryKeys::new(&self.prefix).all()
     }
 }
 
@@ -185,6 +176,19 @@ impl HistoryKeys {
             albedo: key("albedo"),
             emission: key("emission"),
         }
+    }
+
+    /// Every key.
+    fn all(self) -> Vec<String> {
+        vec![
+            self.output,
+            self.surface,
+            self.accum,
+            self.moment,
+            self.robust,
+            self.albedo,
+            self.emission,
+        ]
     }
 }
 
