@@ -109,7 +109,9 @@ fn imports_every_material_kind() {
     assert_eq!(s.meshes.len(), 5);
     assert_eq!(s.instances.len(), 5);
     let m = |n: &str| s.materials.iter().find(|m| m.name == n).unwrap().clone();
-    assert_eq!(m("clay").kind, MaterialKind::Diffuse);
+    // Not a pure metal: glTF's metallic-roughness model in full (specular layer over diffuse).
+    assert_eq!(m("clay").kind, MaterialKind::MetalRough);
+    assert_eq!(m("clay").metallic, 0.0);
     assert_eq!(m("clay").base_color, Vec3::new(0.7, 0.2, 0.1));
     assert_eq!(m("gold").kind, MaterialKind::Conductor);
     assert!((m("gold").alpha - 0.25).abs() < 1e-6);
@@ -117,7 +119,10 @@ fn imports_every_material_kind() {
     assert!(m("frosted").is_rough_dielectric() && (m("frosted").ior - 1.5).abs() < 1e-6);
     assert_eq!(m("lamp").emission, Vec3::new(4.0, 2.0, 1.0));
     let f = s.features();
-    assert!(f.diffuse && f.conductor && f.dielectric_smooth && f.dielectric_rough && f.emissive);
+    assert!(
+        f.metal_rough && f.conductor && f.dielectric_smooth && f.dielectric_rough && f.emissive
+    );
+    assert!(!f.diffuse, "glTF has no purely Lambertian material");
     assert_eq!(s.meshes[0].uvs.len(), 4);
     assert_eq!(
         s.instances[2].transform.translation,
@@ -467,7 +472,9 @@ fn corpus_files_import() {
     assert_eq!(quad.instances.len(), 5);
     assert!(quad.sun.is_some() && quad.punctual_lights.len() == 1);
     let f = quad.features();
-    assert!(f.conductor && f.dielectric_smooth && f.dielectric_rough && f.emissive && f.diffuse);
+    assert!(
+        f.conductor && f.dielectric_smooth && f.dielectric_rough && f.emissive && f.metal_rough
+    );
     let tex = load_gltf(&dir.join("textured_quad.gltf")).unwrap();
     assert_eq!(tex.textures.len(), 1);
     assert_eq!((tex.textures[0].width, tex.textures[0].height), (2, 2));

@@ -1,5 +1,6 @@
 // BSDFs in the local shading frame (normal = +z): Lambertian diffuse, GGX conductor (smooth or
-// rough), dielectric (smooth or rough, Walter et al. 2007). Diffuse and conductors are two-sided.
+// rough), dielectric (smooth or rough, Walter et al. 2007) and glTF's metallic-roughness model.
+// Diffuse, conductors and metallic-roughness are two-sided.
 // Returned values include the cosine of the incident direction. Specialization constants drop the
 // code of materials a scene lacks. Requires math.glsl.
 #ifndef LUCID_BSDF_GLSL
@@ -8,11 +9,15 @@
 layout(constant_id = 101) const bool HAS_CONDUCTOR = true;
 layout(constant_id = 102) const bool HAS_DIELECTRIC = true;
 layout(constant_id = 103) const bool HAS_DIELECTRIC_ROUGH = true;
+layout(constant_id = 117) const bool HAS_METAL_ROUGH = true;
 
 struct BsdfParams {
     uint kind;        // MATERIAL_*
     vec3 color;       // albedo, metal F0 or transmission tint
     float alpha;      // GGX alpha
+    float metallic;   // metallic-roughness: the conductor's share
+    vec3 specular_f0; // metallic-roughness: the specular layer's reflectance at normal incidence
+    float specular_weight; // metallic-roughness: the specular layer's strength
     float ior;        // dielectric index of refraction (outside is 1)
     bool smooth_lobe; // delta reflection / refraction
     float occlusion;  // the occlusion texture's factor on the denoisers' albedo (1: none)
@@ -233,6 +238,80 @@ bool dielectric_sample(BsdfParams m, vec3 wo, vec3 u, out BsdfSample s) {
     return s.pdf > 0.0;
 }
 
+// ---- glTF metallic-roughness ----
+// glTF 2.0's BRDF (its specification's appendix B, with KHR_materials_ior and
+// KHR_materials_specular): mix(dielectric, metal, metallic). The dielectric is a GGX specular layer
+// of reflectance F = weight * (F0 + (1 - F0) (1 - cos)^5) (Schlick; F0 from the IOR, 0.04 by
+// default, times the specular colour) over Lambertian diffuse of albedo `color` weighted by
+// 1 - max(F); the metal is GGX with Schlick's Fresnel of F0 = `color`. Fresnel is taken at the
+// half vector, so the BRDF is reciprocal. Sampled by picking a lobe (specular with the probability
+// of its estimated share of the reflected light) and weighted by the mixture's pdf.
+
+float schlick_weight(float cos_theta) {
+    float m = clamp(1.0 - cos_theta, 0.0, 1.0);
+    return m * m * m * m * m;
+}
+
+// The dielectric layer's reflectance at the cosine's Schlick weight w.
+vec3 metal_rough_layer_f(BsdfParams m, float w) {
+    return m.specular_weight * (m.specular_f0 + (1.0 - m.specular_f0) * w);
+}
+
+// The probability of sampling the specular lobe from wo (upper hemisphere, cosine cos_o): the
+// specular lobe's share of the reflectance estimated with Fresnel at the normal's angle, kept
+// within [0.1, 0.9] unless one lobe is missing.
+float metal_rough_specular_probability(BsdfParams m, float cos_o) {
+    float w = schlick_weight(cos_o);
+    vec3 layer_f = metal_rough_layer_f(m, w);
+    vec3 f = mix(layer_f, m.color + (1.0 - m.color) * w, m.metallic);
+    float specular = (f.r + f.g + f.b) / 3.0;
+    float diffuse = (1.0 - m.metallic) * (1.0 - max3(layer_f)) * (m.color.r + m.color.g + m.color.b) / 3.0;
+    if (diffuse <= 0.0 || specular <= 0.0) {
+        return diffuse > 0.0 ? 0.0 : 1.0;
+    }
+    return clamp(specular / (specular + diffuse), 0.1, 0.9);
+}
+
+// wo and wi in the upper hemisphere.
+vec3 metal_rough_eval_upper(BsdfParams m, vec3 wo, vec3 wi, out float pdf) {
+    vec3 h = normalize(wo + wi);
+    float w = schlick_weight(dot(wi, h));
+    vec3 layer_f = metal_rough_layer_f(m, w);
+    vec3 f = mix(layer_f, m.color + (1.0 - m.color) * w, m.metallic);
+    vec3 diffuse = ((1.0 - m.metallic) * (1.0 - max3(layer_f)) * INV_PI * wi.z) * m.color;
+    vec3 specular = f * (ggx_d(h, m.alpha) * ggx_g2(wo, wi, m.alpha) / (4.0 * wo.z));
+    float p_specular = metal_rough_specular_probability(m, wo.z);
+    float specular_pdf = ggx_visible_pdf(wo, h, m.alpha) / (4.0 * max(dot(wo, h), 1e-8));
+    pdf = mix(wi.z * INV_PI, specular_pdf, p_specular);
+    return diffuse + specular;
+}
+
+vec3 metal_rough_eval(BsdfParams m, vec3 wo, vec3 wi, out float pdf) {
+    pdf = 0.0;
+    if (wo.z * wi.z <= 0.0) {
+        return vec3(0.0);
+    }
+    float flip = wo.z < 0.0 ? -1.0 : 1.0;
+    return metal_rough_eval_upper(m, vec3(wo.xy, wo.z * flip), vec3(wi.xy, wi.z * flip), pdf);
+}
+
+bool metal_rough_sample(BsdfParams m, vec3 wo, vec3 u, out BsdfSample s) {
+    float flip = wo.z < 0.0 ? -1.0 : 1.0;
+    vec3 o = vec3(wo.xy, wo.z * flip);
+    vec3 i = u.z < metal_rough_specular_probability(m, o.z)
+        ? reflect(-o, ggx_sample_visible(o, m.alpha, u.xy))
+        : sample_cosine_hemisphere(u.xy);
+    s.delta = false;
+    s.pdf = 0.0;
+    if (i.z <= 0.0) {
+        return false;
+    }
+    vec3 f = metal_rough_eval_upper(m, o, i, s.pdf);
+    s.wi = vec3(i.xy, i.z * flip);
+    s.weight = s.pdf > 0.0 ? f / s.pdf : vec3(0.0);
+    return s.pdf > 0.0;
+}
+
 // ---- dispatch ----
 
 vec3 bsdf_eval(BsdfParams m, vec3 wo, vec3 wi, out float pdf) {
@@ -245,6 +324,9 @@ vec3 bsdf_eval(BsdfParams m, vec3 wo, vec3 wi, out float pdf) {
             return vec3(0.0);
         }
         return dielectric_eval(m, wo, wi, pdf);
+    }
+    if (HAS_METAL_ROUGH && m.kind == MATERIAL_METAL_ROUGH) {
+        return metal_rough_eval(m, wo, wi, pdf);
     }
     return diffuse_eval(m, wo, wi, pdf);
 }
@@ -259,12 +341,15 @@ bool bsdf_sample(BsdfParams m, vec3 wo, vec3 u, out BsdfSample s) {
         }
         return dielectric_sample(m, wo, u, s);
     }
+    if (HAS_METAL_ROUGH && m.kind == MATERIAL_METAL_ROUGH) {
+        return metal_rough_sample(m, wo, u, s);
+    }
     return diffuse_sample(m, wo, u.xy, s);
 }
 
 // Whether the BSDF is a pure delta (no next-event estimation is useful).
 bool bsdf_is_delta(BsdfParams m) {
-    return m.kind != MATERIAL_DIFFUSE && m.smooth_lobe;
+    return (m.kind == MATERIAL_CONDUCTOR || m.kind == MATERIAL_DIELECTRIC) && m.smooth_lobe;
 }
 
 #endif

@@ -30,6 +30,7 @@ struct Material {
     float ior; uint texture; uint flags; uint metal_roughness;
     float metallic; uint normal_texture; float normal_scale; uint emissive_texture;
     uint occlusion_texture; float occlusion_strength; float opacity; float alpha_cutoff;
+    vec3 specular_f0; float specular_weight;
 };
 // material: a triangle light's material (emissive texture, opacity), ~0u for other lights.
 struct Light { uint kind; uint index; uint instance; uint material; vec4 p0; vec4 p1; vec4 p2; vec4 emission; };
@@ -52,6 +53,7 @@ struct SceneParams {
 const uint MATERIAL_DIFFUSE = 0u;
 const uint MATERIAL_CONDUCTOR = 1u;
 const uint MATERIAL_DIELECTRIC = 2u;
+const uint MATERIAL_METAL_ROUGH = 3u;
 const uint MATERIAL_FLAG_EMISSIVE = 1u;
 const uint MATERIAL_FLAG_SMOOTH = 2u;
 const uint MATERIAL_FLAG_ALPHA_MASK = 4u;  // absent where opacity < alpha_cutoff

@@ -148,17 +148,19 @@ BsdfParams material_params(uint material, vec2 uv, vec3 vertex_color) {
         float ao = sample_texture(m.occlusion_texture, uv).r;
         p.occlusion = 1.0 + m.occlusion_strength * (ao - 1.0);
     }
-    if (HAS_TEXTURES && m.kind == MATERIAL_CONDUCTOR && m.metal_roughness != 0xffffffffu) {
+    p.metallic = m.metallic;
+    p.specular_f0 = m.specular_f0;
+    p.specular_weight = m.specular_weight;
+    if (HAS_METAL_ROUGH && m.kind == MATERIAL_METAL_ROUGH) {
         // glTF's metallic-roughness texture: roughness in G (alpha scales by its square), metal
-        // in B; a texel less than half metal is diffuse.
-        vec4 mr = sample_texture(m.metal_roughness, uv);
-        float alpha = m.alpha * mr.g * mr.g;
-        p.alpha = max(alpha, 1e-4);
-        p.smooth_lobe = alpha < 1e-3;
-        if (m.metallic * mr.b < 0.5) {
-            p.kind = MATERIAL_DIFFUSE;
-            p.smooth_lobe = false;
+        // in B. Never a delta lobe: alpha stays at or above the smooth threshold.
+        if (HAS_TEXTURES && m.metal_roughness != NO_TEXTURE) {
+            vec4 mr = sample_texture(m.metal_roughness, uv);
+            p.alpha = m.alpha * mr.g * mr.g;
+            p.metallic *= mr.b;
         }
+        p.alpha = max(p.alpha, 1e-3);
+        p.smooth_lobe = false;
     }
     return p;
 }
@@ -168,6 +170,15 @@ BsdfParams material_params(uint material, vec2 uv, vec3 vertex_color) {
 // transport does not use: it only guides the denoisers).
 vec3 demodulation_albedo(BsdfParams m) {
     return (m.kind == MATERIAL_DIELECTRIC ? vec3(1.0) : m.color) * m.occlusion;
+}
+
+// The G-buffer's roughness: GGX alpha of the specular lobe, 1 for diffuse; metallic-roughness
+// surfaces blend towards 1 as their metal share falls (their dielectric layer reflects little).
+float gbuffer_roughness(BsdfParams m) {
+    if (m.kind == MATERIAL_DIFFUSE) {
+        return 1.0;
+    }
+    return m.kind == MATERIAL_METAL_ROUGH ? mix(1.0, m.alpha, m.metallic) : m.alpha;
 }
 
 // Radiance emitted from the surface towards -dir (one-sided: front only).

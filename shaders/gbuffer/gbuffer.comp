@@ -55,7 +55,7 @@ void main() {
     vec3 n = dot(s.ns, dir) > 0.0 ? -s.ns : s.ns;
     float depth = dot(s.p - cam.position_aperture.xyz, cam.forward.xyz);
     imageStore(u_depth, pixel, vec4(depth));
-    imageStore(u_normal_roughness, pixel, vec4(n, m.kind == MATERIAL_DIFFUSE ? 1.0 : m.alpha));
+    imageStore(u_normal_roughness, pixel, vec4(n, gbuffer_roughness(m)));
     imageStore(u_albedo, pixel, vec4(demodulation_albedo(m), 1.0));
     imageStore(u_emission, pixel, vec4(surface_emission(s, dir), 1.0));
     imageStore(u_ids, pixel, uvec4(s.object_id, s.material, hit.primitive, 1u));

@@ -129,6 +129,18 @@ impl Doc {
         self.materials.len() - 1
     }
 
+    /// Adds a Lambertian material of albedo `rgb` (glTF's dielectric with its specular layer
+    /// turned off by `KHR_materials_specular`), with `more` (e.g. `, "emissiveFactor": [1, 1, 1]`)
+    /// appended to its JSON, and returns its index.
+    pub fn lambertian(&mut self, rgb: [f32; 3], more: &str) -> usize {
+        self.uses("KHR_materials_specular");
+        let [r, g, b] = rgb;
+        self.material(&format!(
+            r#"{{"pbrMetallicRoughness": {{"baseColorFactor": [{r}, {g}, {b}, 1], "metallicFactor": 0}},
+                "extensions": {{"KHR_materials_specular": {{"specularFactor": 0}}}}{more}}}"#
+        ))
+    }
+
     /// Adds a `width` x `height` PNG texture of `rgba` texels (rows from the top) with sampler
     /// `sampler` (its JSON object, e.g. `{"wrapS": 33071}`; `None` for the default); returns the
     /// texture index.

@@ -27,9 +27,7 @@ fn floor(doc: &mut Doc, half: f32) {
     let (positions, indices) = plane(half);
     let p = doc.floats(&positions);
     let i = doc.indices(&indices);
-    let m = doc.material(&format!(
-        r#"{{"pbrMetallicRoughness": {{"baseColorFactor": [{ALBEDO}, {ALBEDO}, {ALBEDO}, 1], "metallicFactor": 0}}}}"#
-    ));
+    let m = doc.lambertian([ALBEDO; 3], "");
     let mesh = doc.mesh(&[("POSITION", p)], Some(i), Some(m));
     doc.node(&format!(r#"{{"mesh": {mesh}}}"#));
 }
@@ -180,13 +178,15 @@ fn a_dim_blue_spot_beside_a_bright_white_one_gets_samples() {
 /// `at`.
 fn emitter(doc: &mut Doc, colour: [f32; 3], strength: f32, facing: f32, at: Vec3) {
     doc.uses("KHR_materials_emissive_strength");
+    doc.uses("KHR_materials_specular");
     let (positions, indices) = plane(0.25);
     let p = doc.floats(&positions);
     let i = doc.indices(&indices);
     let m = doc.material(&format!(
         r#"{{"pbrMetallicRoughness": {{"baseColorFactor": [0, 0, 0, 1], "metallicFactor": 0}},
             "emissiveFactor": {colour:?},
-            "extensions": {{"KHR_materials_emissive_strength": {{"emissiveStrength": {strength}}}}}}}"#
+            "extensions": {{"KHR_materials_emissive_strength": {{"emissiveStrength": {strength}}},
+                "KHR_materials_specular": {{"specularFactor": 0}}}}}}"#
     ));
     let mesh = doc.mesh(&[("POSITION", p)], Some(i), Some(m));
     let q = if facing > 0.0 {

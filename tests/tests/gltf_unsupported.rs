@@ -10,6 +10,7 @@ const PNG: &str = "iVBORw0KGgoAAAANSUhEUgAAAAEAAAABCAYAAAAfFcSJAAAADUlEQVR4nGM4k
 fn everything_unsupported() -> Doc {
     let mut doc = Doc::new();
     doc.uses("KHR_materials_transmission");
+    doc.uses("KHR_materials_specular");
     doc.uses("KHR_materials_clearcoat");
     let (positions, indices) = plane(1.0);
     let p = doc.floats(&positions);
@@ -27,7 +28,8 @@ fn everything_unsupported() -> Doc {
             "pbrMetallicRoughness": {{"baseColorTexture": {{"index": 0, "texCoord": 1}},
                 "metallicRoughnessTexture": {{"index": 0}}, "metallicFactor": 0.3}},
             "normalTexture": {{"index": 0}}, "occlusionTexture": {{"index": 0}},
-            "emissiveTexture": {{"index": 0}}, "emissiveFactor": [1, 1, 1]}}"#
+            "emissiveTexture": {{"index": 0}}, "emissiveFactor": [1, 1, 1],
+            "extensions": {{"KHR_materials_specular": {{"specularColorTexture": {{"index": 0}}}}}}}}"#
         )
     };
     let glass = |name: &str| {
@@ -91,7 +93,10 @@ fn every_unsupported_feature_is_said_once_per_file() {
             "metallic-roughness textures",
             "2 materials, the first material `bottle`",
         ),
-        ("metallic factors between 0 and 1", "4 materials"),
+        (
+            "KHR_materials_specular textures",
+            "4 materials, the first material `leaves`",
+        ),
         (
             "partial transmission",
             "2 materials, the first material `bottle`",

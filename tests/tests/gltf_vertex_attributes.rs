@@ -9,10 +9,6 @@ use lucid_passes::renderer::Algorithm;
 use lucid_tests::gltf::{cube, plane, Doc};
 use lucid_tests::render::render_once as render;
 
-const GREY: &str =
-    r#"{"pbrMetallicRoughness": {"baseColorFactor": [0.5, 0.5, 0.5, 1], "metallicFactor": 0}}"#;
-const WHITE: &str = r#"{"pbrMetallicRoughness": {"metallicFactor": 0}}"#;
-
 /// A grey cube of 8 shared corners (optionally with `normals`) under a directional light from
 /// `towards_sun`, no camera.
 fn lit_cube(normals: Option<&[[f32; 3]]>, towards_sun: Vec3) -> Scene {
@@ -24,7 +20,7 @@ fn lit_cube(normals: Option<&[[f32; 3]]>, towards_sun: Vec3) -> Scene {
     if let Some(n) = normals {
         attributes.push(("NORMAL", doc.floats(n)));
     }
-    let m = doc.material(GREY);
+    let m = doc.lambertian([0.5; 3], "");
     let mesh = doc.mesh(&attributes, Some(i), Some(m));
     doc.node(&format!(r#"{{"mesh": {mesh}}}"#));
     let q = Quat::from_rotation_arc(Vec3::NEG_Z, -towards_sun.normalize());
@@ -101,7 +97,7 @@ fn colored_plane(colors: Option<&dyn Fn(&mut Doc) -> usize>) -> Scene {
     if let Some(colors) = colors {
         attributes.push(("COLOR_0", colors(&mut doc)));
     }
-    let m = doc.material(WHITE);
+    let m = doc.lambertian([1.0; 3], "");
     let mesh = doc.mesh(&attributes, Some(i), Some(m));
     doc.node(&format!(r#"{{"mesh": {mesh}}}"#));
     doc.load("plane.gltf")
@@ -181,7 +177,7 @@ fn red_floor_and_wall(red: bool) -> Scene {
     if red {
         floor.push(("COLOR_0", doc.unorm8(&[[255u8, 0, 0]; 4])));
     }
-    let m = doc.material(WHITE);
+    let m = doc.lambertian([1.0; 3], "");
     let floor = doc.mesh(&floor, Some(i), Some(m));
     doc.node(&format!(r#"{{"mesh": {floor}}}"#));
     let wall = doc.mesh(&[("POSITION", p)], Some(i), Some(m));

@@ -17,6 +17,8 @@ pub struct SceneFeatures {
     pub dielectric_smooth: bool,
     /// A rough dielectric is used.
     pub dielectric_rough: bool,
+    /// glTF's metallic-roughness model is used.
+    pub metal_rough: bool,
     /// Some used material emits.
     pub emissive: bool,
     /// The scene has analytic spheres.
@@ -64,17 +66,15 @@ impl SceneFeatures {
             let Some(m) = scene.materials.get(id as usize) else {
                 continue;
             };
-            // A metallic-roughness texture can make a conductor's texels diffuse.
-            let textured_metal =
-                m.kind == MaterialKind::Conductor && m.metallic_roughness_texture.is_some();
-            f.diffuse |= textured_metal;
-            f.textures |= textured_metal;
             match m.kind {
                 MaterialKind::Diffuse => f.diffuse = true,
                 MaterialKind::Conductor => f.conductor = true,
                 MaterialKind::Dielectric if m.is_smooth_dielectric() => f.dielectric_smooth = true,
                 MaterialKind::Dielectric => f.dielectric_rough = true,
+                MaterialKind::MetalRough => f.metal_rough = true,
             }
+            f.textures |=
+                m.kind == MaterialKind::MetalRough && m.metallic_roughness_texture.is_some();
             f.emissive |= m.is_emissive();
             f.textures |= m.base_color_texture.is_some()
                 || m.emissive_texture.is_some()
@@ -101,6 +101,7 @@ impl SceneFeatures {
             ),
             ("HAS_DIELECTRIC_SMOOTH", self.dielectric_smooth),
             ("HAS_DIELECTRIC_ROUGH", self.dielectric_rough),
+            ("HAS_METAL_ROUGH", self.metal_rough),
             ("HAS_EMISSIVE", self.emissive),
             ("HAS_SPHERES", self.spheres),
             ("HAS_TEXTURES", self.textures),

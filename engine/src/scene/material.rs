@@ -18,6 +18,10 @@ pub enum MaterialKind {
     /// `alpha < SMOOTH_ALPHA`, rough GGX otherwise. `base_color` tints
     /// transmission.
     Dielectric,
+    /// glTF 2.0's metallic-roughness model: a dielectric (a GGX specular layer of IOR 1.5 over
+    /// Lambertian diffuse of albedo `base_color`) and a GGX conductor of colour `base_color`,
+    /// mixed by `metallic`; `metallic_roughness_texture` varies metal and roughness per texel.
+    MetalRough,
 }
 
 /// How a material's opacity (base colour alpha × texture alpha × vertex colour alpha) applies
@@ -51,13 +55,20 @@ pub struct Material {
     /// GGX roughness `alpha` (= perceptual roughness squared) in `[0, 1]`.
     pub alpha: f32,
     /// Optional metallic-roughness texture (linear; glTF's layout: roughness in G, metalness in
-    /// B). On a conductor it scales the roughness by G (`alpha` by G²) and makes the texel
-    /// diffuse where `metallic * B < 0.5`; other kinds ignore it.
+    /// B). On [`MaterialKind::MetalRough`] it scales the roughness by G (`alpha` by G²) and the
+    /// metallic factor by B; other kinds ignore it.
     pub metallic_roughness_texture: Option<TextureRef>,
-    /// Metallic factor in `[0, 1]` (used with `metallic_roughness_texture`).
+    /// Metallic factor in `[0, 1]` ([`MaterialKind::MetalRough`]: the conductor's share).
     pub metallic: f32,
-    /// Index of refraction (dielectrics), `>= 1`.
+    /// Index of refraction: a dielectric's (`>= 1`), or [`MaterialKind::MetalRough`]'s specular
+    /// layer's (its Fresnel reflectance at normal incidence is `((ior - 1) / (ior + 1))²`).
     pub ior: f32,
+    /// [`MaterialKind::MetalRough`]: the strength of the dielectric's specular layer in `[0, 1]`
+    /// (glTF `KHR_materials_specular`'s `specularFactor`; 0 leaves Lambertian diffuse).
+    pub specular: f32,
+    /// [`MaterialKind::MetalRough`]: the colour scaling the specular layer's normal-incidence
+    /// reflectance, `>= 0` (`specularColorFactor`).
+    pub specular_color: Vec3,
     /// Emitted radiance, linear RGB, `>= 0`.
     pub emission: Vec3,
     /// Optional emissive texture (sRGB), multiplying `emission` per texel.
@@ -93,6 +104,8 @@ impl Material {
                 0.0
             },
             ior: 1.5,
+            specular: 1.0,
+            specular_color: Vec3::ONE,
             emission: Vec3::ZERO,
             emissive_texture: None,
             normal_texture: None,
@@ -117,6 +130,16 @@ impl Material {
         }
     }
 
+    /// glTF's metallic-roughness material: `metallic` of a conductor of colour `base_color`, the
+    /// rest a specular layer over diffuse of albedo `base_color`, both of roughness `alpha`.
+    pub fn metal_rough(name: &str, base_color: Vec3, metallic: f32, alpha: f32) -> Self {
+        Self {
+            alpha,
+            metallic,
+            ..Self::base(name, MaterialKind::MetalRough, base_color)
+        }
+    }
+
     /// A smooth (`alpha = 0`) or rough dielectric.
     pub fn dielectric(name: &str, ior: f32, alpha: f32) -> Self {
         Self {
@@ -135,6 +158,13 @@ impl Material {
     pub fn with_emission(mut self, radiance: Vec3) -> Self {
         self.emission = radiance;
         self
+    }
+
+    /// [`MaterialKind::MetalRough`]: the specular layer's Fresnel reflectance at normal incidence
+    /// per channel, `((ior - 1) / (ior + 1))² × specular_color`, at most 1.
+    pub fn specular_f0(&self) -> Vec3 {
+        let r = (self.ior - 1.0) / (self.ior + 1.0);
+        (r * r * self.specular_color).min(Vec3::ONE)
     }
 
     /// Whether the material emits light.
@@ -183,6 +213,8 @@ impl Material {
             && self.emission.is_finite()
             && self.alpha.is_finite()
             && self.ior.is_finite()
+            && self.specular.is_finite()
+            && self.specular_color.is_finite()
             && self.metallic.is_finite()
             && self.normal_scale.is_finite()
             && self.occlusion_strength.is_finite()
@@ -216,6 +248,8 @@ impl Material {
             self.base_color = clamped;
         }
         self.metallic = self.metallic.clamp(0.0, 1.0);
+        self.specular = self.specular.clamp(0.0, 1.0);
+        self.specular_color = self.specular_color.max(Vec3::ZERO);
         self.occlusion_strength = self.occlusion_strength.clamp(0.0, 1.0);
         self.opacity = self.opacity.clamp(0.0, 1.0);
         let alpha = self.alpha.clamp(0.0, 1.0);

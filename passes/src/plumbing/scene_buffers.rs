@@ -179,6 +179,7 @@ pub fn specialization(gpu: &GpuScene) -> Specialization {
         "HAS_CONDUCTOR",
         "HAS_DIELECTRIC",
         "HAS_DIELECTRIC_ROUGH",
+        "HAS_METAL_ROUGH",
         "HAS_SUN",
         "HAS_DELTA_LIGHTS",
         "HAS_ENVIRONMENT",

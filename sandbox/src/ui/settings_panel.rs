@@ -73,12 +73,13 @@ fn scene(ui: &mut egui::Ui, state: &mut AppState, requests: &mut Requests) {
 }
 
 /// The scene features with their names, in a fixed order.
-fn feature_list(f: &SceneFeatures) -> [(&'static str, bool); 16] {
+fn feature_list(f: &SceneFeatures) -> [(&'static str, bool); 17] {
     [
         ("diffuse", f.diffuse),
         ("conductor", f.conductor),
         ("smooth dielectric", f.dielectric_smooth),
         ("rough dielectric", f.dielectric_rough),
+        ("glTF metal-roughness", f.metal_rough),
         ("emissive", f.emissive),
         ("spheres", f.spheres),
         ("textures", f.textures),

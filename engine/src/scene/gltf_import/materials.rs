@@ -4,19 +4,21 @@
 //! Mapping:
 //! - `KHR_materials_transmission` with a factor > 0 → dielectric with the
 //!   `KHR_materials_ior` index (default 1.5), tinted by the base colour;
-//! - otherwise metallic > 0.5 → conductor with the base colour as metal
-//!   colour;
-//! - otherwise → Lambertian diffuse with the base colour as albedo.
+//! - otherwise a metallic factor of 1 without a metallic-roughness texture → conductor with the
+//!   base colour as metal colour (the model's metal half alone, smooth ones a perfect mirror);
+//! - otherwise → the metallic-roughness model in full ([`MaterialKind::MetalRough`]): a GGX
+//!   specular layer over Lambertian diffuse of the base colour, mixed with the metal by the
+//!   metallic factor, the texture (linear, roughness in G, metal in B) scaling both per texel; the
+//!   layer's reflectance follows `KHR_materials_ior` (default 1.5) and `KHR_materials_specular`'s
+//!   factors (its textures are reported, not read).
 //!
 //! Roughness maps to GGX `alpha = roughness²`. Emission is
 //! `emissiveFactor × KHR_materials_emissive_strength`, times the emissive texture (sRGB) when
 //! there is one. The base-colour texture (sRGB, its alpha the opacity), the normal map and the
-//! occlusion texture are kept for every kind; a metal's metallic-roughness texture (linear,
-//! roughness in G, metal in B) scales its roughness per texel and makes the texels where
-//! `metallic × B < 0.5` diffuse. `alphaMode` and `alphaCutoff` carry over. Every texture keeps
-//! its sampler's wrap modes and its `KHR_texture_transform`. What a material uses beyond this
-//! (partial metal or transmission, texture coordinates other than `TEXCOORD_0`) is reported once
-//! per feature per file ([`super::unsupported`]).
+//! occlusion texture are kept for every kind. `alphaMode` and `alphaCutoff` carry over. Every
+//! texture keeps its sampler's wrap modes and its `KHR_texture_transform`. What a material uses
+//! beyond this (partial transmission, specular textures, texture coordinates other than
+//! `TEXCOORD_0`) is reported once per feature per file ([`super::unsupported`]).
 
 use std::collections::HashMap;
 use std::path::Path;
@@ -77,23 +79,21 @@ impl<'a> MaterialImporter<'a> {
         let transmission_ext = ext.and_then(|e| e.transmission.as_ref());
         let transmission = transmission_ext.map_or(0.0, |t| t.transmission_factor.0);
         let ior = ext.and_then(|e| e.ior.as_ref()).map_or(1.5, |i| i.ior.0);
+        let specular_ext = ext.and_then(|e| e.specular.as_ref());
         let strength = ext
             .and_then(|e| e.emissive_strength.as_ref())
             .map_or(1.0, |s| s.emissive_strength.0);
+        let metallic = pbr.metallic_factor();
         let kind = if transmission > 0.0 {
             MaterialKind::Dielectric
-        } else if pbr.metallic_factor() > 0.5 {
+        } else if metallic >= 1.0 && pbr.metallic_roughness_texture().is_none() {
             MaterialKind::Conductor
         } else {
-            MaterialKind::Diffuse
+            MaterialKind::MetalRough
         };
         let roughness = pbr.roughness_factor();
         let mut note =
             |feature| unsupported.note(feature, "materials", || format!("material `{name}`"));
-        let metallic = pbr.metallic_factor();
-        if kind != MaterialKind::Dielectric && metallic > 0.0 && metallic < 1.0 {
-            note(Feature::PartialMetal);
-        }
         let partial_transmission = transmission_ext
             .is_some_and(|t| t.transmission_texture.is_some() || t.transmission_factor.0 < 1.0);
         if kind == MaterialKind::Dielectric && partial_transmission {
@@ -101,6 +101,11 @@ impl<'a> MaterialImporter<'a> {
         }
         if kind == MaterialKind::Dielectric && pbr.metallic_roughness_texture().is_some() {
             note(Feature::MetallicRoughnessTexture);
+        }
+        if specular_ext
+            .is_some_and(|s| s.specular_texture.is_some() || s.specular_color_texture.is_some())
+        {
+            note(Feature::SpecularTextures);
         }
         let alpha_mode = match m.alpha_mode() {
             AlphaMode::Opaque => crate::scene::AlphaMode::Opaque,
@@ -123,10 +128,8 @@ impl<'a> MaterialImporter<'a> {
             Some(i) => Some(self.slot(scene, &info(i)?, true, &mut note)?),
             None => None,
         };
-        // Metal and roughness per texel matter only to a metal: below a metallic factor of 0.5
-        // every texel is diffuse, and Lambertian reflection has no roughness.
         let metallic_roughness_texture = match &pbr_json.metallic_roughness_texture {
-            Some(i) if kind == MaterialKind::Conductor => {
+            Some(i) if kind == MaterialKind::MetalRough => {
                 Some(self.slot(scene, &info(i)?, false, &mut note)?)
             }
             _ => None,
@@ -164,6 +167,9 @@ impl<'a> MaterialImporter<'a> {
             metallic_roughness_texture,
             metallic,
             ior,
+            specular: specular_ext.map_or(1.0, |s| s.specular_factor.0),
+            specular_color: specular_ext
+                .map_or(Vec3::ONE, |s| Vec3::from(s.specular_color_factor.0)),
             emission,
             emissive_texture,
             normal_texture,

@@ -44,10 +44,11 @@ use unsupported::{Feature, Unsupported};
 pub const DEFAULT_VFOV_DEGREES: f32 = 45.0;
 
 /// Extensions the importer understands (and so accepts as required).
-pub const SUPPORTED_EXTENSIONS: [&str; 5] = [
+pub const SUPPORTED_EXTENSIONS: [&str; 6] = [
     "KHR_lights_punctual",
     "KHR_materials_emissive_strength",
     "KHR_materials_ior",
+    "KHR_materials_specular",
     "KHR_materials_transmission",
     "KHR_texture_transform",
 ];

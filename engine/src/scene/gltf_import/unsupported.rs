@@ -9,10 +9,10 @@ use std::collections::BTreeMap;
 pub enum Feature {
     /// `pbrMetallicRoughness.metallicRoughnessTexture` on a transmissive material.
     MetallicRoughnessTexture,
-    /// A `metallicFactor` strictly between 0 and 1 (a material is either metal or not).
-    PartialMetal,
     /// A `KHR_materials_transmission` factor strictly between 0 and 1, or its texture.
     PartialTransmission,
+    /// `KHR_materials_specular`'s textures.
+    SpecularTextures,
     /// A texture read through `TEXCOORD_n`, n > 0 (by its `texCoord` or its
     /// `KHR_texture_transform`'s).
     OtherTexCoords,
@@ -40,13 +40,12 @@ impl Feature {
                 "metallic-roughness textures on transmissive materials are not supported: their \
                  roughness factor alone is used"
             }
-            Feature::PartialMetal => {
-                "metallic factors between 0 and 1 are not supported: a material is a metal from \
-                 0.5 up, else not"
-            }
             Feature::PartialTransmission => {
                 "partial transmission (a transmission factor below 1, or a transmission texture) \
                  is not supported: the material is fully transmissive"
+            }
+            Feature::SpecularTextures => {
+                "KHR_materials_specular textures are not supported: its factors alone are used"
             }
             Feature::OtherTexCoords => {
                 "texture coordinates other than TEXCOORD_0 are not supported: TEXCOORD_0 is used"
@@ -139,14 +138,14 @@ mod tests {
     fn one_warning_per_feature_with_a_count() {
         let mut u = Unsupported::default();
         for name in ["a", "b", "b", "c"] {
-            u.note(Feature::PartialMetal, "materials", || {
+            u.note(Feature::PartialTransmission, "materials", || {
                 format!("material `{name}`")
             });
         }
         u.note(Feature::Animations, "animations", || "animation 0".into());
         let w = u.warnings("f.gltf");
         assert_eq!(w.len(), 2);
-        assert!(w[0].starts_with("f.gltf: metallic factors"), "{w:?}");
+        assert!(w[0].starts_with("f.gltf: partial transmission"), "{w:?}");
         assert!(
             w[0].ends_with("(3 materials, the first material `a`)"),
             "{w:?}"

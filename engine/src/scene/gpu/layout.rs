@@ -99,6 +99,8 @@ pub mod material_kind {
     pub const CONDUCTOR: u32 = 1;
     /// Smooth or rough dielectric.
     pub const DIELECTRIC: u32 = 2;
+    /// glTF metallic-roughness: specular layer over diffuse, mixed with a conductor.
+    pub const METAL_ROUGH: u32 = 3;
 }
 
 /// Bits of [`GpuMaterial::flags`].
@@ -113,16 +115,17 @@ pub mod material_flags {
     pub const ALPHA_BLEND: u32 = 8;
 }
 
-/// A material, 80 bytes. Texture fields index [`GpuTextureRecord`]s (`~0u`: none).
+/// A material, 96 bytes. Texture fields index [`GpuTextureRecord`]s (`~0u`: none).
 /// ```glsl
 /// struct Material {
-///     vec3  base_color; uint kind;    // kind: 0 diffuse, 1 conductor, 2 dielectric
+///     vec3  base_color; uint kind;    // kind: material_kind
 ///     vec3  emission;   float alpha;  // GGX alpha
 ///     float ior; uint texture;        // base-colour texture
 ///     uint  flags;                    // material_flags
 ///     uint  metal_roughness;          // metallic-roughness texture (G roughness, B metal)
 ///     float metallic; uint normal_texture; float normal_scale; uint emissive_texture;
 ///     uint  occlusion_texture; float occlusion_strength; float opacity; float alpha_cutoff;
+///     vec3  specular_f0; float specular_weight; // metallic-roughness's specular layer
 /// };
 /// ```
 #[repr(C)]
@@ -144,8 +147,7 @@ pub struct GpuMaterial {
     pub flags: u32,
     /// Metallic-roughness texture record or `u32::MAX`.
     pub metal_roughness: u32,
-    /// Metallic factor (with a metallic-roughness texture, a texel is metal where
-    /// `metallic * B >= 0.5`).
+    /// Metallic factor (times the metallic-roughness texture's B).
     pub metallic: f32,
     /// Normal-map texture record or `u32::MAX`.
     pub normal_texture: u32,
@@ -161,6 +163,10 @@ pub struct GpuMaterial {
     pub opacity: f32,
     /// Alpha-mask cutoff.
     pub alpha_cutoff: f32,
+    /// Metallic-roughness: the specular layer's reflectance at normal incidence.
+    pub specular_f0: [f32; 3],
+    /// Metallic-roughness: the specular layer's strength (`specularFactor`).
+    pub specular_weight: f32,
 }
 
 /// Light kinds as stored in [`GpuLight::kind`].
@@ -366,7 +372,7 @@ mod tests {
         assert_eq!(size_of::<GpuVertex>(), 20);
         assert_eq!(size_of::<GpuInstance>(), 112);
         assert_eq!(size_of::<GpuSphere>(), 32);
-        assert_eq!(size_of::<GpuMaterial>(), 80);
+        assert_eq!(size_of::<GpuMaterial>(), 96);
         assert_eq!(size_of::<GpuLight>(), 80);
         assert_eq!(size_of::<GpuAliasEntry>(), 16);
         assert_eq!(size_of::<GpuTextureRecord>(), 48);

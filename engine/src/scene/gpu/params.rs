@@ -47,6 +47,7 @@ pub fn materials(
                     MaterialKind::Diffuse => material_kind::DIFFUSE,
                     MaterialKind::Conductor => material_kind::CONDUCTOR,
                     MaterialKind::Dielectric => material_kind::DIELECTRIC,
+                    MaterialKind::MetalRough => material_kind::METAL_ROUGH,
                 },
                 emission: m.emission.to_array(),
                 alpha: m.alpha,
@@ -67,6 +68,8 @@ pub fn materials(
                 occlusion_strength: m.occlusion_strength,
                 opacity: m.opacity,
                 alpha_cutoff,
+                specular_f0: m.specular_f0().to_array(),
+                specular_weight: m.specular,
             }
         })
         .collect();
