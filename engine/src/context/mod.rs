@@ -9,6 +9,7 @@ mod debug;
 mod device;
 mod device_loss;
 mod instance;
+mod loader_lock;
 mod memory_budget;
 pub(crate) mod memory_report;
 mod options;
@@ -118,6 +119,7 @@ impl Context {
             ));
         }
         let validation = ValidationLog::default();
+        let _loader = loader_lock::exclusive();
         let created = instance::create_instance(desc, &validation)?;
         let destroy_instance = |c: &instance::CreatedInstance| {
             // SAFETY: nothing else was created from the instance that is still alive.
@@ -423,6 +425,7 @@ impl Context {
             let info = vk::DebugUtilsObjectNameInfoEXT::default()
                 .object_handle(handle)
                 .object_name(&name);
+            let _loader = loader_lock::shared();
             // SAFETY: the handle belongs to this device. Naming is best-effort.
             let _ = unsafe { utils.set_debug_utils_object_name(&info) };
         }
@@ -516,6 +519,7 @@ impl Drop for Shared {
             let _ = self.device.device_wait_idle();
             ManuallyDrop::drop(&mut self.allocator);
             if self.owns_vulkan {
+                let _loader = loader_lock::exclusive();
                 self.device.destroy_device(None);
                 if let Some(utils) = &self.debug_utils_instance {
                     utils.destroy_debug_utils_messenger(self.messenger, None);
