@@ -8,6 +8,7 @@
 //! use lucid_sandbox::{AppOptions, RenderSettings, Startup};
 //! let options = AppOptions {
 //!     scene: lucid_sandbox::DEFAULT_SCENE.into(),
+//!     env: None,
 //!     size: [1280, 720],
 //!     capture_dir: ".".into(),
 //!     screenshot: None,
@@ -68,6 +69,7 @@ const NO_DISPLAY: &str =
 /// // `lucid view classroom --screenshot-after 30 shot.png`
 /// lucid_sandbox::run(lucid_sandbox::AppOptions {
 ///     scene: "classroom".into(),
+///     env: None,
 ///     size: [800, 600],
 ///     capture_dir: std::env::temp_dir(),
 ///     screenshot: Some(lucid_sandbox::Screenshot {

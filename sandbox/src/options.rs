@@ -25,6 +25,7 @@ pub struct Screenshot {
 /// ```
 /// let options = lucid_sandbox::AppOptions {
 ///     scene: "scene.glb".into(), // or a built-in name such as lucid_sandbox::DEFAULT_SCENE
+///     env: None,                  // or Some("sky.hdr".into())
 ///     size: [1280, 720],
 ///     capture_dir: "captures".into(),
 ///     screenshot: None,
@@ -35,6 +36,8 @@ pub struct Screenshot {
 pub struct AppOptions {
     /// A built-in scene name or a `.gltf` / `.glb` file.
     pub scene: String,
+    /// An equirectangular environment map (`.hdr` or `.exr`) lighting every scene opened.
+    pub env: Option<PathBuf>,
     /// Initial window size in pixels.
     pub size: [u32; 2],
     /// Where F12 captures go.

@@ -43,14 +43,18 @@ impl SceneInfo {
     }
 }
 
-/// Loads `spec`: a `.gltf` / `.glb` file, or a built-in scene name.
-pub fn load(spec: &str) -> anyhow::Result<SceneInfo> {
+/// Loads `spec`: a `.gltf` / `.glb` file, or a built-in scene name; lit by the environment map
+/// `env` (`.hdr` or `.exr`) when given.
+pub fn load(spec: &str, env: Option<&Path>) -> anyhow::Result<SceneInfo> {
     let lower = spec.to_ascii_lowercase();
     let mut scene: Scene = if lower.ends_with(".gltf") || lower.ends_with(".glb") {
         load_gltf(Path::new(spec)).with_context(|| format!("loading {spec}"))?
     } else {
         builtin::build(spec)?
     };
+    if let Some(path) = env {
+        scene.light_with_environment_file(path)?;
+    }
     scene
         .validate()
         .with_context(|| format!("scene {spec} is invalid"))?;
@@ -73,17 +77,37 @@ mod tests {
 
     #[test]
     fn loads_builtins_and_reports_bad_input() {
-        let info = load(DEFAULT_SCENE).unwrap();
+        let info = load(DEFAULT_SCENE, None).unwrap();
         assert!(info.triangles > 0);
         let framed = info.framing(45.0);
         assert_eq!(framed, Camera::framing(&info.scene.bounds(), 45.0));
-        let unknown = load("no-such-scene").unwrap_err().to_string();
+        let unknown = load("no-such-scene", None).unwrap_err().to_string();
         assert!(unknown.contains("no-such-scene"), "{unknown}");
-        let missing = load("/nonexistent/file.glb").unwrap_err();
+        let missing = load("/nonexistent/file.glb", None).unwrap_err();
         assert!(format!("{missing:#}").contains("file.glb"));
         let file = std::env::temp_dir().join(format!("lucid-bad-{}.gltf", std::process::id()));
         std::fs::write(&file, b"{ not json").unwrap();
-        assert!(load(file.to_str().unwrap()).is_err());
+        assert!(load(file.to_str().unwrap(), None).is_err());
         std::fs::remove_file(&file).unwrap();
+    }
+
+    #[test]
+    fn an_environment_map_lights_every_scene_opened() {
+        let hdr = std::env::temp_dir().join(format!("lucid-sky-{}.hdr", std::process::id()));
+        let texels = vec![image::Rgb([0.5f32; 3]); 8];
+        let file = std::io::BufWriter::new(std::fs::File::create(&hdr).unwrap());
+        image::codecs::hdr::HdrEncoder::new(file)
+            .encode(&texels, 4, 2)
+            .unwrap();
+        let lit = load(DEFAULT_SCENE, Some(&hdr)).unwrap();
+        assert!(lit.features.environment_map);
+        assert!(
+            lit.notes.iter().any(|n| n.contains("lights the scene")),
+            "{:?}",
+            lit.notes
+        );
+        std::fs::remove_file(&hdr).unwrap();
+        let missing = load(DEFAULT_SCENE, Some(Path::new("/nonexistent/sky.hdr"))).unwrap_err();
+        assert!(format!("{missing:#}").contains("sky.hdr"), "{missing:#}");
     }
 }

@@ -81,7 +81,10 @@ impl Session {
         let swapchain = presenter.swapchain();
         let mut overlay = Overlay::new(&ctx, &window, swapchain.format())?;
         overlay.set_targets(swapchain.format(), swapchain.views(), swapchain.extent())?;
-        let mut state = AppState::new(&options.scene, scene::load(&options.scene));
+        let mut state = AppState::new(
+            &options.scene,
+            scene::load(&options.scene, options.env.as_deref()),
+        );
         state.render = startup.render;
         state.split = startup.split;
         let extent = swapchain.extent();
@@ -212,7 +215,7 @@ impl Session {
     /// Acts on the panel's buttons.
     pub(super) fn handle_requests(&mut self, requests: ui::Requests, now: f64) {
         if let Some(spec) = requests.load_scene {
-            let loaded = scene::load(&spec);
+            let loaded = scene::load(&spec, self.options.env.as_deref());
             self.state.set_scene(loaded);
             self.window.set_title(&format!("Lucid — {spec}"));
             if let Err(e) = self.replace_source() {

@@ -550,3 +550,65 @@ fn a_gltf_without_camera_or_light_renders_and_says_what_it_supplied() {
     std::fs::remove_file(&file).unwrap();
     std::fs::remove_file(&png).unwrap();
 }
+
+/// Writes a `width` x `height` Radiance .hdr of constant radiance `value`.
+fn write_hdr(path: &std::path::Path, width: usize, height: usize, value: f32) {
+    let texels = vec![image::Rgb([value; 3]); width * height];
+    let file = std::io::BufWriter::new(std::fs::File::create(path).unwrap());
+    image::codecs::hdr::HdrEncoder::new(file)
+        .encode(&texels, width, height)
+        .unwrap();
+}
+
+#[test]
+fn an_environment_map_lights_the_scene_and_bad_maps_are_named() {
+    use lucid_engine::capture::{load_exr, save, ImageData};
+    // The furnace's sphere (albedo 0.8) under a constant .hdr map of 0.5 (or the same as .exr):
+    // the background shows the map, and the output says what lights the scene.
+    let hdr = temp("env-constant.hdr");
+    write_hdr(&hdr, 16, 8, 0.5);
+    let exr = temp("env-constant.exr");
+    let mut map = ImageData::new(16, 8);
+    map.pixels.fill([0.5, 0.5, 0.5, 1.0]);
+    save(&exr, &map).unwrap();
+    for env in [&hdr, &exr] {
+        let out_file = temp("env-furnace.exr");
+        let out = lucid(&[
+            "render",
+            "--scene",
+            "furnace",
+            "--env",
+            env.to_str().unwrap(),
+            "--size",
+            "32x32",
+            "--spp",
+            "4",
+            "--out",
+            out_file.to_str().unwrap(),
+        ]);
+        let err = stderr(&out);
+        assert!(out.status.success(), "{err}");
+        assert!(
+            err.contains("lights the scene") && err.contains("HAS_ENVIRONMENT_MAP"),
+            "{err}"
+        );
+        let image = load_exr(&out_file).unwrap();
+        let corner = image.get(0, 0).unwrap();
+        assert!(
+            (corner[0] - 0.5).abs() < 2e-3,
+            "{env:?}: background {corner:?}"
+        );
+    }
+    let wide = temp("env-square.hdr");
+    write_hdr(&wide, 8, 8, 1.0);
+    for (file, says) in [
+        (temp("env-missing.hdr"), "env-missing.hdr"),
+        (temp("env.png"), ".hdr or .exr"),
+        (wide, "twice as wide as high"),
+    ] {
+        let out = lucid(&["render", "--env", file.to_str().unwrap(), "--size", "8x8"]);
+        let err = stderr(&out);
+        assert!(!out.status.success(), "{file:?} must fail");
+        assert!(err.contains(says) && !err.contains("panicked"), "{err}");
+    }
+}

@@ -194,7 +194,8 @@ vec3 trace_camera(vec3 o, vec3 d, inout uint rng, uint max_depth, uint rr_depth,
         Hit hit;
         if (!counted_closest(o, d, hit)) {
             float w_sun = prev_delta ? 1.0 : mis_pair(prev_pdf, sun_pdf());
-            radiance += c.beta * (environment_radiance(d) + sun_radiance(d) * w_sun);
+            float w_env = prev_delta || !environment_sampled() ? 1.0 : mis_pair(prev_pdf, environment_pdf(d));
+            radiance += c.beta * (environment_radiance(d) * w_env + sun_radiance(d) * w_sun);
             if (depth == 0u) {
                 first_emission = radiance;
             }

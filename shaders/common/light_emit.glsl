@@ -110,12 +110,12 @@ bool sample_emission(vec3 u, vec2 v, out EmitSample e) {
 }
 
 // Area-measure pdf (discrete probability for delta lights) that NEE from `receiver` picks the
-// origin of `e`, including the sun's share of NEE.
+// origin of `e`, including the light table's share of NEE.
 float emission_nee_pdf(EmitSample e, vec3 receiver) {
     Light light = b_lights.l[e.index];
-    float not_sun = 1.0 - sun_selection();
+    float table = table_selection();
     if (e.kind == LIGHT_TRIANGLE) {
-        return not_sun * emitter_selection(light.emission.rgb, light.p0.w) / light.p0.w;
+        return table * emitter_selection(light.emission.rgb, light.p0.w) / light.p0.w;
     }
     if (e.kind == LIGHT_SPHERE) {
         vec3 d = receiver - e.p;
@@ -123,7 +123,7 @@ float emission_nee_pdf(EmitSample e, vec3 receiver) {
         float cos_l = abs(dot(e.n, d)) * inversesqrt(dist2);
         return sphere_light_pdf(receiver, light.p0, light.emission.rgb) * cos_l / dist2;
     }
-    return not_sun * b_light_table.e[e.index].pdf;
+    return table * b_light_table.e[e.index].pdf;
 }
 
 // Emission pdf (area x solid angle, for MIS) of an emitting surface point `s` towards a direction
@@ -143,7 +143,7 @@ float surface_emission_pdf(Surface s, float cos_out) {
 bool light_sample_emission(vec3 p, LightSample ls, out float pdf_dir, out float cos_light) {
     pdf_dir = 0.0;
     cos_light = 1.0;
-    if (ls.light == SUN_LIGHT) {
+    if (ls.light == SUN_LIGHT || ls.light == ENVIRONMENT_LIGHT) {
         return false;
     }
     uint index = ls.light;

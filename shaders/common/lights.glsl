@@ -1,13 +1,15 @@
 // Light sampling for next-event estimation and the matching pdfs for MIS: emissive triangles and
 // spheres, point and spot lights (an alias table, half by power and half uniform: see
-// lucid_engine::scene::LightDistribution), the sun, and the environment (reached by BSDF sampling
-// only). Requires scene.glsl, math.glsl, traverse.glsl.
+// lucid_engine::scene::LightDistribution), the sun, and an environment map (its cells by an alias
+// table after the lights', lucid_engine::scene::EnvironmentDistribution); a constant or gradient
+// environment is reached by BSDF sampling only. Requires scene.glsl, math.glsl, traverse.glsl.
 #ifndef LUCID_LIGHTS_GLSL
 #define LUCID_LIGHTS_GLSL
 
 layout(constant_id = 104) const bool HAS_SUN = true;
 layout(constant_id = 105) const bool HAS_DELTA_LIGHTS = true;
 layout(constant_id = 106) const bool HAS_ENVIRONMENT = true;
+layout(constant_id = 118) const bool HAS_ENVIRONMENT_MAP = true;
 // Some emissive material has an emissive texture.
 layout(constant_id = 113) const bool HAS_EMISSIVE_TEXTURES = true;
 
@@ -15,8 +17,9 @@ layout(constant_id = 113) const bool HAS_EMISSIVE_TEXTURES = true;
 // one light; 1 turns resampling off.
 const uint LIGHT_CANDIDATES = 4u;
 
-// LightSample::light of the sun.
+// LightSample::light of the sun and of the environment map.
 const uint SUN_LIGHT = 0xffffffffu;
+const uint ENVIRONMENT_LIGHT = 0xfffffffeu;
 
 struct LightSample {
     vec3 wi;        // unit direction from the shading point to the light
@@ -27,19 +30,50 @@ struct LightSample {
     float weight;   // what multiplies radiance in the estimate: 1 / pdf, or with resampling its
                     // unbiased contribution weight
     bool delta;
-    uint light;     // the light-table entry, or SUN_LIGHT
+    uint light;     // the light-table entry, SUN_LIGHT or ENVIRONMENT_LIGHT
 };
 
 bool sun_enabled() {
     return HAS_SUN && b_scene.p.sun.radiance_enabled.w > 0.0;
 }
 
-// Probability of choosing the sun over the light table.
+bool environment_sampled() {
+    return HAS_ENVIRONMENT_MAP && b_scene.p.environment.kind == 2u;
+}
+
+// Probability that next-event estimation samples the environment map: half when there is
+// anything else to sample, else all.
+float environment_selection() {
+    if (!environment_sampled()) {
+        return 0.0;
+    }
+    return b_scene.p.counts0.w > 0u || sun_enabled() ? 0.5 : 1.0;
+}
+
+// Probability of choosing the sun: half of what the map leaves when the light table has lights.
 float sun_selection() {
     if (!sun_enabled()) {
         return 0.0;
     }
-    return b_scene.p.counts0.w > 0u ? 0.5 : 1.0;
+    float rest = 1.0 - environment_selection();
+    return b_scene.p.counts0.w > 0u ? 0.5 * rest : rest;
+}
+
+// Probability of choosing the light table.
+float table_selection() {
+    return 1.0 - sun_selection() - environment_selection();
+}
+
+// The map's image coordinates of unit direction d (lucid_engine::scene::environment_map).
+vec2 environment_uv(vec3 d) {
+    float u = 0.5 + atan(d.x, -d.z) * (0.5 * INV_PI);
+    return vec2(fract(u), acos(clamp(d.y, -1.0, 1.0)) * INV_PI);
+}
+
+vec3 environment_direction(vec2 uv) {
+    float phi = (uv.x - 0.5) * 2.0 * PI;
+    float theta = uv.y * PI;
+    return vec3(sin(theta) * sin(phi), cos(theta), -sin(theta) * cos(phi));
 }
 
 vec3 environment_radiance(vec3 dir) {
@@ -47,10 +81,54 @@ vec3 environment_radiance(vec3 dir) {
         return vec3(0.0);
     }
     Environment e = b_scene.p.environment;
+    if (HAS_ENVIRONMENT_MAP && e.kind == 2u) {
+        return sample_texture(e.map_record, environment_uv(dir)).rgb;
+    }
     if (e.kind == 0u) {
         return e.zenith.rgb;
     }
     return dir.y <= 0.0 ? e.ground.rgb : mix(e.horizon.rgb, e.zenith.rgb, sqrt(dir.y));
+}
+
+// Solid-angle density of next-event estimation sampling the environment map in direction dir
+// (cell probability over the cell's solid angle at dir), its selection included; 0 without a map.
+float environment_cell_pdf(uint cell, float sin_theta) {
+    Environment e = b_scene.p.environment;
+    if (sin_theta <= 0.0) {
+        return 0.0;
+    }
+    float p = b_light_table.e[b_scene.p.counts0.w + cell].pdf;
+    return environment_selection() * p * float(e.cells_x * e.cells_y) / (2.0 * PI * PI * sin_theta);
+}
+
+float environment_pdf(vec3 dir) {
+    if (!environment_sampled()) {
+        return 0.0;
+    }
+    Environment e = b_scene.p.environment;
+    uvec2 cell = min(uvec2(environment_uv(dir) * vec2(e.cells_x, e.cells_y)), uvec2(e.cells_x, e.cells_y) - 1u);
+    return environment_cell_pdf(cell.y * e.cells_x + cell.x, sqrt(max(0.0, 1.0 - dir.y * dir.y)));
+}
+
+// Samples the environment map: a cell by its alias table (u.x), a uniform point of it in image
+// coordinates (u.yz).
+bool sample_environment(vec3 u, out LightSample ls) {
+    Environment e = b_scene.p.environment;
+    uint cells = e.cells_x * e.cells_y;
+    uint offset = b_scene.p.counts0.w;
+    float scaled = u.x * float(cells);
+    uint column = min(uint(scaled), cells - 1u);
+    LightTableEntry entry = b_light_table.e[offset + column];
+    uint cell = fract(scaled) < entry.threshold ? column : entry.alias - offset;
+    vec2 uv = (vec2(cell % e.cells_x, cell / e.cells_x) + u.yz) / vec2(e.cells_x, e.cells_y);
+    ls.wi = environment_direction(uv);
+    ls.dist = T_INFINITY;
+    ls.delta = false;
+    ls.light = ENVIRONMENT_LIGHT;
+    ls.radiance = environment_radiance(ls.wi);
+    ls.pdf = environment_cell_pdf(cell, sin(uv.y * PI));
+    ls.weight = ls.pdf > 0.0 ? 1.0 / ls.pdf : 0.0;
+    return ls.pdf > 0.0;
 }
 
 // The sun's radiance seen along dir (0 outside its disc).
@@ -132,7 +210,7 @@ float triangle_light_pdf(vec3 p, vec3 p_light, vec3 front, vec3 p0, vec3 p1, vec
     vec3 d = p_light - p;
     float dist2 = dot(d, d);
     float cos_l = abs(dot(front, normalize(d)));
-    float selection = light_selection(emitter_power(emission, area)) * (1.0 - sun_selection());
+    float selection = light_selection(emitter_power(emission, area)) * table_selection();
     return selection * dist2 / max(cos_l * area, 1e-12);
 }
 
@@ -144,7 +222,7 @@ float sphere_light_pdf(vec3 p, vec4 center_radius, vec3 emission) {
         return 0.0;
     }
     float cos_max = sqrt(max(0.0, 1.0 - r * r / d2));
-    float selection = light_selection(emitter_power(emission, 4.0 * PI * r * r)) * (1.0 - sun_selection());
+    float selection = light_selection(emitter_power(emission, 4.0 * PI * r * r)) * table_selection();
     return selection / (2.0 * PI * max(1.0 - cos_max, 1e-7));
 }
 
@@ -232,9 +310,9 @@ bool sample_table_light(vec3 p, uint index, float selection, vec2 u, out LightSa
 // pixel's candidates spread over the table rather than repeat.
 const vec3 CANDIDATE_STEP = vec3(0.8191725134, 0.6710436067, 0.5497004779);
 
-// Samples a light as seen from p for next-event estimation. u.x picks the sun or the light table,
-// u.yz place the point, u.w resamples. With more than one light in the table, LIGHT_CANDIDATES
-// candidates are drawn from the table and one is kept in proportion to the radiance it brings to
+// Samples a light as seen from p for next-event estimation. u.x picks the environment map, the sun
+// or the light table, u.yz place the point, u.w resamples. With more than one light in the table,
+// LIGHT_CANDIDATES candidates are drawn from the table and one is kept in proportion to the radiance it brings to
 // p unshadowed over its pdf (resampled importance sampling, Talbot et al. 2005): a light that
 // does not reach p (a spot aimed elsewhere, a triangle facing away) is not kept while another
 // does. `ls.weight` is then the unbiased contribution weight sum(w) / (M * target) in place of
@@ -248,9 +326,13 @@ bool sample_light(vec3 p, vec4 u, out LightSample ls) {
     ls.weight = 0.0;
     ls.wi = vec3(0.0, 1.0, 0.0);
     ls.light = SUN_LIGHT;
+    float p_environment = environment_selection();
+    if (u.x < p_environment) {
+        return sample_environment(vec3(u.x / p_environment, u.yz), ls);
+    }
     float p_sun = sun_selection();
     uint count = b_scene.p.counts0.w;
-    if (u.x < p_sun) {
+    if (u.x < p_environment + p_sun) {
         Sun s = b_scene.p.sun;
         vec3 t;
         vec3 b;
@@ -264,11 +346,11 @@ bool sample_light(vec3 p, vec4 u, out LightSample ls) {
     if (count == 0u) {
         return false;
     }
-    float u_pick = p_sun > 0.0 ? (u.x - p_sun) / (1.0 - p_sun) : u.x;
-    float not_sun = 1.0 - p_sun;
+    float table = table_selection();
+    float u_pick = table < 1.0 ? (u.x - p_environment - p_sun) / table : u.x;
     if (count == 1u || LIGHT_CANDIDATES <= 1u) {
         uint index = pick_light(min(u_pick, 0.99999994), count);
-        bool ok = sample_table_light(p, index, b_light_table.e[index].pdf * not_sun, u.yz, ls);
+        bool ok = sample_table_light(p, index, b_light_table.e[index].pdf * table, u.yz, ls);
         ls.weight = ls.pdf > 0.0 ? 1.0 / ls.pdf : 0.0;
         return ok;
     }
@@ -279,7 +361,7 @@ bool sample_light(vec3 p, vec4 u, out LightSample ls) {
         vec3 uk = fract(vec3(u_pick, u.yz) + float(k) * CANDIDATE_STEP);
         uint index = pick_light(min(uk.x, 0.99999994), count);
         LightSample c;
-        if (!sample_table_light(p, index, b_light_table.e[index].pdf * not_sun, uk.yz, c) || !(c.pdf > 0.0)) {
+        if (!sample_table_light(p, index, b_light_table.e[index].pdf * table, uk.yz, c) || !(c.pdf > 0.0)) {
             continue;
         }
         float w = max3(c.radiance) / c.pdf;

@@ -27,7 +27,8 @@ PathResult trace_path(vec3 o, vec3 d, inout uint rng, uint max_depth, uint rr_de
         if (!trace_closest(o, d, T_INFINITY, hit)) {
             vec3 sun = sun_radiance(d);
             float w_sun = prev_delta ? 1.0 : power_heuristic(prev_pdf, sun_pdf());
-            r.radiance += beta * (environment_radiance(d) + sun * w_sun);
+            float w_env = prev_delta || !environment_sampled() ? 1.0 : power_heuristic(prev_pdf, environment_pdf(d));
+            r.radiance += beta * (environment_radiance(d) * w_env + sun * w_sun);
             if (depth == 0u) {
                 r.first_emission = r.radiance;
             }

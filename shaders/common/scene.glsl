@@ -39,7 +39,9 @@ struct LightTableEntry { float threshold; uint alias; float pdf; float cdf; };
 // wrap mode along each axis in w (TEXTURE_WRAP_*).
 struct TextureRecord { uint offset; uint width; uint height; uint format; vec4 u_row; vec4 v_row; };
 struct Camera { vec4 position_aperture; vec4 right_focus; vec4 up_tan_half_fov; vec4 forward; };
-struct Environment { uint kind; uint pad0; uint pad1; uint pad2; vec4 zenith; vec4 horizon; vec4 ground; };
+// kind 0: constant (zenith), 1: sky gradient, 2: equirectangular map (texture record map_record,
+// its sampling distribution of cells_x x cells_y cells in b_light_table after the lights).
+struct Environment { uint kind; uint map_record; uint cells_x; uint cells_y; vec4 zenith; vec4 horizon; vec4 ground; };
 struct Sun { vec4 direction_cos; vec4 radiance_enabled; };
 struct SceneParams {
     Camera camera;

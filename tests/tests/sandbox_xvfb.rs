@@ -44,6 +44,7 @@ fn main() -> ExitCode {
 fn app(shot: PathBuf) -> ExitCode {
     let options = AppOptions {
         scene: "cornell-box".into(),
+        env: None,
         size: [WIDTH, HEIGHT],
         capture_dir: std::env::temp_dir(),
         screenshot: Some(Screenshot {

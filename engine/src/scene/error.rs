@@ -56,6 +56,14 @@ pub enum SceneError {
         /// The underlying error.
         source: std::io::Error,
     },
+    /// An environment map could not be loaded.
+    #[error("environment map {}: {message}", path.display())]
+    EnvironmentMap {
+        /// The file.
+        path: PathBuf,
+        /// What is wrong.
+        message: String,
+    },
     /// A glTF file could not be imported.
     #[error("{file}: {message}")]
     Gltf {

@@ -3,7 +3,7 @@
 
 use std::fmt;
 
-use super::{MaterialKind, Scene};
+use super::{Environment, MaterialKind, Scene};
 
 /// Features used by a scene. Only materials referenced by placed geometry
 /// count.
@@ -39,6 +39,8 @@ pub struct SceneFeatures {
     pub texture_transforms: bool,
     /// The environment is not black.
     pub environment: bool,
+    /// The environment is a map, sampled by next-event estimation.
+    pub environment_map: bool,
     /// A sun is present.
     pub sun: bool,
     /// Point or spot (delta) lights are present.
@@ -51,6 +53,7 @@ impl SceneFeatures {
         let mut f = SceneFeatures {
             spheres: !scene.spheres.is_empty(),
             environment: !scene.environment.is_black(),
+            environment_map: matches!(scene.environment, Environment::Map { .. }),
             sun: scene.sun.is_some(),
             delta_lights: !scene.punctual_lights.is_empty(),
             ..Default::default()
@@ -86,6 +89,8 @@ impl SceneFeatures {
             f.occlusion |= m.occlusion_texture.is_some();
             f.texture_transforms |= m.textures().any(|t| t.is_transformed());
         }
+        // The map's lookup clamps at the poles.
+        f.texture_transforms |= f.environment_map;
         f
     }
 
@@ -112,6 +117,7 @@ impl SceneFeatures {
             ("HAS_OCCLUSION", self.occlusion),
             ("HAS_TEXTURE_TRANSFORMS", self.texture_transforms),
             ("HAS_ENVIRONMENT", self.environment),
+            ("HAS_ENVIRONMENT_MAP", self.environment_map),
             ("HAS_SUN", self.sun),
             ("HAS_DELTA_LIGHTS", self.delta_lights),
         ]

@@ -106,6 +106,12 @@ pub enum Environment {
         /// Radiance of every downward direction.
         ground: Vec3,
     },
+    /// An equirectangular map of radiance ([`super::environment_map`]): scene texture `texture`
+    /// (linear), importance sampled by next-event estimation.
+    Map {
+        /// The scene texture holding the map.
+        texture: u32,
+    },
 }
 
 impl Environment {
@@ -118,25 +124,6 @@ impl Environment {
         ground: Vec3::new(0.3, 0.28, 0.25),
     };
 
-    /// Radiance arriving from unit direction `dir` (i.e. seen looking
-    /// along `dir`).
-    pub fn radiance(&self, dir: Vec3) -> Vec3 {
-        match *self {
-            Environment::Constant(c) => c,
-            Environment::Sky {
-                zenith,
-                horizon,
-                ground,
-            } => {
-                if dir.y < 0.0 {
-                    ground
-                } else {
-                    horizon.lerp(zenith, dir.y.sqrt())
-                }
-            }
-        }
-    }
-
     /// Whether any direction has non-zero radiance.
     pub fn is_black(&self) -> bool {
         match *self {
@@ -146,6 +133,7 @@ impl Environment {
                 horizon,
                 ground,
             } => zenith.max(horizon).max(ground).max_element() <= 0.0,
+            Environment::Map { .. } => false,
         }
     }
 }

@@ -84,6 +84,30 @@ impl Scene {
         (self.textures.len() - 1) as u32
     }
 
+    /// Lights the scene with an equirectangular environment map ([`super::environment_map::load`]
+    /// reads one) in place of its environment; returns the map's texture index.
+    pub fn set_environment_map(&mut self, map: Texture) -> u32 {
+        let texture = self.add_texture(map);
+        self.environment = Environment::Map { texture };
+        texture
+    }
+
+    /// Lights the scene with the equirectangular map in `path` (`.hdr` or `.exr`), saying so in
+    /// [`Scene::notes`] (in place of a note that a default sky lights it).
+    pub fn light_with_environment_file(
+        &mut self,
+        path: &std::path::Path,
+    ) -> Result<(), SceneError> {
+        let map = super::environment_map::load(path)?;
+        self.set_environment_map(map);
+        self.notes.retain(|n| !n.contains("default sky"));
+        self.notes.push(format!(
+            "{} lights the scene (an equirectangular environment map)",
+            path.display()
+        ));
+        Ok(())
+    }
+
     /// Adds a mesh (without instancing it) and returns its index.
     pub fn add_mesh(&mut self, m: Mesh) -> u32 {
         self.meshes.push(m);
@@ -197,6 +221,11 @@ impl Scene {
         }
         for t in &self.textures {
             t.validate()?;
+        }
+        if let Environment::Map { texture } = self.environment {
+            if texture as usize >= self.textures.len() {
+                return invalid(format!("the environment map is missing texture {texture}"));
+            }
         }
         let limit = crate::scene::gpu::bvh_pack::MAX_PRIMITIVES as usize;
         let counts = [

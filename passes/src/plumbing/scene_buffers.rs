@@ -183,6 +183,7 @@ pub fn specialization(gpu: &GpuScene) -> Specialization {
         "HAS_SUN",
         "HAS_DELTA_LIGHTS",
         "HAS_ENVIRONMENT",
+        "HAS_ENVIRONMENT_MAP",
         "HAS_TEXTURES",
         "HAS_VERTEX_COLORS",
         "HAS_NORMAL_MAPS",

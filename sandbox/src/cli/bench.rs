@@ -67,7 +67,7 @@ pub fn run(args: &BenchArgs) -> anyhow::Result<()> {
     if let Some(path) = &args.json {
         output_path::check_file("--json", path, &["json"])?;
     }
-    let scene = scene_source::load(&args.options.scene)?;
+    let scene = scene_source::load(&args.options.scene, args.options.env.as_deref())?;
     let mut desc = ContextDesc::from_env();
     desc.pipeline_statistics |= args.pipeline_statistics;
     let capture_statistics = desc.pipeline_statistics;

@@ -98,7 +98,7 @@ pub fn run(args: &ConvergeArgs) -> anyhow::Result<()> {
         Some(path) => Some(NetworkWeights::load(path)?),
         None => None,
     };
-    let scene = scene_source::load(&args.scene)?;
+    let scene = scene_source::load(&args.scene, None)?;
     let ctx = Context::new(&ContextDesc::from_env())?;
     let device = ctx.info().name.clone();
     let mut notes = Vec::new();

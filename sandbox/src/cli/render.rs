@@ -28,7 +28,7 @@ pub struct RenderArgs {
 /// Renders and writes the image.
 pub fn run(args: &RenderArgs) -> anyhow::Result<()> {
     let extension = output_path::check_file("--out", &args.out, &["png", "exr"])?;
-    let scene = scene_source::load(&args.options.scene)?;
+    let scene = scene_source::load(&args.options.scene, args.options.env.as_deref())?;
     let ctx = Context::new(&ContextDesc::from_env())?;
     let (w, h) = (args.options.size.width, args.options.size.height);
     let mut renderer =

@@ -20,6 +20,10 @@ pub struct RenderOptions {
     /// A built-in scene (see `lucid scenes`) or a .gltf/.glb file.
     #[arg(long, default_value = "cornell-box")]
     pub scene: String,
+    /// An equirectangular environment map (.hdr or .exr, twice as wide as high) lighting the
+    /// scene in place of its environment, importance sampled.
+    #[arg(long, value_name = "FILE")]
+    pub env: Option<PathBuf>,
     /// Light-transport algorithm, or `auto`: a short calibration on the scene picks algorithm,
     /// denoiser and samples per pixel for --quality or --budget-ms.
     #[arg(long, value_enum, default_value = "pt")]

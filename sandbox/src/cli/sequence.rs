@@ -117,7 +117,7 @@ impl Method {
 /// Renders every sequence and writes the evaluation.
 pub fn run(args: &SequenceArgs) -> anyhow::Result<()> {
     output_path::create_folder("--out", &args.out)?;
-    let scene = scene_source::load(&args.options.scene)?;
+    let scene = scene_source::load(&args.options.scene, args.options.env.as_deref())?;
     let path = scene
         .camera_path
         .clone()

@@ -115,7 +115,7 @@ fn resident_bytes() -> u64 {
 
 /// Runs the soak.
 pub fn run(args: &SoakArgs) -> anyhow::Result<()> {
-    let scene = scene_source::load(&args.scene)?;
+    let scene = scene_source::load(&args.scene, None)?;
     if scene.instances.is_empty() {
         bail!("scene {} has no instance to move", scene.name);
     }

@@ -18,6 +18,10 @@ pub struct ViewArgs {
     /// A built-in scene name (see `lucid render --help`) or a `.gltf` / `.glb` file.
     #[arg(default_value = DEFAULT_SCENE)]
     scene: String,
+    /// An equirectangular environment map (.hdr or .exr, twice as wide as high) lighting the
+    /// scene in place of its environment, importance sampled.
+    #[arg(long, value_name = "FILE")]
+    env: Option<PathBuf>,
     /// Initial window size.
     #[arg(long, default_value = "1280x720")]
     size: Size,
@@ -77,6 +81,7 @@ pub fn run(args: &ViewArgs) -> anyhow::Result<()> {
     };
     let options = AppOptions {
         scene: args.scene.clone(),
+        env: args.env.clone(),
         size: [args.size.width, args.size.height],
         capture_dir: args.capture_dir.clone(),
         screenshot,

@@ -73,7 +73,7 @@ fn scene(ui: &mut egui::Ui, state: &mut AppState, requests: &mut Requests) {
 }
 
 /// The scene features with their names, in a fixed order.
-fn feature_list(f: &SceneFeatures) -> [(&'static str, bool); 17] {
+fn feature_list(f: &SceneFeatures) -> [(&'static str, bool); 18] {
     [
         ("diffuse", f.diffuse),
         ("conductor", f.conductor),
@@ -90,6 +90,7 @@ fn feature_list(f: &SceneFeatures) -> [(&'static str, bool); 17] {
         ("occlusion", f.occlusion),
         ("texture transforms", f.texture_transforms),
         ("environment", f.environment),
+        ("environment map", f.environment_map),
         ("sun", f.sun),
         ("point/spot lights", f.delta_lights),
     ]

@@ -17,7 +17,8 @@
 //! - `materials`, `textures` (one record per texture a material uses: where its texels lie in
 //!   the flat `texels` word buffer, its coordinate transform and wrap modes).
 //! - `lights` + `light_table`: the NEE light list with its alias table / CDF
-//!   (power and uniform selection, see [`crate::scene::LightDistribution`]).
+//!   (power and uniform selection, see [`crate::scene::LightDistribution`]), then an environment
+//!   map's cells ([`crate::scene::EnvironmentDistribution`]).
 //! - `params`: camera, environment, sun, counts.
 
 pub mod bvh_pack;
@@ -47,7 +48,7 @@ use std::mem::size_of;
 
 use glam::Affine3A;
 
-use super::{LightDistribution, Scene, SceneFeatures};
+use super::{Environment, EnvironmentDistribution, LightDistribution, Scene, SceneFeatures};
 use crate::scene::{Bvh, InstanceSource};
 
 /// `GpuInstance::kind` of a mesh instance.
@@ -94,6 +95,11 @@ pub struct GpuScene {
     pub features: SceneFeatures,
     /// Where each scene texture's texels lie (identity transform, repeating).
     images: Vec<GpuTextureRecord>,
+    /// The environment map's texture record (`u32::MAX` without a map).
+    environment_record: u32,
+    /// The environment map's sampling distribution (empty without a map); its alias table follows
+    /// the lights' in `light_table`.
+    environment_distribution: EnvironmentDistribution,
     /// Root of each BLAS.
     blas_roots: Vec<u32>,
     /// Per BLAS, the source primitive of each packed primitive.
@@ -154,8 +160,16 @@ impl GpuScene {
     fn without_top_level(scene: &Scene, bvh: &Bvh, layout: BvhLayout) -> Self {
         let geo = geometry::pack(scene, bvh, layout);
         let (texels, images) = params::textures(scene);
-        let (materials, textures) = params::materials(scene, &images);
+        let (materials, textures, environment_record) = params::materials(scene, &images);
+        let environment_distribution = match scene.environment {
+            Environment::Map { texture } => {
+                EnvironmentDistribution::new(&scene.textures[texture as usize])
+            }
+            _ => EnvironmentDistribution::default(),
+        };
         Self {
+            environment_record,
+            environment_distribution,
             vertices: geo.vertices,
             vertex_attributes: geo.vertex_attributes,
             indices: geo.indices,
@@ -183,7 +197,8 @@ impl GpuScene {
     /// lights that depend on them are re-packed with the top level ([`Self::update_top_level`] or
     /// [`apply_flattening`]).
     pub fn update_materials(&mut self, scene: &Scene) {
-        (self.materials, self.textures) = params::materials(scene, &self.images);
+        (self.materials, self.textures, self.environment_record) =
+            params::materials(scene, &self.images);
     }
 
     /// Re-packs what depends on instance placement (TLAS, instances,
@@ -281,9 +296,22 @@ impl GpuScene {
     ) {
         self.lights = lights;
         self.light_table = table;
+        // The map's table starts right after the lights' (one entry per light, zero where none
+        // has power), at `counts0.w`.
+        self.light_table
+            .resize(self.lights.len(), GpuAliasEntry::default());
+        let offset = self.light_table.len() as u32;
+        self.light_table.extend(params::environment_table(
+            &self.environment_distribution,
+            offset,
+        ));
+        let cells = [
+            self.environment_distribution.width,
+            self.environment_distribution.height,
+        ];
         self.params = GpuSceneParams {
             camera: params::camera(&scene.camera),
-            environment: params::environment(&scene.environment),
+            environment: params::environment(&scene.environment, self.environment_record, cells),
             sun: params::sun(scene.sun.as_ref()),
             counts0: [
                 (self.indices.len() / 3) as u32,

@@ -5,18 +5,19 @@ use super::layout::{
     GpuEnvironment, GpuLight, GpuMaterial, GpuSun, GpuTextureRecord,
 };
 use crate::scene::{
-    AlphaMode, Camera, Environment, Instance, LightDistribution, LightSource, MaterialKind, Mesh,
-    PunctualLight, Scene, Sun, TexelData, TextureRef,
+    AlphaMode, Camera, Environment, EnvironmentDistribution, Instance, LightDistribution,
+    LightSource, MaterialKind, Mesh, PunctualLight, Scene, Sun, TexelData, TextureRef, WrapMode,
 };
 use glam::{Vec3, Vec3A};
 
 /// Converts the scene materials; each texture a material uses gets its own record (the texels
 /// of scene texture `t` are at `images[t]`, with that slot's transform and wrap modes). Returns
-/// the materials and the records they index.
+/// the materials and the records they index, an environment map's record last (repeating
+/// around, clamped at the poles) with its index (`u32::MAX` without a map).
 pub fn materials(
     scene: &Scene,
     images: &[GpuTextureRecord],
-) -> (Vec<GpuMaterial>, Vec<GpuTextureRecord>) {
+) -> (Vec<GpuMaterial>, Vec<GpuTextureRecord>, u32) {
     let mut records = Vec::new();
     let mut record = |slot: Option<TextureRef>| {
         let Some(slot) = slot else {
@@ -73,7 +74,14 @@ pub fn materials(
             }
         })
         .collect();
-    (materials, records)
+    let environment = match scene.environment {
+        Environment::Map { texture } => record(Some(TextureRef {
+            wrap: [WrapMode::Repeat, WrapMode::ClampToEdge],
+            ..TextureRef::new(texture)
+        })),
+        _ => u32::MAX,
+    };
+    (materials, records, environment)
 }
 
 /// Flattens all textures into one texel buffer; returns it and where each texture's texels are
@@ -235,8 +243,9 @@ pub fn camera(c: &Camera) -> GpuCamera {
     }
 }
 
-/// Converts the environment.
-pub fn environment(e: &Environment) -> GpuEnvironment {
+/// Converts the environment; a map's texture record is `record`, its distribution's cells
+/// `cells` (across, down).
+pub fn environment(e: &Environment, record: u32, cells: [u32; 2]) -> GpuEnvironment {
     match *e {
         Environment::Constant(c) => GpuEnvironment {
             kind: 0,
@@ -256,7 +265,29 @@ pub fn environment(e: &Environment) -> GpuEnvironment {
             ground: ground.extend(0.0).to_array(),
             ..Default::default()
         },
+        Environment::Map { .. } => GpuEnvironment {
+            kind: 2,
+            pad: [record, cells[0], cells[1]],
+            ..Default::default()
+        },
     }
+}
+
+/// The alias table of an environment map's distribution, its aliases offset by `offset` (where
+/// it starts in the light table).
+pub fn environment_table(dist: &EnvironmentDistribution, offset: u32) -> Vec<GpuAliasEntry> {
+    dist.table
+        .entries
+        .iter()
+        .zip(&dist.table.pdf)
+        .zip(&dist.table.cdf)
+        .map(|((e, &pdf), &cdf)| GpuAliasEntry {
+            threshold: e.threshold,
+            alias: e.alias + offset,
+            pdf,
+            cdf,
+        })
+        .collect()
 }
 
 /// Converts the optional sun.
