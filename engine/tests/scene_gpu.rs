@@ -237,7 +237,11 @@ fn textures_and_params_pack() {
     let g = GpuScene::new(&scene, &Bvh::build(&scene));
     assert_eq!(g.textures.len(), 1);
     assert_eq!(g.textures[0].format, texture_format::RGBA8_SRGB);
-    assert_eq!(g.texels.len(), 64 * 64);
+    // Level 0 and its mip chain down to 1x1.
+    assert_eq!(
+        g.texels.len(),
+        64 * 64 + 32 * 32 + 16 * 16 + 8 * 8 + 4 * 4 + 2 * 2 + 1
+    );
     assert_eq!(g.params.environment.kind, 1);
     assert_eq!(g.params.sun.radiance_enabled[3], 1.0);
     let cam = scene.camera;

@@ -217,7 +217,10 @@ vec3 trace_camera(vec3 o, vec3 d, inout uint rng, uint max_depth, uint rr_depth,
         if (depth + 1u >= max_depth) {
             break;
         }
-        c.m = material_params(c.s.material, c.s.uv, c.s.color);
+        // Textures at the first hit are filtered for the pixel's ray cone; light subpaths and later
+        // hits read level 0.
+        float footprint = depth == 0u ? cone_lod(c.s, d, sqrt(dist2) * pixel_spread(cam, float(size.y))) : NO_FOOTPRINT;
+        c.m = material_params_lod(c.s.material, c.s.uv, c.s.color, footprint);
         if (depth == 0u) {
             first_albedo = demodulation_albedo(c.m);
         }

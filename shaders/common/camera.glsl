@@ -19,6 +19,12 @@ void camera_ray(Camera c, vec2 ndc, float aspect, vec2 lens, out vec3 origin, ou
     }
 }
 
+// The angle one pixel of an image `height` pixels high spans at the centre of camera c's film:
+// how fast primary ray cones widen (texture filtering, cone_lod in surface.glsl).
+float pixel_spread(Camera c, float height) {
+    return 2.0 * c.up_tan_half_fov.w / height;
+}
+
 // Film position of `pixel` + `jitter` (in [0,1)^2) for an image of `size` (row 0 at the top).
 vec2 film_ndc(vec2 pixel, vec2 jitter, vec2 size) {
     vec2 uv = (pixel + jitter) / size;

@@ -11,8 +11,10 @@ struct PathResult {
     vec3 first_emission; // radiance emitted towards the camera by the first hit (or the sky)
 };
 
-// Traces the path starting with the camera ray (o, d); adds the rays it traces to `rays`.
-PathResult trace_path(vec3 o, vec3 d, inout uint rng, uint max_depth, uint rr_depth, inout uint rays) {
+// Traces the path starting with the camera ray (o, d), whose cone widens by `spread` radians per
+// unit distance (textures at the first hit are filtered for it); adds the rays it traces to
+// `rays`.
+PathResult trace_path(vec3 o, vec3 d, inout uint rng, uint max_depth, uint rr_depth, float spread, inout uint rays) {
     PathResult r;
     r.radiance = vec3(0.0);
     r.first_albedo = vec3(1.0);
@@ -46,7 +48,8 @@ PathResult trace_path(vec3 o, vec3 d, inout uint rng, uint max_depth, uint rr_de
         if (depth + 1u >= max_depth) {
             break;
         }
-        BsdfParams m = material_params(s.material, s.uv, s.color);
+        float footprint = depth == 0u ? cone_lod(s, d, hit.t * spread) : NO_FOOTPRINT;
+        BsdfParams m = material_params_lod(s.material, s.uv, s.color, footprint);
         if (depth == 0u) {
             r.first_albedo = demodulation_albedo(m);
         }

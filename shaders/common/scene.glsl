@@ -176,21 +176,58 @@ vec4 fetch_texel(TextureRecord r, int x, int y, uvec2 wrap) {
     return c;
 }
 
-// Bilinear lookup of texture record `texture_index` at uv, after its coordinate transform and
-// with its wrap modes (repeating, untransformed without HAS_TEXTURE_TRANSFORMS).
-vec4 sample_texture(uint texture_index, vec2 uv) {
-    TextureRecord r = b_textures.r[texture_index];
-    uvec2 wrap = uvec2(TEXTURE_WRAP_REPEAT);
-    if (HAS_TEXTURE_TRANSFORMS) {
-        uv = vec2(dot(r.u_row.xyz, vec3(uv, 1.0)), dot(r.v_row.xyz, vec3(uv, 1.0)));
-        wrap = uvec2(r.u_row.w, r.v_row.w);
+// Level `level` of record r's mip chain: every texture has a full one after its level 0, each
+// level halving both sides (odd sides rounding down, never below 1) down to 1x1.
+TextureRecord texture_level(TextureRecord r, uint level) {
+    uint words = r.format == TEXTURE_RGBA32F ? 4u : 1u;
+    for (uint l = 0u; l < level; ++l) {
+        r.offset += r.width * r.height * words;
+        r.width = max(r.width / 2u, 1u);
+        r.height = max(r.height / 2u, 1u);
     }
+    return r;
+}
+
+vec4 bilinear(TextureRecord r, vec2 uv, uvec2 wrap) {
     vec2 st = uv * vec2(r.width, r.height) - 0.5;
     ivec2 i = ivec2(floor(st));
     vec2 f = st - vec2(i);
     vec4 a = mix(fetch_texel(r, i.x, i.y, wrap), fetch_texel(r, i.x + 1, i.y, wrap), f.x);
     vec4 b = mix(fetch_texel(r, i.x, i.y + 1, wrap), fetch_texel(r, i.x + 1, i.y + 1, wrap), f.x);
     return mix(a, b, f.y);
+}
+
+// Trilinear lookup of texture record `texture_index` at uv, after its coordinate transform and
+// with its wrap modes (repeating, untransformed without HAS_TEXTURE_TRANSFORMS), for a footprint
+// of mip level `footprint` on a one-texel texture (cone_lod in surface.glsl): the level is that
+// plus half the log2 of the texture's texel count, clamped to its chain (0: bilinear on level 0).
+vec4 sample_texture_lod(uint texture_index, vec2 uv, float footprint) {
+    TextureRecord r = b_textures.r[texture_index];
+    float lod = footprint + 0.5 * log2(float(r.width) * float(r.height));
+    uvec2 wrap = uvec2(TEXTURE_WRAP_REPEAT);
+    if (HAS_TEXTURE_TRANSFORMS) {
+        uv = vec2(dot(r.u_row.xyz, vec3(uv, 1.0)), dot(r.v_row.xyz, vec3(uv, 1.0)));
+        wrap = uvec2(r.u_row.w, r.v_row.w);
+    }
+    float top = float(findMSB(max(r.width, r.height)));
+    lod = min(lod, top);
+    if (!(lod > 0.0)) {
+        return bilinear(r, uv, wrap);
+    }
+    uint level = min(uint(lod), uint(top));
+    vec4 fine = bilinear(texture_level(r, level), uv, wrap);
+    if (float(level) >= top) {
+        return fine;
+    }
+    return mix(fine, bilinear(texture_level(r, level + 1u), uv, wrap), fract(lod));
+}
+
+// No footprint: level 0 of every texture.
+const float NO_FOOTPRINT = -1e30;
+
+// Bilinear lookup of the full texture.
+vec4 sample_texture(uint texture_index, vec2 uv) {
+    return sample_texture_lod(texture_index, uv, NO_FOOTPRINT);
 }
 
 #endif

@@ -22,6 +22,9 @@ struct Surface {
     vec3 p2;
     bool sphere;
     vec4 center_radius;
+    // Half the log2 of the hit triangle's texture-coordinate area over its world area (of a
+    // sphere's coordinates over its surface): the texel density for ray-cone texture filtering.
+    float uv_density;
 };
 
 // The shading normal of surface s perturbed by tangent-space normal map `map` (scaled in x and y
@@ -61,6 +64,7 @@ Surface surface_at(Hit hit, vec3 origin, vec3 dir) {
         s.ns = s.ng;
         vec3 n = s.ng;
         s.uv = vec2(atan(n.z, n.x) * (0.5 * INV_PI) + 0.5, acos(clamp(n.y, -1.0, 1.0)) * INV_PI);
+        s.uv_density = 0.5 * log2(1.0 / (4.0 * PI * s.center_radius.w * s.center_radius.w));
         s.material = sp.material;
         s.object_id = 0x80000000u | sp.scene_sphere;
         s.color = vec3(1.0);
@@ -91,10 +95,20 @@ Surface surface_at(Hit hit, vec3 origin, vec3 dir) {
     if (dot(s.ng, s.ns) < 0.0) {
         s.ng = -s.ng;
     }
+    s.uv = vec2(0.0);
+    s.uv_density = NO_FOOTPRINT;
     if (HAS_TEXTURES) {
-        s.uv = b.x * unpackHalf2x16(v0.uv) + b.y * unpackHalf2x16(v1.uv) + b.z * unpackHalf2x16(v2.uv);
-    } else {
-        s.uv = vec2(0.0);
+        vec2 uv0 = unpackHalf2x16(v0.uv);
+        vec2 uv1 = unpackHalf2x16(v1.uv);
+        vec2 uv2 = unpackHalf2x16(v2.uv);
+        s.uv = b.x * uv0 + b.y * uv1 + b.z * uv2;
+        vec2 e1 = uv1 - uv0;
+        vec2 e2 = uv2 - uv0;
+        float uv_area = abs(e1.x * e2.y - e1.y * e2.x);
+        float world_area = length(cross(s.p1 - s.p0, s.p2 - s.p0));
+        if (uv_area > 0.0 && world_area > 0.0) {
+            s.uv_density = 0.5 * log2(uv_area / world_area);
+        }
     }
     if (HAS_VERTEX_COLORS) {
         s.color = b.x * vertex_color(i0).rgb + b.y * vertex_color(i1).rgb + b.z * vertex_color(i2).rgb;
@@ -127,15 +141,26 @@ Surface surface_at(Hit hit, vec3 origin, vec3 dir) {
 
 
 
+// The mip footprint (see sample_texture_lod) of a ray cone of width `width` meeting surface s
+// along dir (Akenine-Möller et al. 2019, "Texture Level of Detail Strategies for Real-Time Ray
+// Tracing"): log2 of the cone's width over the cosine of its incidence, plus the surface's
+// texel density. NO_FOOTPRINT where the surface has no texture coordinates.
+float cone_lod(Surface s, vec3 dir, float width) {
+    float cos_in = abs(dot(s.ng, dir));
+    float lod = s.uv_density + log2(width / max(cos_in, 1e-4));
+    return isnan(lod) || s.uv_density <= NO_FOOTPRINT ? NO_FOOTPRINT : lod;
+}
+
 // The BSDF of `material` at texture coordinates `uv` with vertex colour `vertex_color` (white when
-// the scene has none), which multiplies the base colour.
-BsdfParams material_params(uint material, vec2 uv, vec3 vertex_color) {
+// the scene has none), which multiplies the base colour; its textures are looked up at mip
+// footprint `footprint` (cone_lod; NO_FOOTPRINT for level 0).
+BsdfParams material_params_lod(uint material, vec2 uv, vec3 vertex_color, float footprint) {
     Material m = b_materials.m[material];
     BsdfParams p;
     p.kind = m.kind;
     p.color = m.base_color;
     if (HAS_TEXTURES && m.texture != 0xffffffffu) {
-        p.color *= sample_texture(m.texture, uv).rgb;
+        p.color *= sample_texture_lod(m.texture, uv, footprint).rgb;
     }
     if (HAS_VERTEX_COLORS) {
         p.color *= vertex_color;
@@ -145,7 +170,7 @@ BsdfParams material_params(uint material, vec2 uv, vec3 vertex_color) {
     p.smooth_lobe = (m.flags & MATERIAL_FLAG_SMOOTH) != 0u;
     p.occlusion = 1.0;
     if (HAS_OCCLUSION && m.occlusion_texture != NO_TEXTURE) {
-        float ao = sample_texture(m.occlusion_texture, uv).r;
+        float ao = sample_texture_lod(m.occlusion_texture, uv, footprint).r;
         p.occlusion = 1.0 + m.occlusion_strength * (ao - 1.0);
     }
     p.metallic = m.metallic;
@@ -155,7 +180,7 @@ BsdfParams material_params(uint material, vec2 uv, vec3 vertex_color) {
         // glTF's metallic-roughness texture: roughness in G (alpha scales by its square), metal
         // in B. Never a delta lobe: alpha stays at or above the smooth threshold.
         if (HAS_TEXTURES && m.metal_roughness != NO_TEXTURE) {
-            vec4 mr = sample_texture(m.metal_roughness, uv);
+            vec4 mr = sample_texture_lod(m.metal_roughness, uv, footprint);
             p.alpha = m.alpha * mr.g * mr.g;
             p.metallic *= mr.b;
         }
@@ -163,6 +188,11 @@ BsdfParams material_params(uint material, vec2 uv, vec3 vertex_color) {
         p.smooth_lobe = false;
     }
     return p;
+}
+
+// material_params_lod at level 0 of every texture.
+BsdfParams material_params(uint material, vec2 uv, vec3 vertex_color) {
+    return material_params_lod(material, uv, vertex_color, NO_FOOTPRINT);
 }
 
 // The colour a denoiser divides radiance by (and multiplies back): the material's base colour for

@@ -51,7 +51,7 @@ void main() {
         return;
     }
     Surface s = surface_at(hit, origin, dir);
-    BsdfParams m = material_params(s.material, s.uv, s.color);
+    BsdfParams m = material_params_lod(s.material, s.uv, s.color, cone_lod(s, dir, hit.t * pixel_spread(cam, float(size.y))));
     vec3 n = dot(s.ns, dir) > 0.0 ? -s.ns : s.ns;
     float depth = dot(s.p - cam.position_aperture.xyz, cam.forward.xyz);
     imageStore(u_depth, pixel, vec4(depth));

@@ -79,7 +79,7 @@ void main() {
         vec3 origin;
         vec3 dir;
         camera_ray(camera, ndc, aspect, rng_next2(rng), origin, dir);
-        PathResult path = trace_path(origin, dir, rng, max_depth, rr_depth, rays);
+        PathResult path = trace_path(origin, dir, rng, max_depth, rr_depth, pixel_spread(camera, float(size.y)), rays);
         albedo_sum += path.first_albedo;
         if (any(isnan(path.radiance)) || any(isinf(path.radiance))) {
             dropped += 1u;

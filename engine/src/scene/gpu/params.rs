@@ -84,27 +84,27 @@ pub fn materials(
     (materials, records, environment)
 }
 
-/// Flattens all textures into one texel buffer; returns it and where each texture's texels are
+/// Flattens all textures into one texel buffer, each with its mip levels after level 0
+/// ([`crate::scene::Texture::mip_levels`]); returns it and where each texture's texels are
 /// (records with an identity transform, repeating).
 pub fn textures(scene: &Scene) -> (Vec<u32>, Vec<GpuTextureRecord>) {
     let mut texels = Vec::new();
     let mut records = Vec::with_capacity(scene.textures.len());
+    let push = |data: &TexelData, texels: &mut Vec<u32>| match data {
+        TexelData::Rgba8(d) => texels.extend(d.iter().map(|&p| u32::from_le_bytes(p))),
+        TexelData::RgbaF32(d) => texels.extend(d.iter().flatten().map(|f| f.to_bits())),
+    };
     for t in &scene.textures {
         let offset = texels.len() as u32;
         let format = match &t.texels {
-            TexelData::Rgba8(d) => {
-                texels.extend(d.iter().map(|&p| u32::from_le_bytes(p)));
-                if t.srgb {
-                    texture_format::RGBA8_SRGB
-                } else {
-                    texture_format::RGBA8_LINEAR
-                }
-            }
-            TexelData::RgbaF32(d) => {
-                texels.extend(d.iter().flatten().map(|f| f.to_bits()));
-                texture_format::RGBA32F
-            }
+            TexelData::Rgba8(_) if t.srgb => texture_format::RGBA8_SRGB,
+            TexelData::Rgba8(_) => texture_format::RGBA8_LINEAR,
+            TexelData::RgbaF32(_) => texture_format::RGBA32F,
         };
+        push(&t.texels, &mut texels);
+        for level in t.mip_levels() {
+            push(&level, &mut texels);
+        }
         records.push(GpuTextureRecord {
             offset,
             width: t.width,
