@@ -140,20 +140,9 @@ impl EnvironmentDistribution {
     /// The distribution of `map` (an equirectangular texture).
     pub fn new(map: &Texture) -> Self {
         let (w, h) = (map.width as usize, map.height as usize);
-        let texel = |i: usize| -> Vec3 {
-            match &map.texels {
-                TexelData::RgbaF32(t) => Vec3::new(t[i][0], t[i][1], t[i][2]),
-                TexelData::Rgba8(t) => {
-                    let c = Vec3::new(t[i][0] as f32, t[i][1] as f32, t[i][2] as f32) / 255.0;
-                    if map.srgb {
-                        c.powf(2.2)
-                    } else {
-                        c
-                    }
-                }
-            }
-        };
-        let lum: Vec<f32> = (0..w * h).map(|i| luminance(texel(i)).max(0.0)).collect();
+        let lum: Vec<f32> = (0..w * h)
+            .map(|i| luminance(Vec3::from_slice(&map.linear(i)[..3])).max(0.0))
+            .collect();
         // The mean over each texel's square of the bilinearly reconstructed radiance the shaders
         // see (repeating around, clamped at the poles): a bright texel's light spreads half a
         // texel into its neighbours, which must be drawn as often as it arrives.

@@ -67,10 +67,7 @@ impl Texture {
     /// level's texels after the previous level's by this rule.
     pub fn mip_levels(&self) -> Vec<TexelData> {
         let (mut w, mut h) = (self.width as usize, self.height as usize);
-        let mut level: Vec<[f32; 4]> = match &self.texels {
-            TexelData::RgbaF32(t) => t.clone(),
-            TexelData::Rgba8(t) => t.iter().map(|p| self.decode(*p)).collect(),
-        };
+        let mut level: Vec<[f32; 4]> = (0..self.texels.len()).map(|i| self.linear(i)).collect();
         let mut levels = Vec::new();
         while w > 1 || h > 1 {
             let (nw, nh) = ((w / 2).max(1), (h / 2).max(1));
@@ -100,6 +97,15 @@ impl Texture {
             (level, w, h) = (next, nw, nh);
         }
         levels
+    }
+
+    /// Texel `i` (row-major) as linear RGBA: 8-bit texels scaled to `[0, 1]` and, when sRGB,
+    /// decoded.
+    pub(crate) fn linear(&self, i: usize) -> [f32; 4] {
+        match &self.texels {
+            TexelData::RgbaF32(t) => t[i],
+            TexelData::Rgba8(t) => self.decode(t[i]),
+        }
     }
 
     fn decode(&self, p: [u8; 4]) -> [f32; 4] {
