@@ -272,15 +272,14 @@ float metal_rough_specular_probability(BsdfParams m, float cos_o) {
     return clamp(specular / (specular + diffuse), 0.1, 0.9);
 }
 
-// wo and wi in the upper hemisphere.
-vec3 metal_rough_eval_upper(BsdfParams m, vec3 wo, vec3 wi, out float pdf) {
+// wo and wi in the upper hemisphere; p_specular: metal_rough_specular_probability at wo.
+vec3 metal_rough_eval_upper(BsdfParams m, vec3 wo, vec3 wi, float p_specular, out float pdf) {
     vec3 h = normalize(wo + wi);
     float w = schlick_weight(dot(wi, h));
     vec3 layer_f = metal_rough_layer_f(m, w);
     vec3 f = mix(layer_f, m.color + (1.0 - m.color) * w, m.metallic);
     vec3 diffuse = ((1.0 - m.metallic) * (1.0 - max3(layer_f)) * INV_PI * wi.z) * m.color;
     vec3 specular = f * (ggx_d(h, m.alpha) * ggx_g2(wo, wi, m.alpha) / (4.0 * wo.z));
-    float p_specular = metal_rough_specular_probability(m, wo.z);
     float specular_pdf = ggx_visible_pdf(wo, h, m.alpha) / (4.0 * max(dot(wo, h), 1e-8));
     pdf = mix(wi.z * INV_PI, specular_pdf, p_specular);
     return diffuse + specular;
@@ -292,13 +291,15 @@ vec3 metal_rough_eval(BsdfParams m, vec3 wo, vec3 wi, out float pdf) {
         return vec3(0.0);
     }
     float flip = wo.z < 0.0 ? -1.0 : 1.0;
-    return metal_rough_eval_upper(m, vec3(wo.xy, wo.z * flip), vec3(wi.xy, wi.z * flip), pdf);
+    vec3 o = vec3(wo.xy, wo.z * flip);
+    return metal_rough_eval_upper(m, o, vec3(wi.xy, wi.z * flip), metal_rough_specular_probability(m, o.z), pdf);
 }
 
 bool metal_rough_sample(BsdfParams m, vec3 wo, vec3 u, out BsdfSample s) {
     float flip = wo.z < 0.0 ? -1.0 : 1.0;
     vec3 o = vec3(wo.xy, wo.z * flip);
-    vec3 i = u.z < metal_rough_specular_probability(m, o.z)
+    float p_specular = metal_rough_specular_probability(m, o.z);
+    vec3 i = u.z < p_specular
         ? reflect(-o, ggx_sample_visible(o, m.alpha, u.xy))
         : sample_cosine_hemisphere(u.xy);
     s.delta = false;
@@ -306,7 +307,7 @@ bool metal_rough_sample(BsdfParams m, vec3 wo, vec3 u, out BsdfSample s) {
     if (i.z <= 0.0) {
         return false;
     }
-    vec3 f = metal_rough_eval_upper(m, o, i, s.pdf);
+    vec3 f = metal_rough_eval_upper(m, o, i, p_specular, s.pdf);
     s.wi = vec3(i.xy, i.z * flip);
     s.weight = s.pdf > 0.0 ? f / s.pdf : vec3(0.0);
     return s.pdf > 0.0;

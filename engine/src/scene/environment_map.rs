@@ -201,23 +201,18 @@ impl EnvironmentDistribution {
         p * (self.width * self.height) as f32 / (2.0 * PI * PI * sin_theta)
     }
 
-    /// The direction `u` (three uniform numbers) draws, with its solid-angle density.
-    pub fn sample(&self, u: Vec3) -> (Vec3, f32) {
-        let n = self.table.entries.len();
-        let scaled = u.x * n as f32;
-        let column = (scaled as usize).min(n - 1);
-        let entry = self.table.entries[column];
-        let cell = if scaled.fract() < entry.threshold {
-            column as u32
-        } else {
-            entry.alias
-        };
+    /// The direction `u` (three uniform numbers) draws, with its solid-angle density (as the
+    /// shaders draw it: u.x picks the column and, by its remainder, the alias); `None` for an
+    /// empty distribution.
+    pub fn sample(&self, u: Vec3) -> Option<(Vec3, f32)> {
+        let keep = (u.x * self.table.len() as f32).fract();
+        let cell = self.table.sample(u.x, keep)? as u32;
         let uv = Vec2::new(
             ((cell % self.width) as f32 + u.y) / self.width as f32,
             ((cell / self.width) as f32 + u.z) / self.height as f32,
         );
         let d = uv_to_direction(uv);
-        (d, self.pdf(d))
+        Some((d, self.pdf(d)))
     }
 }
 
@@ -290,7 +285,7 @@ mod tests {
                 ((k * 7919) % 1000) as f32 / 1000.0,
                 ((k * 104_729) % 1000) as f32 / 1000.0,
             );
-            let (d, pdf) = dist.sample(u);
+            let (d, pdf) = dist.sample(u).expect("a distribution");
             assert!(pdf > 0.0 && (pdf - dist.pdf(d)).abs() <= 1e-4 * pdf);
             let uv = direction_to_uv(d) * Vec2::new(64.0, 32.0);
             in_patch += u32::from((39.0..45.0).contains(&uv.x) && (7.0..12.0).contains(&uv.y));

@@ -5,8 +5,9 @@ use super::layout::{
     GpuEnvironment, GpuLight, GpuMaterial, GpuSun, GpuTextureRecord,
 };
 use crate::scene::{
-    AlphaMode, Camera, Environment, EnvironmentDistribution, Instance, LightDistribution,
-    LightSource, MaterialKind, Mesh, PunctualLight, Scene, Sun, TexelData, TextureRef, WrapMode,
+    AliasTable, AlphaMode, Camera, Environment, EnvironmentDistribution, Instance,
+    LightDistribution, LightSource, MaterialKind, Mesh, PunctualLight, Scene, Sun, TexelData,
+    TextureRef, WrapMode,
 };
 use glam::{Vec3, Vec3A};
 
@@ -202,18 +203,7 @@ pub fn lights(
             }
         })
         .collect();
-    let t = &dist.table;
-    let table = t
-        .entries
-        .iter()
-        .enumerate()
-        .map(|(i, e)| GpuAliasEntry {
-            threshold: e.threshold,
-            alias: e.alias,
-            pdf: t.pdf[i],
-            cdf: t.cdf[i],
-        })
-        .collect();
+    let table = alias_entries(&dist.table, 0);
     (lights, table)
 }
 
@@ -276,11 +266,16 @@ pub fn environment(e: &Environment, record: u32, cells: [u32; 2]) -> GpuEnvironm
 /// The alias table of an environment map's distribution, its aliases offset by `offset` (where
 /// it starts in the light table).
 pub fn environment_table(dist: &EnvironmentDistribution, offset: u32) -> Vec<GpuAliasEntry> {
-    dist.table
+    alias_entries(&dist.table, offset)
+}
+
+/// `table` as GPU entries, its aliases offset by `offset` (where it starts in its buffer).
+fn alias_entries(table: &AliasTable, offset: u32) -> Vec<GpuAliasEntry> {
+    table
         .entries
         .iter()
-        .zip(&dist.table.pdf)
-        .zip(&dist.table.cdf)
+        .zip(&table.pdf)
+        .zip(&table.cdf)
         .map(|((e, &pdf), &cdf)| GpuAliasEntry {
             threshold: e.threshold,
             alias: e.alias + offset,
