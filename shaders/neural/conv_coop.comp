@@ -2,17 +2,20 @@
 // The tensor-core twin of conv.comp: one 3x3 convolution (zero padding, fused bias and ReLU) as an
 // implicit GEMM on NVIDIA cooperative matrices (GL_NV_cooperative_matrix, fp16 operands, fp32
 // sums). Same inputs and output as conv.comp, so the two are interchangeable; optionally it also
-// writes the output 2x2 average-pooled (pool.comp's job, fused).
+// writes the output 2x2 average-pooled, and that pooled again (pool.comp's job, fused).
 //
-// A workgroup computes a 16 x TILE_H tile of output pixels, all output channels. For each group of
-// 16 input channels it copies into shared memory the tile and its one-pixel halo, as the packed
-// halves they are (reading the first input upsampled, or the skip connection in place, as
-// conv.comp does), and the nine taps' half-precision weights (passes/src/neural/network.rs packs
-// them); then each tap multiplies (16 pixels x 16 channels) by (16 channels x 16 outputs)
-// matrices, the first read straight out of the staged tile, shifted by the tap's offset. Each of
-// the four subgroups owns ROWS rows of the tile. The sums go through shared memory once more (in
-// the weights' place) for the bias, the ReLU and the pooling, and out as packed halves. Rows in
-// shared memory are padded by 16 bytes so that a matrix's rows fall in different banks.
+// A workgroup computes a 16 x TILE_H tile of output pixels and GROUP_TILES x 16 of the output
+// channels (the z of the dispatch picks which). For each group of 16 input channels it copies into
+// shared memory the tile and its one-pixel halo, as the packed halves they are (reading the first
+// input upsampled, or the skip connection in place, as conv.comp does), and the nine taps'
+// half-precision weights for its output channels (passes/src/denoise/neural/network.rs packs
+// them), uvec4 by uvec4; the next group's reads are issued into registers before this group's
+// products run, so their latency hides behind them. Each tap multiplies (16 pixels x 16 channels)
+// by (16 channels x 16 outputs) matrices, the first read straight out of the staged tile, shifted
+// by the tap's offset. Each of the four subgroups owns ROWS rows of the tile. The sums go through
+// shared memory once more (in the weights' place) for the bias, the ReLU and the pooling, and out
+// as packed halves. Rows in shared memory are padded by 16 bytes so that a matrix's rows fall in
+// different banks.
 #extension GL_NV_cooperative_matrix : require
 #extension GL_KHR_memory_scope_semantics : require
 #extension GL_KHR_shader_subgroup_basic : require
@@ -27,7 +30,8 @@ layout(constant_id = 2) const uint OUT_CHANNELS = 16;
 layout(constant_id = 4) const bool IN0_UPSAMPLED = false;
 layout(constant_id = 5) const bool RELU = true;
 layout(constant_id = 6) const uint ROWS = 2;  // tile rows per subgroup: 1 to 4
-layout(constant_id = 7) const bool POOLED = false;
+layout(constant_id = 7) const uint POOL_LEVELS = 0;  // also write the output 2x2 pooled (1), then again (2)
+layout(constant_id = 8) const uint GROUP_TILES = 4;  // 16-channel output tiles per workgroup
 
 const uint TILE_W = 16;
 const uint TILE_H = 4u * ROWS;
@@ -37,13 +41,22 @@ const uint HALO_PIXELS = HALO_W * (TILE_H + 2u);
 const uint CHANNELS = IN0_CHANNELS + IN1_CHANNELS;
 const uint CHUNKS = (CHANNELS + 15u) / 16u;
 const uint OUT4 = OUT_CHANNELS / 4u;
-const uint N_TILES = (OUT_CHANNELS + 15u) / 16u;
+const uint ALL_TILES = (OUT_CHANNELS + 15u) / 16u;
+const uint N_TILES = ALL_TILES < GROUP_TILES ? ALL_TILES : GROUP_TILES;  // this workgroup's
 const uint MAX_N_TILES = 4;  // up to 64 output channels
-const uint OUT_PADDED = N_TILES * 16u;
+const uint OUT_PADDED = ALL_TILES * 16u;
 const uint PIXEL_UVEC2S = 6u;             // a staged pixel: 16 channels, then 16 bytes of padding
-const uint OUT_STRIDE = OUT_PADDED + 8u;  // halves per row of weights and per pixel of outputs
-const uint WEIGHT_HALVES = 9u * 16u * OUT_STRIDE;
-const uint OUT_HALVES = TILE_W * TILE_H * OUT_STRIDE;
+const uint ROW_UVEC4S = OUT_PADDED / 8u;  // a row of a chunk's weights in the buffer
+const uint GROUP_ROW_UVEC4S = N_TILES * 2u;  // the part of a row this workgroup stages
+const uint MATRIX_ROW = GROUP_ROW_UVEC4S + 1u;  // uvec4s per row of weights and per pixel of outputs
+const uint WEIGHT_UVEC4S = 9u * 16u * ROW_UVEC4S;
+const uint GROUP_WEIGHT_UVEC4S = 9u * 16u * GROUP_ROW_UVEC4S;
+const uint STAGED_WEIGHT_UVEC4S = 9u * 16u * MATRIX_ROW;
+const uint OUT_UVEC4S = TILE_W * TILE_H * MATRIX_ROW;
+const uint INPUT_ITEMS = HALO_PIXELS * 4u;
+// What each invocation copies per chunk.
+const uint INPUT_LOADS = (INPUT_ITEMS + 127u) / 128u;
+const uint WEIGHT_LOADS = (GROUP_WEIGHT_UVEC4S + 127u) / 128u;
 
 layout(set = 0, binding = 0, std430) readonly buffer In0 { uvec2 v[]; } b_in0;
 layout(set = 0, binding = 1, std430) readonly buffer In1 { uvec2 v[]; } b_in1;
@@ -54,6 +67,7 @@ layout(set = 0, binding = 3, std430) writeonly buffer Out { uvec2 v[]; } b_out;
 // (input channel by output channel, zero past the layer's channels).
 layout(set = 0, binding = 4, std430) readonly buffer HalfWeights { uvec4 v[]; } b_half_weights;
 layout(set = 0, binding = 5, std430) writeonly buffer Pooled { uvec2 v[]; } b_pooled;
+layout(set = 0, binding = 6, std430) writeonly buffer PooledTwice { uvec2 v[]; } b_pooled_twice;
 
 layout(push_constant) uniform Params {
     uint width;          // output (and second input) size
@@ -66,8 +80,13 @@ layout(push_constant) uniform Params {
 
 // 16 channels of each pixel of the haloed tile (four packed in a uvec2), pixel-major.
 shared uvec2 s_input[HALO_PIXELS * PIXEL_UVEC2S];
-// The chunk's weights (per tap, 16 rows of OUT_STRIDE), then the tile's outputs (pixel-major).
-shared float16_t s_half[WEIGHT_HALVES > OUT_HALVES ? WEIGHT_HALVES : OUT_HALVES];
+// The chunk's weights as packed halves (per tap, 16 rows of MATRIX_ROW), then the tile's outputs
+// (pixel-major, MATRIX_ROW per pixel).
+shared uvec4 s_matrix[STAGED_WEIGHT_UVEC4S > OUT_UVEC4S ? STAGED_WEIGHT_UVEC4S : OUT_UVEC4S];
+
+// This invocation's share of the next chunk, on its way from memory to shared memory.
+uvec2 r_input[INPUT_LOADS];
+uvec4 r_weights[WEIGHT_LOADS];
 
 #define Half16 fcoopmatNV<16, gl_ScopeSubgroup, 16, 16>
 #define Float16x16 fcoopmatNV<32, gl_ScopeSubgroup, 16, 16>
@@ -86,59 +105,100 @@ uvec2 input_channels(ivec2 q, uint c4) {
     return b_in1.v[tensor_index(q, params.width, IN1_CHANNELS / 4u, c4 - IN0_CHANNELS / 4u)];
 }
 
-void stage(uint chunk, ivec2 tile_origin) {
-    for (uint i = gl_LocalInvocationIndex; i < HALO_PIXELS * 4u; i += gl_WorkGroupSize.x) {
-        uint p = i / 4u;
-        ivec2 q = tile_origin + ivec2(p % HALO_W, p / HALO_W) - 1;
-        s_input[p * PIXEL_UVEC2S + i % 4u] = input_channels(q, chunk * 4u + i % 4u);
+// Reads this invocation's share of `chunk` (the haloed tile's channels and the weights) into
+// registers.
+void fetch(uint chunk, ivec2 tile_origin) {
+    for (uint j = 0u; j < INPUT_LOADS; ++j) {
+        uint i = gl_LocalInvocationIndex + j * gl_WorkGroupSize.x;
+        if (i < INPUT_ITEMS) {
+            uint p = i / 4u;
+            ivec2 q = tile_origin + ivec2(p % HALO_W, p / HALO_W) - 1;
+            r_input[j] = input_channels(q, chunk * 4u + i % 4u);
+        }
     }
-    const uint ROW_UVEC4S = OUT_PADDED / 8u;
-    uint first = params.half_offset + chunk * 9u * 16u * ROW_UVEC4S;
-    for (uint i = gl_LocalInvocationIndex; i < 9u * 16u * ROW_UVEC4S; i += gl_WorkGroupSize.x) {
-        uvec4 w = b_half_weights.v[first + i];
-        uint at = (i / ROW_UVEC4S) * OUT_STRIDE + (i % ROW_UVEC4S) * 8u;
-        for (uint k = 0u; k < 4u; ++k) {
-            f16vec2 pair = unpackFloat2x16(w[k]);
-            s_half[at + 2u * k] = pair.x;
-            s_half[at + 2u * k + 1u] = pair.y;
+    uint first = params.half_offset + chunk * WEIGHT_UVEC4S + gl_WorkGroupID.z * GROUP_ROW_UVEC4S;
+    for (uint j = 0u; j < WEIGHT_LOADS; ++j) {
+        uint i = gl_LocalInvocationIndex + j * gl_WorkGroupSize.x;
+        if (i < GROUP_WEIGHT_UVEC4S) {
+            uint row = i / GROUP_ROW_UVEC4S;
+            r_weights[j] = b_half_weights.v[first + row * ROW_UVEC4S + i % GROUP_ROW_UVEC4S];
         }
     }
 }
 
+// Writes what `fetch` read into shared memory.
+void stage() {
+    for (uint j = 0u; j < INPUT_LOADS; ++j) {
+        uint i = gl_LocalInvocationIndex + j * gl_WorkGroupSize.x;
+        if (i < INPUT_ITEMS) {
+            s_input[(i / 4u) * PIXEL_UVEC2S + i % 4u] = r_input[j];
+        }
+    }
+    for (uint j = 0u; j < WEIGHT_LOADS; ++j) {
+        uint i = gl_LocalInvocationIndex + j * gl_WorkGroupSize.x;
+        if (i < GROUP_WEIGHT_UVEC4S) {
+            s_matrix[(i / GROUP_ROW_UVEC4S) * MATRIX_ROW + i % GROUP_ROW_UVEC4S] = r_weights[j];
+        }
+    }
+}
+
+// The first group of four output channels this workgroup computes.
+uint o4_first() {
+    return gl_WorkGroupID.z * N_TILES * 4u;
+}
+
+// How many groups of four output channels this workgroup computes.
+uint group_out4() {
+    return min(N_TILES * 4u, OUT4 - o4_first());
+}
+
+// Output channels 4*o4..4*o4+3 (o4 counted from o4_first()) of the tile's pixel `p` in s_matrix,
+// packed.
+uint staged_at(uint p, uint o4) {
+    return p * MATRIX_ROW + o4 / 2u;
+}
+
+uvec2 staged_output(uint p, uint o4) {
+    uint at = staged_at(p, o4);
+    uint c = (o4 % 2u) * 2u;
+    return uvec2(s_matrix[at][c], s_matrix[at][c + 1u]);
+}
+
 // The tile's outputs after bias and ReLU, written out (and, rounded to half precision, back into
-// s_half for the pooling).
+// s_matrix for the pooling).
 void finish_outputs(ivec2 tile_origin) {
-    uint bias = params.bias_offset;
-    for (uint i = gl_LocalInvocationIndex; i < TILE_W * TILE_H * OUT4; i += gl_WorkGroupSize.x) {
-        uint p = i / OUT4;
-        uint o4 = i % OUT4;
-        uint at = p * OUT_STRIDE + o4 * 4u;
-        vec4 v = vec4(s_half[at], s_half[at + 1u], s_half[at + 2u], s_half[at + 3u]);
-        v += b_weights.v[bias + o4];
+    uint bias = params.bias_offset + o4_first();
+    uint group = group_out4();
+    for (uint i = gl_LocalInvocationIndex; i < TILE_W * TILE_H * group; i += gl_WorkGroupSize.x) {
+        uint p = i / group;
+        uint o4 = i % group;
+        vec4 v = unpack_channels(staged_output(p, o4)) + b_weights.v[bias + o4];
         v = RELU ? max(v, vec4(0.0)) : v;
         uvec2 packed = pack_channels(v);
         ivec2 pixel = tile_origin + ivec2(p % TILE_W, p / TILE_W);
         if (pixel.x < int(params.width) && pixel.y < int(params.height)) {
-            b_out.v[tensor_index(pixel, params.width, OUT4, o4)] = packed;
+            b_out.v[tensor_index(pixel, params.width, OUT4, o4_first() + o4)] = packed;
         }
-        if (POOLED) {
-            vec4 rounded = unpack_channels(packed);
-            for (uint k = 0u; k < 4u; ++k) {
-                s_half[at + k] = float16_t(rounded[k]);
-            }
+        if (POOL_LEVELS > 0u) {
+            uint at = staged_at(p, o4);
+            uint c = (o4 % 2u) * 2u;
+            s_matrix[at][c] = packed.x;
+            s_matrix[at][c + 1u] = packed.y;
         }
     }
 }
 
 // 2x2 averages of the tile's outputs (the image's last row and column repeat at odd sizes, as in
-// pool.comp): the tile origin is even, so every pooled pixel's sources are in this tile.
+// pool.comp): the tile origin is even, so every pooled pixel's sources are in this tile. With a
+// second level, the pooled tile is kept (packed, pixel-major) in s_input for it.
 void write_pooled(ivec2 tile_origin) {
     uvec2 pooled_size = (uvec2(params.width, params.height) + 1u) / 2u;
     ivec2 last = ivec2(params.width, params.height) - 1;
     const uint PIXELS = (TILE_W / 2u) * (TILE_H / 2u);
-    for (uint i = gl_LocalInvocationIndex; i < PIXELS * OUT4; i += gl_WorkGroupSize.x) {
-        uint p = i / OUT4;
-        uint o4 = i % OUT4;
+    uint group = group_out4();
+    for (uint i = gl_LocalInvocationIndex; i < PIXELS * group; i += gl_WorkGroupSize.x) {
+        uint p = i / group;
+        uint o4 = i % group;
         ivec2 pooled = tile_origin / 2 + ivec2(p % (TILE_W / 2u), p / (TILE_W / 2u));
         if (pooled.x >= int(pooled_size.x) || pooled.y >= int(pooled_size.y)) {
             continue;
@@ -146,10 +206,38 @@ void write_pooled(ivec2 tile_origin) {
         vec4 sum = vec4(0.0);
         for (int d = 0; d < 4; ++d) {
             ivec2 local = min(pooled * 2 + ivec2(d & 1, d >> 1), last) - tile_origin;
-            uint at = (uint(local.y) * TILE_W + uint(local.x)) * OUT_STRIDE + o4 * 4u;
-            sum += vec4(s_half[at], s_half[at + 1u], s_half[at + 2u], s_half[at + 3u]);
+            sum += unpack_channels(staged_output(uint(local.y) * TILE_W + uint(local.x), o4));
         }
-        b_pooled.v[tensor_index(pooled, pooled_size.x, OUT4, o4)] = pack_channels(0.25 * sum);
+        uvec2 packed = pack_channels(0.25 * sum);
+        b_pooled.v[tensor_index(pooled, pooled_size.x, OUT4, o4_first() + o4)] = packed;
+        if (POOL_LEVELS > 1u) {
+            s_input[p * N_TILES * 4u + o4] = packed;
+        }
+    }
+}
+
+// The pooled tile pooled once more (its origin is a multiple of 4 in the image: every source is in
+// this tile again).
+void write_pooled_twice(ivec2 tile_origin) {
+    uvec2 pooled_size = (uvec2(params.width, params.height) + 1u) / 2u;
+    uvec2 twice_size = (pooled_size + 1u) / 2u;
+    ivec2 last = ivec2(pooled_size) - 1;
+    ivec2 pooled_origin = tile_origin / 2;
+    const uint PIXELS = (TILE_W / 4u) * (TILE_H / 4u);
+    uint group = group_out4();
+    for (uint i = gl_LocalInvocationIndex; i < PIXELS * group; i += gl_WorkGroupSize.x) {
+        uint p = i / group;
+        uint o4 = i % group;
+        ivec2 twice = tile_origin / 4 + ivec2(p % (TILE_W / 4u), p / (TILE_W / 4u));
+        if (twice.x >= int(twice_size.x) || twice.y >= int(twice_size.y)) {
+            continue;
+        }
+        vec4 sum = vec4(0.0);
+        for (int d = 0; d < 4; ++d) {
+            ivec2 local = min(twice * 2 + ivec2(d & 1, d >> 1), last) - pooled_origin;
+            sum += unpack_channels(s_input[(uint(local.y) * (TILE_W / 2u) + uint(local.x)) * N_TILES * 4u + o4]);
+        }
+        b_pooled_twice.v[tensor_index(twice, twice_size.x, OUT4, o4_first() + o4)] = pack_channels(0.25 * sum);
     }
 }
 
@@ -162,9 +250,14 @@ void main() {
             sums[m][n] = Float16x16(0.0);
         }
     }
+    fetch(0u, tile_origin);
     for (uint chunk = 0u; chunk < CHUNKS; ++chunk) {
-        stage(chunk, tile_origin);
+        stage();
         barrier();
+        // The next chunk's reads are under way while this one's products run.
+        if (chunk + 1u < CHUNKS) {
+            fetch(chunk + 1u, tile_origin);
+        }
         for (uint tap = 0u; tap < 9u; ++tap) {
             uint dx = tap % 3u;
             uint dy = tap / 3u;
@@ -175,7 +268,7 @@ void main() {
             }
             for (uint n = 0u; n < N_TILES; ++n) {
                 Half16 b;
-                coopMatLoadNV(b, s_half, tap * 16u * OUT_STRIDE + n * 16u, OUT_STRIDE, false);
+                coopMatLoadNV(b, s_matrix, tap * 16u * MATRIX_ROW + n * 2u, MATRIX_ROW, false);
                 for (uint m = 0u; m < ROWS; ++m) {
                     sums[m][n] = coopMatMulAddNV(a[m], b, sums[m][n]);
                 }
@@ -185,14 +278,18 @@ void main() {
     }
     for (uint m = 0u; m < ROWS; ++m) {
         for (uint n = 0u; n < N_TILES; ++n) {
-            uint at = (first_row + m) * TILE_W * OUT_STRIDE + n * 16u;
-            coopMatStoreNV(Half16(sums[m][n]), s_half, at, OUT_STRIDE, false);
+            uint at = (first_row + m) * TILE_W * MATRIX_ROW + n * 2u;
+            coopMatStoreNV(Half16(sums[m][n]), s_matrix, at, MATRIX_ROW, false);
         }
     }
     barrier();
     finish_outputs(tile_origin);
-    if (POOLED) {
+    if (POOL_LEVELS > 0u) {
         barrier();
         write_pooled(tile_origin);
+    }
+    if (POOL_LEVELS > 1u) {
+        barrier();
+        write_pooled_twice(tile_origin);
     }
 }

@@ -288,19 +288,18 @@ pub fn add_neural(
     let conv = |g: &mut RenderGraph, layer: usize, in0: Tensor, in1: Option<Tensor>, pool| {
         add_conv(g, network, &weights, layer, (in0, in1), pool)
     };
-    let (e0, p0) = conv(g, 0, features, None, true);
-    let (e1, p1) = conv(g, 1, p0.expect("pooled"), None, true);
-    let (e2, _) = conv(g, 2, p1.expect("pooled"), None, false);
-    let (bottleneck, _) = conv(g, 3, e2, None, false);
-    let (d1, _) = conv(g, 4, bottleneck, Some(e1), false);
+    let (e0, [p0, _]) = conv(g, 0, features, None, 1);
+    let (e1, [p1, _]) = conv(g, 1, p0.expect("pooled"), None, 1);
+    let (e2, _) = conv(g, 2, p1.expect("pooled"), None, 0);
+    let (bottleneck, _) = conv(g, 3, e2, None, 0);
+    let (d1, _) = conv(g, 4, bottleneck, Some(e1), 0);
     let kernel = network.decoder == Decoder::Kernel;
-    let (d0, d0_pooled) = conv(g, 5, d1, Some(e0), kernel);
-    let (net, _) = conv(g, 6, d0, None, false);
+    let (d0, [d0_half, d0_quarter]) = conv(g, 5, d1, Some(e0), if kernel { 2 } else { 0 });
+    let (net, _) = conv(g, 6, d0, None, 0);
     // The kernel decoder's full-scale filtered radiance and the half scale's detail.
-    let scales = d0_pooled.map(|f1| {
-        let f2 = add_pool(g, f1, "neural.dec0.pool_quarter");
-        let (half_net, _) = conv(g, 7, f1, None, false);
-        let (quarter_net, _) = conv(g, 8, f2, None, false);
+    let scales = d0_half.zip(d0_quarter).map(|(f1, f2)| {
+        let (half_net, _) = conv(g, 7, f1, None, 0);
+        let (quarter_net, _) = conv(g, 8, f2, None, 0);
         add_kernel_scales(g, record, features, [net, half_net, quarter_net])
     });
 
@@ -407,16 +406,16 @@ fn tensor_bytes(channels: u32, (width, height): (u32, u32)) -> u64 {
 
 /// Adds convolution `index` of the network's layers over `in0` then `in1` (the skip connection), at
 /// `in1`'s size (`in0` upsampled when smaller) or, without `in1`, at `in0`'s. Returns its output
-/// and, when `pool`, the output 2x2 average-pooled (fused into the convolution on the tensor-core
-/// path).
+/// and, for `pool_levels` of 1 or 2, the output 2x2 average-pooled, and that pooled once more
+/// (fused into the convolution on the tensor-core path).
 fn add_conv(
     g: &mut RenderGraph,
     network: &Network,
     weights: &WeightHandles,
     index: usize,
     (in0, in1): (Tensor, Option<Tensor>),
-    pool: bool,
-) -> (Tensor, Option<Tensor>) {
+    pool_levels: u32,
+) -> (Tensor, [Option<Tensor>; 2]) {
     let offset = network.offsets[index];
     let layer = &network.layers[index];
     let out_channels = layer.out_padded();
@@ -449,31 +448,43 @@ fn add_conv(
         (Some(half_weights), Some((_, half_offsets))) => {
             let bias = offset + 9 * layer.inputs() * out_channels / 4;
             let half_offset = half_offsets[index];
-            // Two rows a subgroup: measured faster than four (and than staging the weights in
-            // shared memory) on an H100, `training/bench_gpu.sh`.
-            let rows = 2;
-            let pooled_size = half_size(size);
-            let pooled = p.create_buffer(
-                "b_pooled",
-                "neural.pooled",
-                if pool {
-                    tensor_bytes(out_channels, pooled_size)
+            // Two rows of 16 pixels a subgroup and up to 32 output channels a workgroup (64-channel
+            // layers in two workgroups): the fastest of the configurations measured on an H100
+            // (`bench/README.md`); four rows spill registers.
+            let (rows, group_tiles) = (2, 2);
+            let tiles = out_channels.div_ceil(16);
+            let half = half_size(size);
+            let quarter = half_size(half);
+            let mut pooled = |level: u32, name: &str, size: (u32, u32)| {
+                let wanted = pool_levels >= level;
+                let bytes = if wanted {
+                    tensor_bytes(out_channels, size)
                 } else {
                     16
-                },
-            );
+                };
+                let buffer = p.create_buffer(name, "neural.pooled", bytes);
+                wanted.then_some(Tensor {
+                    buffer,
+                    channels: out_channels,
+                    size,
+                })
+            };
+            let pooled = [
+                pooled(1, "b_pooled", half),
+                pooled(2, "b_pooled_twice", quarter),
+            ];
             p.read("b_half_weights", half_weights)
                 .specialize("ROWS", rows)
-                .specialize("POOLED", pool)
+                .specialize("POOL_LEVELS", pool_levels)
+                .specialize("GROUP_TILES", group_tiles)
                 .push(&[push[0], push[1], push[2], push[3], bias, half_offset]);
-            // A workgroup of 128 invocations per 16 x (4 * rows) tile.
-            p.dispatch([size.0.div_ceil(16) * 128, size.1.div_ceil(4 * rows), 1]);
-            let pooled = Tensor {
-                buffer: pooled,
-                channels: out_channels,
-                size: pooled_size,
-            };
-            (output, pool.then_some(pooled))
+            // A workgroup of 128 invocations per 16 x (4 * rows) tile and group of output tiles.
+            p.dispatch([
+                size.0.div_ceil(16) * 128,
+                size.1.div_ceil(4 * rows),
+                tiles.div_ceil(group_tiles),
+            ]);
+            (output, pooled)
         }
         _ => {
             // Up to four groups of four output channels an invocation, a divisor of them all.
@@ -482,10 +493,11 @@ fn add_conv(
             p.specialize("OUT_PER_THREAD", per_thread)
                 .push(&[push[0], push[1], push[2], push[3], offset]);
             p.dispatch([size.0, size.1, out_channels / per_thread]);
-            (
-                output,
-                pool.then(|| add_pool(g, output, &format!("{name}.pool"))),
-            )
+            let half = (pool_levels >= 1).then(|| add_pool(g, output, &format!("{name}.pool")));
+            let quarter = half
+                .filter(|_| pool_levels >= 2)
+                .map(|half| add_pool(g, half, &format!("{name}.pool_quarter")));
+            (output, [half, quarter])
         }
     }
 }
