@@ -9,7 +9,11 @@
 #   - `lucid bench` per algorithm at each of TABLE_SIZES (1 sample, FRAMES frames): the frame
 #     time table (the study's Table 4.1): OUT_DIR/<scene>/bench_<algo>_<size>.json.
 # Then the denoisers' time on classroom (or the first scene) at each of DENOISER_SIZES (the
-# study's Table 4.2): OUT_DIR/denoise_<denoiser>_<size>.json, and `tables.py` writes
+# study's Table 4.2): OUT_DIR/denoise_<denoiser>_<size>.json; that scene's camera path through
+# every denoiser (`lucid sequence`, STABILITY_SIZE, STABILITY_FRAMES frames, a
+# STABILITY_REFERENCE_SPP reference; the frames deleted after the evaluation):
+# OUT_DIR/stability/ with metrics.csv, each method's GPU times and the stability chart
+# (temporal instability and FLIP against GPU time per frame); and `tables.py` writes
 # OUT_DIR/README.md: the tables, DSSIM over accumulated GPU time (the study's Table 4.3), time to
 # converge, the charts, device, driver and every command. LUCID names the lucid binary (default
 # target/release/lucid). A small run on lavapipe is part of the tests (sandbox/tests/results.rs).
@@ -52,5 +56,9 @@ for denoiser in ${TABLE_DENOISERS:-svgf neural}; do
       --frames "$frames" --warmup 3 --json "$out/denoise_${denoiser}_$s.json" > /dev/null
   done
 done
+run "$lucid" sequence --scene "$denoise_scene" --size "${STABILITY_SIZE:-1920x1080}" \
+  --frames "${STABILITY_FRAMES:-20}" --reference-spp "${STABILITY_REFERENCE_SPP:-1024}" \
+  --out "$out/stability" > "$out/stability.txt"
+find "$out/stability" -name '*.exr' -delete
 python3 "$here/tables.py" "$out" > "$out/README.md"
 echo "-> $out/README.md"

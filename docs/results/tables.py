@@ -111,6 +111,29 @@ def converge_table(summary):
     return lines
 
 
+def stability_table(out):
+    """Per method of the camera-path sequence: median GPU ms per frame and the mean metrics."""
+    folder = out / "stability"
+    means = {}
+    for line in (folder / "metrics.csv").read_text().splitlines()[1:]:
+        row = line.split(",")
+        if row[1] == "mean":
+            means[row[0]] = row
+    header = (folder / "metrics.csv").read_text().splitlines()[0].split(",")
+    col = {name: header.index(name) for name in ("rel_mse", "flip", "temporal_instability")}
+    lines = ["| method | GPU ms per frame | temporal instability | relMSE | FLIP |",
+             "| --- | --- | --- | --- | --- |"]
+    for method, row in means.items():
+        times_file = folder / method / "gpu_ms.txt"
+        ms = "-"
+        if times_file.exists():
+            times = sorted(float(t) for t in times_file.read_text().split())
+            ms = f"{times[len(times) // 2]:.2f}"
+        lines.append(f"| {method} | {ms} | {float(row[col['temporal_instability']]):.4f} | "
+                     f"{float(row[col['rel_mse']]):.4f} | {float(row[col['flip']]):.4f} |")
+    return lines
+
+
 def main():
     out = Path(sys.argv[1])
     scenes = sorted(p.parent.name for p in out.glob("*/converge.json"))
@@ -128,6 +151,13 @@ def main():
     print("The sum of the denoiser's passes (medians) on `classroom` (else the first scene), path "
           "tracing, 1 sample per pixel.\n")
     print("\n".join(denoiser_table(out)) + "\n")
+    if (out / "stability" / "metrics.csv").exists():
+        print("## Stability against time per frame (camera path)\n")
+        print("The scene's camera path (`lucid sequence`, 1 sample per pixel a frame): each "
+              "method's median GPU time per frame (the whole frame: G-buffer, light transport, "
+              "denoiser, tone mapping) and its means over the path against the reference.\n")
+        print("\n".join(stability_table(out)) + "\n")
+        print("![stability against GPU time per frame](stability/stability.svg)\n")
     for scene in scenes:
         summary = load(out / scene / "converge.json")
         print(f"## {scene}\n")

@@ -190,6 +190,39 @@ fn bench_reports_pipeline_statistics_or_says_they_are_unavailable() {
 }
 
 #[test]
+fn bench_times_passes_that_share_a_name_as_their_sum() {
+    // SVGF's five a-trous iterations are passes named `svgf.atrous`: each frame's entry is their
+    // sum, so the passes' means add up to the frame's mean (an iteration's time alone would not).
+    let json = temp("bench-svgf.json");
+    let out = lucid(&[
+        "bench",
+        "--scene",
+        "cornell-box",
+        "--denoise",
+        "svgf",
+        "--size",
+        "32x32",
+        "--frames",
+        "3",
+        "--warmup",
+        "1",
+        "--json",
+        json.to_str().unwrap(),
+    ]);
+    assert!(out.status.success(), "{}", stderr(&out));
+    let report: serde_json::Value = serde_json::from_slice(&std::fs::read(&json).unwrap()).unwrap();
+    std::fs::remove_file(&json).unwrap();
+    let passes = report["passes_ms"].as_object().expect("passes_ms");
+    assert!(passes.contains_key("svgf.atrous"), "{report}");
+    let sum: f64 = passes.values().map(|p| p["mean"].as_f64().unwrap()).sum();
+    let frame = report["frame_ms"]["mean"].as_f64().unwrap();
+    assert!(
+        (sum - frame).abs() <= 1e-6 * frame.max(1.0),
+        "the passes' means add up to {sum} ms, the frame's mean is {frame} ms"
+    );
+}
+
+#[test]
 fn a_short_soak_keeps_memory_flat_without_validation_messages() {
     // 200 frames through every algorithm and denoiser, the camera and an object moving.
     let out = lucid(&[
@@ -379,7 +412,22 @@ fn sequence_evaluates_other_learned_weights_beside_the_committed_ones() {
         .collect();
     for expected in ["none", "spatial", "svgf", "neural", method] {
         assert!(methods.contains(expected), "{expected} in {methods:?}");
+        // Each frame's GPU time, and every method on the stability chart.
+        let times = std::fs::read_to_string(dir.join(expected).join("gpu_ms.txt")).unwrap();
+        let times: Vec<f64> = times.lines().map(|l| l.parse().unwrap()).collect();
+        assert!(
+            times.len() == 2 && times.iter().all(|&t| t > 0.0),
+            "{expected}: {times:?}"
+        );
     }
+    let chart = std::fs::read_to_string(dir.join("stability.svg")).unwrap();
+    for expected in ["none", "svgf", "neural", method, "temporal instability"] {
+        assert!(
+            chart.contains(expected),
+            "{expected} on the stability chart"
+        );
+    }
+    assert!(dir.join("stability.png").is_file());
     let bad = lucid(&[
         "sequence",
         "--size",

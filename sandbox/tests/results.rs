@@ -23,6 +23,9 @@ fn the_results_script_writes_its_tables_and_charts() {
             ("BUDGET_MS", "30"),
             ("REFERENCE_SPP", "16"),
             ("FRAMES", "2"),
+            ("STABILITY_SIZE", "16x12"),
+            ("STABILITY_FRAMES", "2"),
+            ("STABILITY_REFERENCE_SPP", "4"),
         ])
         .output()
         .expect("run bash");
@@ -39,6 +42,9 @@ fn the_results_script_writes_its_tables_and_charts() {
         "| svgf |",
         "| pt/none/1",
         "| pt/svgf/1",
+        "Stability against time per frame",
+        "| svgf | ",
+        "stability/stability.svg",
     ] {
         assert!(page.contains(heading), "{heading} missing from:\n{page}");
     }
@@ -46,6 +52,7 @@ fn the_results_script_writes_its_tables_and_charts() {
         assert!(out.join("cornell-box").join(chart).exists(), "{chart}");
     }
     let commands = std::fs::read_to_string(out.join("commands.txt")).expect("commands.txt");
-    assert_eq!(commands.lines().count(), 1 + 2 * 2 + 2, "{commands}");
+    assert!(out.join("stability").join("stability.svg").exists());
+    assert_eq!(commands.lines().count(), 1 + 2 * 2 + 2 + 1, "{commands}");
     std::fs::remove_dir_all(&out).ok();
 }

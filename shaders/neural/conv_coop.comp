@@ -12,7 +12,7 @@
 // them), uvec4 by uvec4; the next group's reads are issued into registers before this group's
 // products run, so their latency hides behind them. Each tap multiplies (16 pixels x 16 channels)
 // by (16 channels x 16 outputs) matrices, the first read straight out of the staged tile, shifted
-// by the tap's offset. Each of the four subgroups owns ROWS rows of the tile. The sums go through
+// by the tap's offset. Each subgroup owns ROWS rows of the tile. The sums go through
 // shared memory once more (in the weights' place) for the bias, the ReLU and the pooling, and out
 // as packed halves. Rows in shared memory are padded by 16 bytes so that a matrix's rows fall in
 // different banks.
@@ -22,19 +22,21 @@
 #extension GL_EXT_shader_explicit_arithmetic_types_float16 : require
 #include "neural/tensor.glsl"
 
-layout(local_size_x = 128) in;
+layout(local_size_x = 256, local_size_x_id = 9) in;  // 32 invocations per subgroup
 
 layout(constant_id = 0) const uint IN0_CHANNELS = 16;
 layout(constant_id = 1) const uint IN1_CHANNELS = 0;
 layout(constant_id = 2) const uint OUT_CHANNELS = 16;
 layout(constant_id = 4) const bool IN0_UPSAMPLED = false;
 layout(constant_id = 5) const bool RELU = true;
-layout(constant_id = 6) const uint ROWS = 2;  // tile rows per subgroup: 1 to 4
+layout(constant_id = 6) const uint ROWS = 1;  // tile rows per subgroup: 1 to 4
 layout(constant_id = 7) const uint POOL_LEVELS = 0;  // also write the output 2x2 pooled (1), then again (2)
 layout(constant_id = 8) const uint GROUP_TILES = 4;  // 16-channel output tiles per workgroup
 
+const uint THREADS = gl_WorkGroupSize.x;
+const uint SUBGROUPS = THREADS / 32u;
 const uint TILE_W = 16;
-const uint TILE_H = 4u * ROWS;
+const uint TILE_H = SUBGROUPS * ROWS;
 const uint MAX_ROWS = 4;
 const uint HALO_W = TILE_W + 2u;
 const uint HALO_PIXELS = HALO_W * (TILE_H + 2u);
@@ -55,8 +57,8 @@ const uint STAGED_WEIGHT_UVEC4S = 9u * 16u * MATRIX_ROW;
 const uint OUT_UVEC4S = TILE_W * TILE_H * MATRIX_ROW;
 const uint INPUT_ITEMS = HALO_PIXELS * 4u;
 // What each invocation copies per chunk.
-const uint INPUT_LOADS = (INPUT_ITEMS + 127u) / 128u;
-const uint WEIGHT_LOADS = (GROUP_WEIGHT_UVEC4S + 127u) / 128u;
+const uint INPUT_LOADS = (INPUT_ITEMS + THREADS - 1u) / THREADS;
+const uint WEIGHT_LOADS = (GROUP_WEIGHT_UVEC4S + THREADS - 1u) / THREADS;
 
 layout(set = 0, binding = 0, std430) readonly buffer In0 { uvec2 v[]; } b_in0;
 layout(set = 0, binding = 1, std430) readonly buffer In1 { uvec2 v[]; } b_in1;

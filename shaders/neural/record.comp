@@ -4,7 +4,7 @@
 #include "common/image_coords.glsl"
 #include "neural/record.glsl"
 
-layout(local_size_x = 8, local_size_y = 8) in;
+layout(local_size_x = 32, local_size_y = 2) in;
 
 layout(set = 0, binding = 0, rgba32f) uniform readonly image2D u_demodulated;
 layout(set = 0, binding = 1, rgba32f) uniform readonly image2D u_albedo;

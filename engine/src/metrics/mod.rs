@@ -14,6 +14,7 @@ mod pixelwise;
 mod plane;
 mod sequence;
 mod ssim;
+mod sum;
 mod temporal;
 
 pub use error::MetricsError;

@@ -1,8 +1,7 @@
 //! Per-pixel error statistics: means, MSE, relative MSE, PSNR, max error.
 
-use rayon::prelude::*;
-
 use super::check::{check_image, check_pair, check_parameter};
+use super::sum::ordered_sum;
 use super::MetricsError;
 use crate::capture::ImageData;
 
@@ -29,16 +28,12 @@ fn mean_rgb_of(
     f: impl Fn(f64, f64) -> f64 + Sync,
 ) -> Result<f64, MetricsError> {
     check_pair(test, reference)?;
-    let sum: f64 = test
-        .pixels
-        .par_iter()
-        .zip(&reference.pixels)
-        .map(|(t, r)| {
-            (0..3)
-                .map(|c| f(f64::from(t[c]), f64::from(r[c])))
-                .sum::<f64>()
-        })
-        .sum();
+    let sum = ordered_sum(test.pixels.len(), |i| {
+        let (t, r) = (test.pixels[i], reference.pixels[i]);
+        (0..3)
+            .map(|c| f(f64::from(t[c]), f64::from(r[c])))
+            .sum::<f64>()
+    });
     Ok(sum / (3 * test.pixels.len()) as f64)
 }
 

@@ -1,9 +1,8 @@
 //! Structural similarity (Wang et al. 2004) and its DSSIM transform.
 
-use rayon::prelude::*;
-
 use super::check::{check_image, check_pair, check_parameter, check_size};
 use super::plane::{clamp_unit, kernel, normalized, Plane};
+use super::sum::ordered_sum;
 use super::MetricsError;
 use crate::capture::{rec709_luminance, ImageData};
 
@@ -129,20 +128,18 @@ fn mean_ssim([mu_x, mu_y, xx, yy, xy]: [&Plane; 5]) -> f64 {
     let r = WINDOW_RADIUS;
     let (w, h) = (mu_x.width, mu_x.height);
     let count = (w - 2 * r) * (h - 2 * r);
-    let sum: f64 = (r..h - r)
-        .into_par_iter()
-        .map(|row| {
-            (row * w + r..row * w + w - r)
-                .map(|i| {
-                    let (mx, my) = (f64::from(mu_x.data[i]), f64::from(mu_y.data[i]));
-                    let var_x = f64::from(xx.data[i]) - mx * mx;
-                    let var_y = f64::from(yy.data[i]) - my * my;
-                    let cov = f64::from(xy.data[i]) - mx * my;
-                    ((2.0 * mx * my + C1) * (2.0 * cov + C2))
-                        / ((mx * mx + my * my + C1) * (var_x + var_y + C2))
-                })
-                .sum::<f64>()
-        })
-        .sum();
+    let sum = ordered_sum(h - 2 * r, |row| {
+        let row = row + r;
+        (row * w + r..row * w + w - r)
+            .map(|i| {
+                let (mx, my) = (f64::from(mu_x.data[i]), f64::from(mu_y.data[i]));
+                let var_x = f64::from(xx.data[i]) - mx * mx;
+                let var_y = f64::from(yy.data[i]) - my * my;
+                let cov = f64::from(xy.data[i]) - mx * my;
+                ((2.0 * mx * my + C1) * (2.0 * cov + C2))
+                    / ((mx * mx + my * my + C1) * (var_x + var_y + C2))
+            })
+            .sum::<f64>()
+    });
     sum / count as f64
 }

@@ -4,6 +4,7 @@
 use rayon::prelude::*;
 
 use super::check::check_pair;
+use super::sum::ordered_sum;
 use super::MetricsError;
 use crate::capture::{rec709_luminance, ImageData};
 
@@ -72,10 +73,9 @@ pub fn temporal_instability(
         .par_windows(2)
         .zip(ref_lum.par_windows(2))
         .map(|(t, r)| {
-            let sum: f64 = (0..t[0].len())
-                .into_par_iter()
-                .map(|i| ((t[1][i] - t[0][i]) - (r[1][i] - r[0][i])).abs())
-                .sum();
+            let sum = ordered_sum(t[0].len(), |i| {
+                ((t[1][i] - t[0][i]) - (r[1][i] - r[0][i])).abs()
+            });
             sum / pixels / ref_mean
         })
         .collect();

@@ -58,12 +58,15 @@ pub struct FrameImages {
 }
 
 /// Counts from the last completed frame.
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
 pub struct FrameStats {
     /// Samples dropped because they were NaN or infinite.
     pub non_finite_samples: u32,
     /// Rays traced (closest-hit and shadow rays).
     pub rays: u32,
+    /// GPU time of the frame's passes in milliseconds (their timestamps summed); 0 where the
+    /// device has no timestamps.
+    pub gpu_ms: f64,
 }
 
 /// Renders a scene frame after frame: owns the executor, the scene on the GPU, the camera and
@@ -680,6 +683,7 @@ impl Renderer {
         self.stats = FrameStats {
             non_finite_samples: dropped,
             rays,
+            gpu_ms: outputs.timings.iter().map(|t| t.ms).sum(),
         };
         Ok(())
     }

@@ -113,8 +113,13 @@ pub fn run(args: &BenchArgs) -> anyhow::Result<()> {
                 .map(|t| t.ms)
                 .sum(),
         );
+        // Passes that share a name (SVGF's a-trous iterations) count as one: their sum.
+        let mut frame_passes: BTreeMap<&str, f64> = BTreeMap::new();
         for t in &outputs.timings {
-            passes.entry(t.name.clone()).or_default().push(t.ms);
+            *frame_passes.entry(&t.name).or_default() += t.ms;
+        }
+        for (name, ms) in frame_passes {
+            passes.entry(name.to_owned()).or_default().push(ms);
         }
         rays.push(renderer.stats().rays as f64);
         progress.inc();

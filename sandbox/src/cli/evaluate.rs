@@ -3,6 +3,7 @@
 
 use super::render_options::exposure;
 use super::sequence::{frame_path, Method};
+use super::stability;
 use anyhow::Context as _;
 use clap::Args;
 use lucid_engine::atomic_write::write_atomic;
@@ -49,7 +50,8 @@ const COLUMNS: [(&str, Metric); 5] = [
 ];
 
 /// Evaluates every method folder of `dir` against `dir/reference`, writing `metrics.csv` and
-/// `metrics.svg` there and printing the means.
+/// `metrics.svg` there (and `stability.svg`/`.png` where methods have GPU times) and printing the
+/// means.
 pub fn evaluate_folder(dir: &Path, display: &PngEncoding) -> anyhow::Result<()> {
     let methods = method_folders(dir)?;
     let reference = load_frames(&dir.join("reference"))?;
@@ -77,6 +79,7 @@ pub fn evaluate_folder(dir: &Path, display: &PngEncoding) -> anyhow::Result<()> 
     let svg = dir.join("metrics.svg");
     write_atomic(&svg, to_svg(&results).as_bytes())
         .with_context(|| format!("writing {}", svg.display()))?;
+    let chart = stability::write_chart(dir, &results)?;
     for (method, m) in &results {
         let means: Vec<String> = COLUMNS
             .iter()
@@ -85,6 +88,12 @@ pub fn evaluate_folder(dir: &Path, display: &PngEncoding) -> anyhow::Result<()> 
         println!("{method:>8}: {}", means.join(", "));
     }
     println!("-> {} and {}", csv.display(), svg.display());
+    if let Some(chart) = chart {
+        println!(
+            "-> {} (stability against GPU time per frame)",
+            chart.display()
+        );
+    }
     Ok(())
 }
 

@@ -20,6 +20,7 @@ mod sequence;
 mod size;
 mod soak;
 mod split;
+mod stability;
 mod view;
 
 use clap::{Parser, Subcommand};

@@ -8,6 +8,7 @@ use super::output_path;
 use super::progress::Progress;
 use super::render_options::{samples_per_pixel, RenderOptions};
 use super::scene_source;
+use super::stability;
 use anyhow::Context as _;
 use clap::Args;
 use lucid_engine::capture::{self, ExrPrecision, ImageData};
@@ -35,8 +36,9 @@ pub struct SequenceArgs {
     /// Samples per pixel of each reference frame.
     #[arg(long, default_value = "1024", value_parser = samples_per_pixel(u32::MAX.into()))]
     reference_spp: SamplesPerPixel,
-    /// Output folder: `<method>/NNNN.exr` frames, first-hit `albedo/` and `normal/` frames,
-    /// `metrics.csv` and `metrics.svg`.
+    /// Output folder: `<method>/NNNN.exr` frames and `<method>/gpu_ms.txt` (each frame's GPU
+    /// time), first-hit `albedo/` and `normal/` frames, `metrics.csv`, `metrics.svg` and the
+    /// stability chart `stability.svg`/`.png`.
     #[arg(long, default_value = "sequence")]
     out: PathBuf,
     /// Only render; evaluate later with `lucid evaluate` (e.g. after adding an `oidn/` folder).
@@ -200,7 +202,8 @@ fn sequence_settings(
 }
 
 /// Renders `cameras` with `settings`, accumulating `frames_each` frames per camera, into
-/// `<out>/<name>/NNNN.exr`. With the learned denoiser, also each frame's first-hit albedo and
+/// `<out>/<name>/NNNN.exr` (and, for a method rendered one frame a camera, each frame's GPU time
+/// into `<out>/<name>/gpu_ms.txt`). With the learned denoiser, also each frame's first-hit albedo and
 /// normal from its record (`albedo/NNNN.exr`, `normal/NNNN.exr`), which image denoisers run per
 /// frame take besides the noisy radiance (`training/oidn_baseline.py`).
 fn render(
@@ -261,6 +264,7 @@ fn render_frames(
             .with_context(|| format!("creating {}", folder.display()))?;
     }
     let progress = Progress::new(cameras.len() as u64, "frames");
+    let mut gpu_ms = Vec::with_capacity(cameras.len());
     for (i, &camera) in cameras.iter().enumerate() {
         renderer.set_camera(camera);
         for _ in 1..frames_each {
@@ -276,10 +280,14 @@ fn render_frames(
             }
             image
         };
+        gpu_ms.push(renderer.stats().gpu_ms);
         save(&frame_path(&folder, i), &image)?;
         progress.inc();
     }
     progress.finish();
+    if frames_each == 1 {
+        stability::write_gpu_times(&folder, &gpu_ms)?;
+    }
     renderer.finish()?;
     Ok(())
 }

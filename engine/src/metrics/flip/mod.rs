@@ -19,6 +19,7 @@ use rayon::prelude::*;
 
 use super::check::{check_image, check_pair, check_parameter, check_size};
 use super::plane::{clamp_unit, Plane};
+use super::sum::ordered_sum;
 use super::MetricsError;
 use crate::capture::ImageData;
 use color::{linear_rgb_to_ycxcz, ycxcz_luminance};
@@ -115,7 +116,7 @@ impl FlipReference {
             .map(|(&c, &f)| c.powf(1.0 - f))
             .collect();
         let mean =
-            error_map.par_iter().map(|&e| f64::from(e)).sum::<f64>() / error_map.len() as f64;
+            ordered_sum(error_map.len(), |i| f64::from(error_map[i])) / error_map.len() as f64;
         Ok(FlipResult {
             mean,
             width,

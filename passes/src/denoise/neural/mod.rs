@@ -448,10 +448,10 @@ fn add_conv(
         (Some(half_weights), Some((_, half_offsets))) => {
             let bias = offset + 9 * layer.inputs() * out_channels / 4;
             let half_offset = half_offsets[index];
-            // Two rows of 16 pixels a subgroup and up to 32 output channels a workgroup (64-channel
-            // layers in two workgroups): the fastest of the configurations measured on an H100
-            // (`bench/README.md`); four rows spill registers.
-            let (rows, group_tiles) = (2, 2);
+            // Workgroups of eight subgroups, one row of 16 pixels each, and up to 32 output
+            // channels (64-channel layers in two workgroups): the fastest of the configurations
+            // measured on an H100 (`bench/README.md`); more rows per subgroup spill registers.
+            let (subgroups, rows, group_tiles) = (8, 1, 2);
             let tiles = out_channels.div_ceil(16);
             let half = half_size(size);
             let quarter = half_size(half);
@@ -477,11 +477,12 @@ fn add_conv(
                 .specialize("ROWS", rows)
                 .specialize("POOL_LEVELS", pool_levels)
                 .specialize("GROUP_TILES", group_tiles)
+                .specialize("local_size_x", 32 * subgroups)
                 .push(&[push[0], push[1], push[2], push[3], bias, half_offset]);
-            // A workgroup of 128 invocations per 16 x (4 * rows) tile and group of output tiles.
+            // A workgroup per 16 x (subgroups * rows) tile and group of output tiles.
             p.dispatch([
-                size.0.div_ceil(16) * 128,
-                size.1.div_ceil(4 * rows),
+                size.0.div_ceil(16) * 32 * subgroups,
+                size.1.div_ceil(subgroups * rows),
                 tiles.div_ceil(group_tiles),
             ]);
             (output, pooled)
