@@ -36,8 +36,8 @@ pub struct SequenceArgs {
     /// Samples per pixel of each reference frame.
     #[arg(long, default_value = "1024", value_parser = samples_per_pixel(u32::MAX.into()))]
     reference_spp: SamplesPerPixel,
-    /// Output folder: `<method>/NNNN.exr` frames and `<method>/gpu_ms.txt` (each frame's GPU
-    /// time), first-hit `albedo/` and `normal/` frames, `metrics.csv`, `metrics.svg` and the
+    /// Output folder: `<method>/NNNN.exr` frames and `<method>/gpu_ms.txt` (the GPU time of each
+    /// frame, the path rendered again back to back), first-hit `albedo/` and `normal/` frames, `metrics.csv`, `metrics.svg` and the
     /// stability chart `stability.svg`/`.png`.
     #[arg(long, default_value = "sequence")]
     out: PathBuf,
@@ -202,8 +202,8 @@ fn sequence_settings(
 }
 
 /// Renders `cameras` with `settings`, accumulating `frames_each` frames per camera, into
-/// `<out>/<name>/NNNN.exr` (and, for a method rendered one frame a camera, each frame's GPU time
-/// into `<out>/<name>/gpu_ms.txt`). With the learned denoiser, also each frame's first-hit albedo and
+/// `<out>/<name>/NNNN.exr` (and, for a method rendered one frame a camera, the GPU time of each
+/// frame of the path rendered back to back into `<out>/<name>/gpu_ms.txt`: [`time_path`]). With the learned denoiser, also each frame's first-hit albedo and
 /// normal from its record (`albedo/NNNN.exr`, `normal/NNNN.exr`), which image denoisers run per
 /// frame take besides the noisy radiance (`training/oidn_baseline.py`).
 fn render(
@@ -264,7 +264,6 @@ fn render_frames(
             .with_context(|| format!("creating {}", folder.display()))?;
     }
     let progress = Progress::new(cameras.len() as u64, "frames");
-    let mut gpu_ms = Vec::with_capacity(cameras.len());
     for (i, &camera) in cameras.iter().enumerate() {
         renderer.set_camera(camera);
         for _ in 1..frames_each {
@@ -280,16 +279,38 @@ fn render_frames(
             }
             image
         };
-        gpu_ms.push(renderer.stats().gpu_ms);
         save(&frame_path(&folder, i), &image)?;
         progress.inc();
     }
     progress.finish();
     if frames_each == 1 {
-        stability::write_gpu_times(&folder, &gpu_ms)?;
+        stability::write_gpu_times(&folder, &time_path(&mut renderer, cameras)?)?;
     }
     renderer.finish()?;
     Ok(())
+}
+
+/// The GPU time of each frame of the camera path rendered again, back to back and saving nothing,
+/// after the path once as a warm-up: between the saved frames the GPU waits for the files to be
+/// written, and an idle GPU lowers its clocks (on an H100 the path's saved frames took up to 5x
+/// a bench's time), so their times are not a game loop's. The frames are not kept.
+fn time_path(renderer: &mut Renderer, cameras: &[Camera]) -> anyhow::Result<Vec<f64>> {
+    let mut times = Vec::with_capacity(cameras.len());
+    for round in 0..2 {
+        for &camera in cameras {
+            renderer.set_camera(camera);
+            renderer.render()?;
+            if round == 1 {
+                // The stats are those of the frame before, which this one waited for.
+                times.push(renderer.stats().gpu_ms);
+            }
+        }
+    }
+    renderer.finish()?;
+    times.push(renderer.stats().gpu_ms);
+    // The first is the warm-up's last frame.
+    times.remove(0);
+    Ok(times)
 }
 
 /// The file of frame `index` in a method's folder.
