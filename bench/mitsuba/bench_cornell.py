@@ -26,30 +26,10 @@ import json
 import os
 import platform
 import statistics
-import subprocess
 import sys
 import time
 
-
-def parse_size(s):
-    try:
-        w, h = s.lower().split('x')
-        return int(w), int(h)
-    except ValueError:
-        raise argparse.ArgumentTypeError('size must be WxH, e.g. 1920x1080')
-
-
-def gpu_info():
-    """(name, driver) of GPU 0 via nvidia-smi, or (None, None)."""
-    try:
-        r = subprocess.run(['nvidia-smi', '--query-gpu=name,driver_version',
-                            '--format=csv,noheader'],
-                           capture_output=True, text=True, timeout=20)
-        line = r.stdout.strip().splitlines()[0]
-        name, driver = [x.strip() for x in line.split(',', 1)]
-        return name, driver
-    except Exception:
-        return None, None
+from cornell import cornell_box, gpu_info, parse_size, render
 
 
 def main():
@@ -78,12 +58,7 @@ def main():
         sys.exit('--spp must be divisible by --passes')
     spp_pass = args.spp // args.passes
 
-    s = mi.cornell_box()
-    film = s['sensor']['film']
-    film['width'], film['height'] = W, H
-    film['rfilter'] = {'type': 'box'}
-    s['sensor']['sampler'] = {'type': 'independent', 'sample_count': spp_pass}
-    s['integrator'] = {'type': 'path', 'max_depth': args.max_depth}
+    s = cornell_box(mi, (W, H), args.max_depth, spp_pass)
     fov_axis = s['sensor'].get('fov_axis', 'x')
 
     t = time.perf_counter()
@@ -91,16 +66,7 @@ def main():
     load_s = time.perf_counter() - t
 
     def render_once(seed):
-        img = None
-        for p in range(args.passes):
-            part = mi.render(scene, seed=seed * args.passes + p, spp=spp_pass)
-            img = part if img is None else img + part
-            dr.eval(img)
-        if args.passes > 1:
-            img = img / args.passes
-        dr.eval(img)
-        dr.sync_thread()
-        return img
+        return render(mi, dr, scene, seed, args.spp, spp_pass)
 
     t = time.perf_counter()
     img = render_once(args.seed)

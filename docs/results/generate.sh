@@ -15,8 +15,13 @@
 # OUT_DIR/stability/ with metrics.csv, each method's GPU times and the stability chart
 # (temporal instability and FLIP against GPU time per frame); and `tables.py` writes
 # OUT_DIR/README.md: the tables, DSSIM over accumulated GPU time (the study's Table 4.3), time to
-# converge, the charts, device, driver and every command. LUCID names the lucid binary (default
-# target/release/lucid). A small run on lavapipe is part of the tests (sandbox/tests/results.rs).
+# converge, the charts, device, driver and every command. With MITSUBA the folder of an unpacked
+# Mitsuba 3 package (bench/mitsuba/README.md), Lucid against Mitsuba 3 on the Cornell box at
+# MITSUBA_SIZE: Mitsuba's images at 16..1024 samples and its reference
+# (bench/mitsuba/converge_cornell.py, into MITSUBA_WORK), measured with Lucid's path tracing at 1
+# and 16 samples a frame by `lucid converge --reference --external`: OUT_DIR/mitsuba/. LUCID names
+# the lucid binary (default target/release/lucid). A small run on lavapipe is part of the tests
+# (sandbox/tests/results.rs).
 set -euo pipefail
 out=${1:?usage: docs/results/generate.sh OUT_DIR}
 here=$(cd "$(dirname "$0")" && pwd)
@@ -60,5 +65,16 @@ run "$lucid" sequence --scene "$denoise_scene" --size "${STABILITY_SIZE:-1920x10
   --frames "${STABILITY_FRAMES:-20}" --reference-spp "${STABILITY_REFERENCE_SPP:-1024}" \
   --out "$out/stability" > "$out/stability.txt"
 find "$out/stability" -name '*.exr' -delete
+if [ -n "${MITSUBA:-}" ]; then
+  work=${MITSUBA_WORK:-/tmp/lucid-mitsuba}
+  mitsuba_size=${MITSUBA_SIZE:-1920x1080}
+  mkdir -p "$out/mitsuba" "$work"
+  run env PYTHONPATH="$MITSUBA" python3 "$here/../../bench/mitsuba/converge_cornell.py" \
+    --size "$mitsuba_size" --out "$work" > "$out/mitsuba/mitsuba.txt"
+  cp "$work/series.json" "$out/mitsuba/series.json"
+  run "$lucid" converge --scene cornell-box --size "$mitsuba_size" --algos pt --denoisers none \
+    --spp 1,16 --max-frames 1024 --budget-ms 100000 --reference "$work/reference.exr" \
+    --external "Mitsuba 3=$work/series.json" --out "$out/mitsuba" > "$out/mitsuba/converge.txt"
+fi
 python3 "$here/tables.py" "$out" > "$out/README.md"
 echo "-> $out/README.md"

@@ -134,9 +134,34 @@ def stability_table(out):
     return lines
 
 
+def mitsuba_table(summary):
+    """Per sample count of Mitsuba's series: its time and errors beside Lucid's configurations'
+    at the same number of samples (frames x samples per frame), times as each measured them."""
+    mitsuba = summary["external"][0]
+    lucid = {}
+    for c in summary["configurations"]:
+        for row in c["rows"]:
+            lucid[(c["config"], row["frame"] * c["spp"])] = row
+    configs = [c["config"] for c in summary["configurations"]]
+    lines = [
+        "| spp | Mitsuba ms | " + " | ".join(f"Lucid {c} ms (x faster)" for c in configs)
+        + " | Mitsuba relMSE | " + " | ".join(f"Lucid {c} relMSE" for c in configs) + " |",
+        "| --- |" + " --- |" * (2 + 2 * len(configs)),
+    ]
+    for p in mitsuba["points"]:
+        times, errors = [], []
+        for c in configs:
+            row = lucid.get((c, p["spp"]))
+            times.append("-" if row is None else f"{row['gpu_ms']:.1f} ({p['ms'] / row['gpu_ms']:.2f}x)")
+            errors.append("-" if row is None else f"{row['rel_mse']:.5f}")
+        lines.append(f"| {p['spp']} | {p['ms']:.1f} | " + " | ".join(times) + f" | {p['rel_mse']:.5f} | "
+                     + " | ".join(errors) + " |")
+    return lines
+
+
 def main():
     out = Path(sys.argv[1])
-    scenes = sorted(p.parent.name for p in out.glob("*/converge.json"))
+    scenes = sorted(p.parent.name for p in out.glob("*/converge.json") if p.parent.name != "mitsuba")
     device = "unknown"
     for f in out.glob("*/bench_*.json"):
         device = load(f)["device"]
@@ -158,6 +183,23 @@ def main():
               "denoiser, tone mapping) and its means over the path against the reference.\n")
         print("\n".join(stability_table(out)) + "\n")
         print("![stability against GPU time per frame](stability/stability.svg)\n")
+    if (out / "mitsuba" / "converge.json").exists():
+        summary = load(out / "mitsuba" / "converge.json")
+        mitsuba = summary["external"][0]
+        series = load(out / "mitsuba" / "series.json")
+        print("## Lucid against Mitsuba 3 (Cornell box)\n")
+        print(f"Mitsuba's `cornell_box()` and Lucid's transcription (`cornell-box`), "
+              f"{summary['size'][0]}x{summary['size'][1]}, path depth {summary['max_depth']}, no "
+              f"denoiser, both measured by `lucid converge` against the same reference "
+              f"(Mitsuba at {series['reference']['spp']} samples per pixel, other seeds). "
+              f"{mitsuba['renderer']} on {mitsuba['device']}: wall time of "
+              f"each image (render calls of at most 64 samples per pixel, median of 3, after a "
+              f"warm-up at that count). Lucid: the GPU time of its frames' passes (path tracing, "
+              f"accumulation, tone mapping), summed as samples accumulate, at 1 and 16 samples "
+              f"per pixel a frame.\n")
+        print("\n".join(mitsuba_table(summary)) + "\n")
+        print("![relMSE against time](mitsuba/error_vs_time_rel_mse.svg) "
+              "![FLIP against time](mitsuba/error_vs_time_flip.svg)\n")
     for scene in scenes:
         summary = load(out / scene / "converge.json")
         print(f"## {scene}\n")

@@ -241,3 +241,111 @@ fn converge_refuses_bad_lists_and_targets_clearly() {
     );
     std::fs::remove_file(&plain).unwrap();
 }
+
+/// Renders `cornell-box` at 24x24 into `path` (an EXR of the HDR image).
+fn render_exr(path: &Path, spp: &str, seed: &str) {
+    let out = lucid(&[
+        "render",
+        "--scene",
+        "cornell-box",
+        "--size",
+        "24x24",
+        "--spp",
+        spp,
+        "--seed",
+        seed,
+        "--frames",
+        "1",
+        "--out",
+        path.to_str().unwrap(),
+    ]);
+    assert!(out.status.success(), "render: {}", stderr(&out));
+}
+
+#[test]
+fn converge_measures_another_renderers_series_against_a_reference_file() {
+    let dir = temp("external");
+    std::fs::create_dir_all(&dir).unwrap();
+    // Another "renderer": lucid render's own images, so its errors must match converge's own
+    // configuration at the same sample count.
+    render_exr(&dir.join("reference.exr"), "1024", "99");
+    render_exr(&dir.join("other_4.exr"), "4", "7");
+    render_exr(&dir.join("other_64.exr"), "64", "8");
+    let series = serde_json::json!({
+        "renderer": "lucid render",
+        "time": "wall",
+        "points": [
+            {"spp": 64, "ms": 16.0, "image": "other_64.exr"},
+            {"spp": 4, "ms": 1.5, "image": "other_4.exr"},
+        ],
+    });
+    let series_file = dir.join("series.json");
+    std::fs::write(&series_file, series.to_string()).unwrap();
+    let out_dir = dir.join("out");
+    let out = lucid(&[
+        "converge",
+        "--size",
+        "24x24",
+        "--algos",
+        "pt",
+        "--denoisers",
+        "none",
+        "--spp",
+        "4",
+        "--max-frames",
+        "1",
+        "--reference",
+        dir.join("reference.exr").to_str().unwrap(),
+        "--external",
+        &format!("Other, renderer={}", series_file.display()),
+        "--out",
+        out_dir.to_str().unwrap(),
+        "--json",
+    ]);
+    let err = stderr(&out);
+    assert!(out.status.success(), "{err}");
+    assert!(!err.contains("reference:"), "rendered a reference: {err}");
+    let json: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+    assert!(json["reference"].as_str().unwrap().contains("reference.exr"));
+    assert!(json["reference_spp"].is_null());
+    let external = &json["external"][0];
+    assert_eq!(external["name"], "Other, renderer");
+    assert_eq!(external["renderer"], "lucid render");
+    let points = external["points"].as_array().unwrap();
+    let spp: Vec<u64> = points.iter().map(|p| p["spp"].as_u64().unwrap()).collect();
+    assert_eq!(spp, [4, 64], "sorted by samples per pixel");
+    assert_eq!(points[0]["ms"], 1.5);
+    for metric in METRICS {
+        let few = points[0][metric].as_f64().unwrap();
+        let many = points[1][metric].as_f64().unwrap();
+        assert!(many < few, "{metric}: 64 spp {many} not below 4 spp {few}");
+    }
+    // Measured as converge measures its own: 4 samples of the same renderer, the same error.
+    let own = json["configurations"][0]["final"]["rel_mse"].as_f64().unwrap();
+    let other = points[0]["rel_mse"].as_f64().unwrap();
+    assert!(
+        (0.5..2.0).contains(&(other / own)),
+        "relMSE at 4 spp: external {other}, pt/none/4 {own}"
+    );
+    let csv = std::fs::read_to_string(out_dir.join("converge.csv")).unwrap();
+    assert!(
+        csv.lines().any(|l| l.starts_with("\"Other, renderer\",,,64,1,16,")),
+        "{csv}"
+    );
+    let svg = std::fs::read_to_string(out_dir.join("error_vs_time_rel_mse.svg")).unwrap();
+    assert!(svg.contains("Other, renderer (wall time)"), "legend");
+
+    // Bad input: one clear line each, before any rendering.
+    let reference = dir.join("reference.exr");
+    assert_clear_failure(
+        &["--reference", reference.to_str().unwrap()],
+        "is 24x24, --size 8x8",
+    );
+    assert_clear_failure(&["--external", "series.json"], "expected NAME=FILE");
+    let missing = dir.join("missing.json");
+    assert_clear_failure(
+        &["--external", &format!("X={}", missing.display())],
+        "reading --external",
+    );
+    std::fs::remove_dir_all(&dir).unwrap();
+}

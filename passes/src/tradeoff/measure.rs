@@ -213,6 +213,12 @@ pub fn render_reference(
 /// HDR image (accumulated and denoised as `settings` say) against `reference` (prepared with the
 /// display mapping of `settings`) at the frames `schedule` picks and at the last. `on_frame` is
 /// called after each measured-time frame.
+///
+/// The frames run back to back as in `lucid bench`: the HDR image is read back only from the
+/// frames measured (and from those that may be the last, when the next frame could spend the
+/// budget), and the errors are computed after the last frame, so the GPU does not idle between
+/// frames while the host computes metrics (an idle GPU lowers its clocks, and the frames after
+/// it would take longer than they do in a running application).
 pub fn measure(
     renderer: &mut Renderer,
     settings: Settings,
@@ -234,16 +240,24 @@ pub fn measure(
     renderer.finish()?;
     renderer.cut();
     let max_frames = limits.max_frames.max(1);
-    let mut rows = Vec::new();
+    let mut images = Vec::new();
     let mut gpu_ms = 0.0;
     let mut frames = 0;
-    for frame in 1..=max_frames {
+    loop {
+        let frame = frames + 1;
+        let mean_ms = if frames > 0 {
+            gpu_ms / f64::from(frames)
+        } else {
+            0.0
+        };
+        let may_be_last = frame == max_frames || gpu_ms + 1.5 * mean_ms >= limits.budget_ms;
+        let wanted = may_be_last || (schedule == Schedule::Geometric && measured(frame));
         let mut g = RenderGraph::new();
-        let (images, stats) = renderer.add_frame(&mut g);
+        let (frame_images, stats) = renderer.add_frame(&mut g);
         // The displayed image leaves the graph as in `lucid bench` (its passes are part of a
         // frame); the HDR image is what is measured.
-        g.readback(images.ldr);
-        let hdr = g.readback(images.hdr);
+        g.readback(frame_images.ldr);
+        let hdr = wanted.then(|| g.readback(frame_images.hdr));
         let started = Instant::now();
         let submitted = renderer
             .executor_mut()
@@ -263,22 +277,12 @@ pub fn measure(
             Clock::Wall => wall_ms,
         };
         frames = frame;
-        let last = frame == max_frames || gpu_ms >= limits.budget_ms;
-        if last || (schedule == Schedule::Geometric && measured(frame)) {
-            let image = outputs.image(hdr)?;
-            let m = reference
-                .evaluate(&image)
-                .map_err(|source| TradeoffError::Metrics {
-                    config: config.name(),
-                    source,
-                })?;
-            rows.push(Measurement {
-                frame,
-                gpu_ms,
-                dssim: m.dssim,
-                flip: m.flip,
-                rel_mse: m.rel_mse,
-            });
+        // A frame that spent the budget without its image read back is followed by one more.
+        let last = frame == max_frames || (gpu_ms >= limits.budget_ms && hdr.is_some());
+        if let Some(hdr) = hdr {
+            if last || (schedule == Schedule::Geometric && measured(frame)) {
+                images.push((frame, gpu_ms, outputs.image(hdr)?));
+            }
         }
         on_frame();
         if last {
@@ -286,6 +290,24 @@ pub fn measure(
         }
     }
     renderer.finish()?;
+    let rows = images
+        .iter()
+        .map(|(frame, gpu_ms, image)| {
+            let m = reference
+                .evaluate(image)
+                .map_err(|source| TradeoffError::Metrics {
+                    config: config.name(),
+                    source,
+                })?;
+            Ok(Measurement {
+                frame: *frame,
+                gpu_ms: *gpu_ms,
+                dssim: m.dssim,
+                flip: m.flip,
+                rel_mse: m.rel_mse,
+            })
+        })
+        .collect::<Result<Vec<_>, TradeoffError>>()?;
     Ok(ConfigResult {
         config,
         rows,

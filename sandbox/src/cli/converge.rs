@@ -1,8 +1,11 @@
 //! `lucid converge`: error against GPU time as samples accumulate, for every configuration
 //! (algorithm x denoiser x samples per pixel per frame) of one scene seen by a still camera,
-//! against a many-sample reference; written as CSV, JSON and charts (`converge_chart.rs`).
+//! against a many-sample reference (rendered, or a file); written as CSV, JSON and charts
+//! (`converge_chart.rs`). Another renderer's images join the charts with `--external`
+//! (`external_series.rs`).
 
 use super::converge_chart::{self, Series};
+use super::external_series::{self, ExternalArg, ExternalResult};
 use super::float_range::finite_f64;
 use super::lists::{spp_list, value_list, List};
 use super::output_path;
@@ -13,13 +16,16 @@ use super::size::Size;
 use anyhow::Context as _;
 use clap::Args;
 use lucid_engine::atomic_write::write_atomic;
-use lucid_engine::capture::{PngEncoding, ToneCurve};
+use lucid_engine::capture::{self, PngEncoding, ToneCurve};
+use lucid_engine::metrics::PreparedReference;
 use lucid_engine::{Context, ContextDesc};
 use lucid_passes::denoise::neural::{InferencePath, NetworkWeights};
 use lucid_passes::renderer::{Algorithm, Denoiser, Renderer, SamplesPerPixel, Settings};
 use lucid_passes::tradeoff::measure::{measure, render_reference, REFERENCE_SPP_PER_FRAME};
 use lucid_passes::tradeoff::pareto::{pareto_front, time_to_converge};
-use lucid_passes::tradeoff::{Clock, Config, ConfigResult, Limits, Metric, Schedule};
+use lucid_passes::tradeoff::{
+    Clock, Config, ConfigResult, Limits, Measurement, Metric, Schedule,
+};
 use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
 
@@ -66,6 +72,15 @@ pub struct ConvergeArgs {
     /// Samples per pixel of the reference (path tracing, no denoiser), rendered once.
     #[arg(long, default_value = "1024", value_parser = samples_per_pixel(u32::MAX.into()))]
     reference_spp: SamplesPerPixel,
+    /// The reference as an image file (.exr, linear; the size of --size) instead of rendering
+    /// one, e.g. another renderer's many-sample image.
+    #[arg(long, conflicts_with = "reference_spp")]
+    reference: Option<PathBuf>,
+    /// Another renderer's series, `NAME=FILE` (repeatable): FILE is JSON listing images with
+    /// their samples per pixel and times (`bench/mitsuba/converge_cornell.py` writes one),
+    /// measured against the same reference and drawn on the error-against-time charts.
+    #[arg(long)]
+    external: Vec<ExternalArg>,
     /// The DSSIM a configuration has converged at (its time to converge: when it first falls below).
     #[arg(long, default_value_t = 0.1, value_parser = finite_f64(0.0, 1e9))]
     target_dssim: f64,
@@ -98,6 +113,20 @@ pub fn run(args: &ConvergeArgs) -> anyhow::Result<()> {
         Some(path) => Some(NetworkWeights::load(path)?),
         None => None,
     };
+    let (w, h) = (args.size.width, args.size.height);
+    let display = PngEncoding {
+        exposure: args.exposure,
+        tone: ToneCurve::Aces,
+    };
+    let reference_file = match &args.reference {
+        Some(path) => Some(load_reference(path, (w, h), &display)?),
+        None => None,
+    };
+    let externals = args
+        .external
+        .iter()
+        .map(|arg| external_series::read(arg, (w, h)))
+        .collect::<anyhow::Result<Vec<_>>>()?;
     let scene = scene_source::load(&args.scene, None)?;
     let ctx = Context::new(&ContextDesc::from_env())?;
     let device = ctx.info().name.clone();
@@ -125,11 +154,6 @@ pub fn run(args: &ConvergeArgs) -> anyhow::Result<()> {
         eprintln!("note: {note}");
     }
     let configs = Config::all(&algorithms, &args.denoisers.0, &args.spp.0);
-    let (w, h) = (args.size.width, args.size.height);
-    let display = PngEncoding {
-        exposure: args.exposure,
-        tone: ToneCurve::Aces,
-    };
     let base = Settings {
         max_depth: args.max_depth,
         seed: args.seed,
@@ -141,23 +165,33 @@ pub fn run(args: &ConvergeArgs) -> anyhow::Result<()> {
     if let Some(weights) = &weights {
         renderer.set_neural_network(weights, InferencePath::best(&ctx))?;
     }
-    let reference_frames = args
-        .reference_spp
-        .get()
-        .div_ceil(REFERENCE_SPP_PER_FRAME.get());
-    eprintln!(
-        "reference: {} spp in {reference_frames} frames",
-        args.reference_spp.get()
-    );
-    let progress = Progress::new(u64::from(reference_frames), "reference frames");
-    let reference = render_reference(
-        &mut renderer,
-        base,
-        Algorithm::PathTracing,
-        args.reference_spp,
-        &mut || progress.inc(),
-    )?;
-    progress.finish();
+    let reference = match reference_file {
+        Some(reference) => reference,
+        None => {
+            let frames = args
+                .reference_spp
+                .get()
+                .div_ceil(REFERENCE_SPP_PER_FRAME.get());
+            eprintln!(
+                "reference: {} spp in {frames} frames",
+                args.reference_spp.get()
+            );
+            let progress = Progress::new(u64::from(frames), "reference frames");
+            let reference = render_reference(
+                &mut renderer,
+                base,
+                Algorithm::PathTracing,
+                args.reference_spp,
+                &mut || progress.inc(),
+            )?;
+            progress.finish();
+            reference
+        }
+    };
+    let externals = externals
+        .iter()
+        .map(|series| series.measure(&reference))
+        .collect::<anyhow::Result<Vec<_>>>()?;
     eprintln!(
         "{} configurations, up to {} frames or {} ms each",
         configs.len(),
@@ -199,14 +233,18 @@ pub fn run(args: &ConvergeArgs) -> anyhow::Result<()> {
         notes: &notes,
         targets,
         results: &results,
+        externals: &externals,
     };
     let json = summary.to_json();
-    write(&args.out.join("converge.csv"), to_csv(&results).as_bytes())?;
+    write(
+        &args.out.join("converge.csv"),
+        to_csv(&results, &externals).as_bytes(),
+    )?;
     write(
         &args.out.join("converge.json"),
         serde_json::to_string_pretty(&json)?.as_bytes(),
     )?;
-    write_charts(&args.out, &results, clock, |m| summary.target(m))?;
+    write_charts(&args.out, &results, &externals, clock, |m| summary.target(m))?;
     if args.json {
         println!("{}", serde_json::to_string_pretty(&json)?);
     } else {
@@ -214,6 +252,31 @@ pub fn run(args: &ConvergeArgs) -> anyhow::Result<()> {
         println!("-> {}", args.out.display());
     }
     Ok(())
+}
+
+/// The reference from a file: `size`, finite, prepared with `display`.
+fn load_reference(
+    path: &Path,
+    size: (u32, u32),
+    display: &PngEncoding,
+) -> anyhow::Result<PreparedReference> {
+    let image = capture::load(path).context("loading --reference")?;
+    anyhow::ensure!(
+        (image.width, image.height) == size,
+        "--reference {} is {}x{}, --size {}x{}",
+        path.display(),
+        image.width,
+        image.height,
+        size.0,
+        size.1
+    );
+    anyhow::ensure!(
+        !image.has_non_finite(),
+        "--reference {} has NaN or infinite pixels",
+        path.display()
+    );
+    PreparedReference::new(&image, display)
+        .with_context(|| format!("preparing --reference {}", path.display()))
 }
 
 fn write(path: &Path, bytes: &[u8]) -> anyhow::Result<()> {
@@ -224,28 +287,44 @@ fn write(path: &Path, bytes: &[u8]) -> anyhow::Result<()> {
 pub const CSV_HEADER: &str = "config,algo,denoiser,spp,frame,gpu_ms,dssim,flip,rel_mse";
 
 /// One line per measurement; numbers in full precision (what the JSON's times to converge are
-/// computed from).
-fn to_csv(results: &[ConfigResult]) -> String {
+/// computed from). An external series' lines have its name as the configuration, no algorithm or
+/// denoiser, its images' samples per pixel and frame 1 (each image is one render).
+fn to_csv(results: &[ConfigResult], externals: &[ExternalResult]) -> String {
     let mut out = format!("{CSV_HEADER}\n");
+    let mut line = |config: &str, algo: &str, denoiser: &str, spp: u32, row: &Measurement| {
+        let _ = writeln!(
+            out,
+            "{config},{algo},{denoiser},{spp},{},{},{},{},{}",
+            row.frame, row.gpu_ms, row.dssim, row.flip, row.rel_mse
+        );
+    };
     for r in results {
         let c = r.config;
         for row in &r.rows {
-            let _ = writeln!(
-                out,
-                "{},{},{},{},{},{},{},{},{}",
-                c.name(),
+            line(
+                &c.name(),
                 c.algorithm.short_name(),
                 c.denoiser.short_name(),
-                c.spp,
-                row.frame,
-                row.gpu_ms,
-                row.dssim,
-                row.flip,
-                row.rel_mse
+                c.spp.get(),
+                row,
             );
         }
     }
+    for e in externals {
+        for p in &e.points {
+            line(&csv_field(&e.name), "", "", p.spp, &p.measurement);
+        }
+    }
     out
+}
+
+/// `name` as a CSV field: quoted when it holds a comma or a quote.
+fn csv_field(name: &str) -> String {
+    if name.contains([',', '"']) {
+        format!("\"{}\"", name.replace('"', "\"\""))
+    } else {
+        name.to_string()
+    }
 }
 
 /// Everything the JSON and the printed table say.
@@ -257,6 +336,7 @@ struct Summary<'a> {
     notes: &'a [String],
     targets: [(Metric, f64); 3],
     results: &'a [ConfigResult],
+    externals: &'a [ExternalResult],
 }
 
 impl Summary<'_> {
@@ -311,7 +391,33 @@ impl Summary<'_> {
                 })
             })
             .collect();
+        let externals: Vec<Value> = self
+            .externals
+            .iter()
+            .map(|e| {
+                let rows = e.rows();
+                json!({
+                    "name": e.name,
+                    "renderer": e.renderer,
+                    "device": e.device,
+                    "time": e.time,
+                    "file": e.file.display().to_string(),
+                    "time_to_converge_ms": per_metric(&|m| json!(time_to_converge(&rows, m, self.target(m)))),
+                    "points": e.points.iter().map(|p| json!({
+                        "spp": p.spp,
+                        "ms": p.measurement.gpu_ms,
+                        "dssim": p.measurement.dssim,
+                        "flip": p.measurement.flip,
+                        "rel_mse": p.measurement.rel_mse,
+                    })).collect::<Vec<_>>(),
+                })
+            })
+            .collect();
         let args = self.args;
+        let reference = match &args.reference {
+            Some(path) => format!("the file {}", path.display()),
+            None => "path tracing, no denoiser, seed xor 0x9e3779b9, 16 samples per frame accumulated".to_string(),
+        };
         let time = match self.clock {
             Clock::Gpu => "gpu",
             Clock::Wall => "wall",
@@ -323,11 +429,11 @@ impl Summary<'_> {
             "size": [args.size.width, args.size.height],
             "max_depth": args.max_depth,
             "seed": args.seed,
-            "reference_spp": args.reference_spp.get(),
+            "reference_spp": args.reference.is_none().then(|| args.reference_spp.get()),
             "budget_ms": args.budget_ms,
             "max_frames": args.max_frames,
             "warmup": args.warmup,
-            "reference": "path tracing, no denoiser, seed xor 0x9e3779b9, 16 samples per frame accumulated",
+            "reference": reference,
             "time": time,
             "exposure": args.exposure,
             "notes": self.notes,
@@ -337,6 +443,7 @@ impl Summary<'_> {
                 json!(front.iter().map(|&i| self.results[i].config.name()).collect::<Vec<_>>())
             }),
             "configurations": configurations,
+            "external": externals,
         })
     }
 
@@ -394,7 +501,34 @@ impl Summary<'_> {
                 times.join(" / ")
             );
         }
+        for e in self.externals {
+            let rows = e.rows();
+            let times: Vec<String> = Metric::ALL
+                .iter()
+                .map(|&m| match time_to_converge(&rows, m, self.target(m)) {
+                    Some(ms) => format!("{ms:.1}"),
+                    None => "-".to_string(),
+                })
+                .collect();
+            for p in &e.points {
+                let m = &p.measurement;
+                let _ = writeln!(
+                    out,
+                    "{:<16} {:>6} {:>10.3} {:>10.4}  {:>10.4}  {:>10.4}   {}",
+                    format!("{} {} spp", e.name, p.spp),
+                    "-",
+                    m.gpu_ms,
+                    m.dssim,
+                    m.flip,
+                    m.rel_mse,
+                    times.join(" / ")
+                );
+            }
+        }
         out.push_str("* on the Pareto front of time per frame and final error\n");
+        if !self.externals.is_empty() {
+            out.push_str("external series: one image per line, ms/frame is that image's time\n");
+        }
         out
     }
 }
@@ -412,10 +546,12 @@ fn speed_accuracy(results: &[ConfigResult], metric: Metric) -> Vec<(f64, f64)> {
         .collect()
 }
 
-/// `error_vs_time_<metric>.png/.svg` and `speed_vs_accuracy.png/.svg`.
+/// `error_vs_time_<metric>.png/.svg` (with the external series) and `speed_vs_accuracy.png/.svg`
+/// (Lucid's configurations: an external series has no time per frame).
 fn write_charts(
     out: &Path,
     results: &[ConfigResult],
+    externals: &[ExternalResult],
     clock: Clock,
     target: impl Fn(Metric) -> f64,
 ) -> anyhow::Result<()> {
@@ -434,6 +570,14 @@ fn write_charts(
                     .map(|row| (row.gpu_ms, metric.of(row)))
                     .collect(),
             })
+            .chain(externals.iter().map(|e| Series {
+                name: e.label(),
+                points: e
+                    .points
+                    .iter()
+                    .map(|p| (p.measurement.gpu_ms, metric.of(&p.measurement)))
+                    .collect(),
+            }))
             .collect();
         let chart = converge_chart::error_vs_time(
             &format!("{} against {time}", metric.label()),

@@ -4,6 +4,7 @@ mod auto_options;
 mod bench;
 mod converge;
 mod converge_chart;
+mod external_series;
 mod dataset;
 mod evaluate;
 mod float_range;
