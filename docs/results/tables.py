@@ -15,6 +15,36 @@ from pathlib import Path
 # The study's Table 4.3 times, in GPU milliseconds (20 ms to 1.3 s of accumulation).
 CHECKPOINTS_MS = (20.0, 161.0, 343.0, 1292.0)
 
+# The study's own measurements (RTX 2070, path depth 32, OptiX denoiser), beside Lucid's built-in
+# scene that is the analogue of its scene. Table 4.1: (PT ms, BDPT ms) per scene and size.
+STUDY = "the study (RTX 2070, depth 32)"
+STUDY_SCENES = {
+    "cornell-teapot": "Teapot Cornell Box",
+    "covered-light": "Covered Dragon",
+    "blinds-room": "Breakfast Room",
+    "classroom": "Japanese Classroom",
+}
+STUDY_FRAME_MS = {
+    ("cornell-teapot", "1280x720"): (2.3, 9.6),
+    ("covered-light", "1280x720"): (4.6, 11.3),
+    ("blinds-room", "1280x720"): (2.9, 8.5),
+    ("classroom", "1280x720"): (9.3, 22.2),
+    ("cornell-teapot", "1920x1080"): (4.8, 16.7),
+    ("covered-light", "1920x1080"): (9.5, 24.4),
+    ("blinds-room", "1920x1080"): (6.3, 18.6),
+    ("classroom", "1920x1080"): (20.2, 52.4),
+}
+# Table 4.2: OptiX's time per size.
+STUDY_DENOISER_MS = {"640x360": 2.8, "854x480": 4.4, "1280x720": 7.5, "1920x1080": 14.5}
+# Table 4.3 ("Japanese Classroom"): per configuration, (DSSIM, accumulated samples, seconds) at
+# the checkpoints (BDPT's first sample took 0.048 s).
+STUDY_CLASSROOM_DSSIM = {
+    "pt/none": [(3.06367398, 1, 0.02), (1.26624604, 8, 0.161), (0.96657428, 16, 0.343), (0.64997775, 64, 1.292)],
+    "pt/optix": [(0.65222797, 1, 0.02), (0.28258904, 8, 0.161), (0.16146306, 16, 0.343), (0.05030262, 64, 1.292)],
+    "bdpt/none": [(2.62315406, 1, 0.048), (1.67064845, 4, 0.161), (1.32711299, 7, 0.343), (0.96057530, 25, 1.292)],
+    "bdpt/optix": [(0.71196505, 1, 0.048), (0.49393342, 4, 0.161), (0.32785179, 7, 0.343), (0.15214008, 25, 1.292)],
+}
+
 
 def load(path):
     return json.loads(path.read_text())
@@ -39,14 +69,17 @@ def frame_table(out, scenes):
             algos.add(algo)
     sizes = sorted(sizes, key=size_key)
     algos = sorted(algos, key=lambda a: (a != "pt", a))
-    lines = ["| scene | size | " + " | ".join(f"{a} ms | {a} fps" for a in algos) + " |"]
-    lines.append("| --- | --- | " + " | ".join("--- | ---" for _ in algos) + " |")
+    lines = ["| scene | size | " + " | ".join(f"{a} ms | {a} fps" for a in algos)
+             + f" | {STUDY}: its scene, pt ms, bdpt ms |"]
+    lines.append("| --- | --- | " + " | ".join("--- | ---" for _ in algos) + " | --- |")
     for size in sizes:
         for scene in scenes:
             cells = []
             for a in algos:
                 ms = rows.get((scene, a, size))
                 cells.append("- | -" if ms is None else f"{ms:.2f} | {1000.0 / ms:.0f}")
+            study = STUDY_FRAME_MS.get((scene, size))
+            cells.append("-" if study is None else f"{STUDY_SCENES[scene]}: {study[0]}, {study[1]}")
             lines.append(f"| {scene} | {size} | " + " | ".join(cells) + " |")
     return lines
 
@@ -63,6 +96,8 @@ def denoiser_table(out):
     lines = ["| denoiser | " + " | ".join(sizes) + " |", "| --- |" + " --- |" * len(sizes)]
     for d in denoisers:
         lines.append(f"| {d} | " + " | ".join(f"{times[(d, s)]:.2f} ms" if (d, s) in times else "-" for s in sizes) + " |")
+    lines.append(f"| OptiX, {STUDY} | "
+                 + " | ".join(f"{STUDY_DENOISER_MS[s]} ms" if s in STUDY_DENOISER_MS else "-" for s in sizes) + " |")
     return lines
 
 
@@ -87,6 +122,11 @@ def quality_table(summary):
             r = at_time(c, t)
             cells.append("-" if r is None else f"{r['dssim']:.4f} ({r['frame']})")
         lines.append(f"| {c['config']} | " + " | ".join(cells) + f" | {c['frames']} |")
+    if summary["scene"] == "classroom":
+        for config, points in STUDY_CLASSROOM_DSSIM.items():
+            cells = [f"{d:.4f} ({n} spp" + (f", at {t:g} s)" if t * 1000 not in CHECKPOINTS_MS else ")")
+                     for d, n, t in points]
+            lines.append(f"| {STUDY}: {config} | " + " | ".join(cells) + " | - |")
     return lines
 
 
