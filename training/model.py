@@ -297,7 +297,7 @@ class RecurrentDenoiser(nn.Module):
         b = r(c["bottleneck"](e2))
         d1 = r(c["dec1"](torch.cat([up(b), e1], 1)))
         d0 = r(c["dec0"](torch.cat([up(d1), e0], 1)))
-        o = half(c["out"](d0), fp16_storage)
+        o = half(self.predict(d0, rec, accum, fp16_storage), fp16_storage)
         blend = mask * torch.sigmoid(o[:, 3:4])
         log_out = (o[:, 0:3] * (1.0 - blend) + warped * blend).clamp_min(0.0)
         log_out = half(log_out, fp16_storage)
@@ -313,6 +313,12 @@ class RecurrentDenoiser(nn.Module):
             "emission": emission,
         }
         return radiance, state
+
+    def predict(self, d0, rec, accum, fp16_storage):
+        """The output layer on the last decoder features `d0` [B,32,H,W]: log radiance (3) and the
+        blend weight's logit (1). `rec` (the frame's record, split) and `accum` (its running mean
+        and length) serve output layers that filter the radiance (`kernel_model.py`)."""
+        return self.convs["out"](d0)
 
     def forward(self, records, fp16_storage=False):
         """A sequence [B,T,RECORD_SIZE,H,W] from no history; returns [B,T,3,H,W]."""
