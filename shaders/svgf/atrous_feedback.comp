@@ -5,13 +5,12 @@
 #include "common/image_coords.glsl"
 #include "svgf/common.glsl"
 
-layout(local_size_x = 8, local_size_y = 8) in;
-
 layout(set = 0, binding = 0, rgba16f) uniform readonly image2D u_in;
 layout(set = 0, binding = 1, r32f) uniform readonly image2D u_depth;
 layout(set = 0, binding = 2, rgba16f) uniform readonly image2D u_normal_roughness;
-layout(set = 0, binding = 3, rgba16f) uniform writeonly image2D u_out;
-layout(set = 0, binding = 4, rgba32f) uniform writeonly image2D u_history;
+layout(set = 0, binding = 3, r32f) uniform readonly image2D u_depth_slope;
+layout(set = 0, binding = 4, rgba16f) uniform writeonly image2D u_out;
+layout(set = 0, binding = 5, rgba32f) uniform writeonly image2D u_history;
 
 layout(push_constant) uniform Params {
     int step;
@@ -20,16 +19,13 @@ layout(push_constant) uniform Params {
     float sigma_l;
 } params;
 
-#include "svgf/depth_slope.glsl"
 #include "svgf/atrous.glsl"
 
 void main() {
-    ivec2 pixel = ivec2(gl_GlobalInvocationID.xy);
-    ivec2 size = imageSize(u_out);
-    if (!pixel_in_bounds(pixel, size)) {
-        return;
+    ivec2 pixel;
+    vec4 filtered;
+    if (svgf_atrous(pixel, filtered)) {
+        imageStore(u_out, pixel, filtered);
+        imageStore(u_history, pixel, vec4(filtered.rgb, 0.0));
     }
-    vec4 filtered = svgf_atrous(pixel, size);
-    imageStore(u_out, pixel, filtered);
-    imageStore(u_history, pixel, vec4(filtered.rgb, 0.0));
 }

@@ -3,7 +3,8 @@
 // the history is shorter than 4 frames (disocclusions, the first frame, the per-frame filter) the
 // moments and the illumination are instead averaged over a 7x7 neighbourhood with depth and normal
 // edge stopping. Writes illumination (rgb) and the standard deviation (a) in half precision
-// (svgf_pack_filtered).
+// (svgf_pack_filtered), and every pixel's depth slope (svgf/depth_slope.glsl) for the a-trous
+// iterations, whose tiles hold pixels a step apart rather than a pixel's neighbours.
 #include "common/math.glsl"
 #include "common/image_coords.glsl"
 #include "svgf/common.glsl"
@@ -15,6 +16,7 @@ layout(set = 0, binding = 1, rgba32f) uniform readonly image2D u_moments;
 layout(set = 0, binding = 2, r32f) uniform readonly image2D u_depth;
 layout(set = 0, binding = 3, rgba16f) uniform readonly image2D u_normal_roughness;
 layout(set = 0, binding = 4, rgba16f) uniform writeonly image2D u_out;
+layout(set = 0, binding = 5, r32f) uniform writeonly image2D u_depth_slope;
 
 #include "svgf/depth_slope.glsl"
 
@@ -33,13 +35,14 @@ void main() {
     vec3 moments = imageLoad(u_moments, pixel).xyz;
     float history = moments.z;
     float z = imageLoad(u_depth, pixel).x;
+    float slope = svgf_depth_slope(pixel, size);
+    imageStore(u_depth_slope, pixel, vec4(slope));
     if (history >= 4.0 || z <= 0.0) {
         float variance = max(moments.y - moments.x * moments.x, 0.0);
         imageStore(u_out, pixel, svgf_pack_filtered(color, variance));
         return;
     }
     vec3 n = imageLoad(u_normal_roughness, pixel).xyz;
-    float slope = svgf_depth_slope(pixel, size);
     vec3 color_sum = vec3(0.0);
     vec2 moment_sum = vec2(0.0);
     float weight_sum = 0.0;

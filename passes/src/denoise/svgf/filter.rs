@@ -1,22 +1,13 @@
-//! SVGF's spatial half: variance estimation, the edge-avoiding a-trous wavelet filter and
-//! re-modulation (`shaders/svgf/{moments,variance,atrous,atrous_feedback,modulate}.comp`).
+//! SVGF's spatial half: variance estimation, the edge-avoiding a-trous wavelet filter
+//! ([`atrous`]) and re-modulation (`shaders/svgf/{moments,variance,modulate}.comp`).
 
+use super::atrous;
 use super::demodulate::Demodulated;
 use super::SvgfParams;
 use crate::denoise::gbuffer::GBuffer;
-use crate::shaders::svgf::{ATROUS, ATROUS_FEEDBACK, MODULATE, MOMENTS, VARIANCE};
+use crate::shaders::svgf::{MODULATE, MOMENTS, VARIANCE};
 use lucid_engine::graph::{ImageHandle, RenderGraph};
 use lucid_engine::memory::ImageDesc;
-
-/// Push constants of the a-trous shaders.
-#[repr(C)]
-#[derive(Clone, Copy, bytemuck::Pod, bytemuck::Zeroable)]
-struct AtrousParams {
-    step: i32,
-    sigma_z: f32,
-    sigma_n: f32,
-    sigma_l: f32,
-}
 
 /// Luminance moments of `illumination` with no history: the spatial-only filter's moments.
 pub(super) fn moments(
@@ -47,41 +38,28 @@ pub(super) fn add(
     feedback: Option<ImageHandle>,
     (width, height): (u32, u32),
 ) -> ImageHandle {
-    // Half precision for the filter chain (svgf_pack_filtered): the iterations are memory-bound.
-    let desc = ImageDesc::rgba16f(width, height);
+    // Half precision for the filter chain (svgf_pack_filtered): the iterations read half the bytes.
     let mut pass = g.compute_pass("svgf.variance", &VARIANCE);
     pass.read("u_color", demodulated.illumination)
         .read("u_moments", moments)
         .read("u_depth", gbuffer.depth)
         .read("u_normal_roughness", gbuffer.normal_roughness);
-    let out = pass.create_image("u_out", "svgf.variance", desc);
+    let variance = pass.create_image("u_out", "svgf.variance", ImageDesc::rgba16f(width, height));
+    let depth_slope = pass.create_image(
+        "u_depth_slope",
+        "svgf.depth_slope",
+        ImageDesc::r32f(width, height),
+    );
     pass.push(&[params.sigma_z, params.sigma_n]);
     pass.dispatch([width, height, 1]);
-    let mut filtered = out;
-    for i in 0..params.iterations {
-        let history = feedback.filter(|_| i == 0);
-        let shader = if history.is_some() {
-            &ATROUS_FEEDBACK
-        } else {
-            &ATROUS
-        };
-        let mut pass = g.compute_pass("svgf.atrous", shader);
-        pass.read("u_in", filtered)
-            .read("u_depth", gbuffer.depth)
-            .read("u_normal_roughness", gbuffer.normal_roughness);
-        let out = pass.create_image("u_out", "svgf.atrous", desc);
-        if let Some(history) = history {
-            pass.write("u_history", history);
-        }
-        pass.push(&AtrousParams {
-            step: 1 << i,
-            sigma_z: params.sigma_z,
-            sigma_n: params.sigma_n,
-            sigma_l: params.sigma_l,
-        });
-        pass.dispatch([width, height, 1]);
-        filtered = out;
-    }
+    let filtered = atrous::add(
+        g,
+        (variance, depth_slope),
+        gbuffer,
+        params,
+        feedback,
+        (width, height),
+    );
     modulate(g, filtered, demodulated, (width, height))
 }
 

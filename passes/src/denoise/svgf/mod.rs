@@ -29,6 +29,7 @@
 //! The spatial modes filter the (accumulated) output, demodulated by the first hits' albedo and
 //! emission accumulated over the same frames (`demodulate`).
 
+mod atrous;
 mod demodulate;
 mod filter;
 mod gradient;
