@@ -25,13 +25,6 @@ the recurrent state. The output layer `out` is replaced by `KernelOutput`:
   rest (blend with the warped history, re-modulation, the state). The model subclasses it and only
   swaps its output layer (`predict`), so it keeps `step`/`forward` and the state as `model.py`
   defines them.
-- **Optionally (`mix`, an experiment the shaders do not run yet), what the kernels filter**: one
-  more channel of `out`, after the others, predicts per pixel `m = sigmoid(.)`, and the kernels at
-  every scale filter `m * mean + (1 - m) * radiance` (in linear space, then the log): the running
-  mean of the noisy radiance (`model.accumulate`, reprojected, up to `N_MAX` frames) where the
-  network trusts it, this frame's samples where it does not (disocclusions, moving light). Without
-  it, the kernels filter this frame's samples only and temporal averaging happens after the
-  filtering, in the blend with the warped output.
 
 Export (`export_tensors`): the layers of `model.LAYERS` under their names (`out` with its
 25 + 1 + (outputs - 3) channels) plus `out_half` and `out_quarter`, float32.
@@ -52,19 +45,12 @@ _OUT = {name: (cin, cout) for name, cin, cout in LAYERS}["out"]
 OUT_IN = _OUT[0]
 # The direct model's output channels after the 3 radiance channels (blend weight, ...).
 EXTRA = _OUT[1] - 3
-# The logit of the mixing weight's first value when `mix` starts from weights without it: the
-# kernels then filter this frame's samples almost only, as before.
-MIX_INIT_BIAS = -4.0
-
-
-def heads(mix=False):
-    """(name, input channels, output channels, resolution divisor) of the kernel heads; with `mix`,
-    `out` has the mixing weight's channel last."""
-    return [
-        ("out", OUT_IN, TAPS + 1 + EXTRA + (1 if mix else 0), 1),
-        ("out_half", OUT_IN, TAPS + 1, 2),
-        ("out_quarter", OUT_IN, TAPS, 4),
-    ]
+# (name, input channels, output channels, resolution divisor) of the kernel heads.
+HEADS = [
+    ("out", OUT_IN, TAPS + 1 + EXTRA, 1),
+    ("out_half", OUT_IN, TAPS + 1, 2),
+    ("out_quarter", OUT_IN, TAPS, 4),
+]
 
 
 def apply_kernel(x, logits):
@@ -89,22 +75,18 @@ def combine(fine, coarse, a):
 
 
 class KernelOutput(nn.Module):
-    """Stands in for the direct model's `out` convolution: called with the last decoder features,
-    this frame's demodulated radiance and its running mean, returns what `out` returns (log
+    """Stands in for the direct model's `out` convolution: called with the last decoder features
+    and this frame's demodulated radiance, returns what `out` returns (log
     radiance in channels 0-2, then the other output channels), the radiance here being the
     multi-scale kernel-filtered input."""
 
-    def __init__(self, mix=False):
+    def __init__(self):
         super().__init__()
-        self.mix = mix
-        self.heads = nn.ModuleDict({name: nn.Conv2d(cin, cout, 3, padding=1) for name, cin, cout, _ in heads(mix)})
+        self.heads = nn.ModuleDict({name: nn.Conv2d(cin, cout, 3, padding=1) for name, cin, cout, _ in HEADS})
 
-    def forward(self, d0, radiance, mean, fp16):
+    def forward(self, d0, radiance, fp16):
         radiance = radiance.float().clamp_min(0.0)
         o0 = half(self.heads["out"](d0), fp16)
-        if self.mix:
-            m = torch.sigmoid(o0[:, TAPS + 1 + EXTRA : TAPS + 2 + EXTRA].float())
-            radiance = m * mean.float() + (1.0 - m) * radiance
         r1 = pool(radiance)
         r2 = pool(r1)
         f1 = half(pool(d0), fp16)
@@ -116,20 +98,18 @@ class KernelOutput(nn.Module):
         y1 = combine(y1, y2, torch.sigmoid(o1[:, TAPS : TAPS + 1].float()))
         y0 = apply_kernel(half(torch.log1p(radiance), fp16), o0[:, :TAPS])
         y0 = combine(y0, y1, torch.sigmoid(o0[:, TAPS : TAPS + 1].float()))
-        return torch.cat([y0, o0[:, TAPS + 1 : TAPS + 1 + EXTRA].float()], 1)
+        return torch.cat([y0, o0[:, TAPS + 1 :].float()], 1)
 
 
 class KernelDenoiser(RecurrentDenoiser):
-    """`RecurrentDenoiser` with the kernel-predicting output layer; same `step`, `forward`, state.
-    `mix`: the kernels filter a per-pixel mix of this frame's radiance and its running mean."""
+    """`RecurrentDenoiser` with the kernel-predicting output layer; same `step`, `forward`, state."""
 
-    def __init__(self, mix=False):
+    def __init__(self):
         super().__init__()
-        self.mix = mix
-        self.convs["out"] = KernelOutput(mix)
+        self.convs["out"] = KernelOutput()
 
     def predict(self, d0, rec, accum, fp16_storage):
-        return self.convs["out"](d0, rec["demodulated"], accum[:, 0:3], fp16_storage)
+        return self.convs["out"](d0, rec["demodulated"], fp16_storage)
 
     def named_convs(self):
         """Every convolution under its export name."""
@@ -142,10 +122,10 @@ class KernelDenoiser(RecurrentDenoiser):
     EXTRA_MACS_PER_PIXEL = 3 * TAPS * (1 + 1 / 4 + 1 / 16) + 3 * 2 * (1 + 1 / 4)
 
 
-def kernel_layers(mix=False):
+def kernel_layers():
     """(name, input channels, output channels) of every exported layer, in execution order."""
     layers = [(n, cin, cout) for n, cin, cout in LAYERS if n != "out"]
-    return layers + [(n, cin, cout) for n, cin, cout, _ in heads(mix)]
+    return layers + [(n, cin, cout) for n, cin, cout, _ in HEADS]
 
 
 def export_tensors(model):

@@ -1,12 +1,10 @@
 """Trains the recurrent denoiser on `lucid dataset` output and exports its weights.
 
     python3 train.py --data DIR --minutes 6 --out weights.safetensors --log train.json [--init W]
-        [--model direct|kernel|kernel_mix] [--loss l1grad|l1msssim] [--burn-in K]
+        [--model direct|kernel] [--loss l1grad|l1msssim] [--burn-in K]
 
 `--model kernel` trains `kernel_model.KernelDenoiser` (both export as `lucid-rae-v3`, the decoder
-named in the file's `decoder` metadata; the renderer runs either); `--model kernel_mix` the same
-with its kernels filtering a predicted mix of the frame's radiance and its running mean (an
-experiment: the renderer does not run it yet); `--loss` picks a loss of `losses.py`; `--burn-in K` runs the first K
+named in the file's `decoder` metadata; the renderer runs either); `--loss` picks a loss of `losses.py`; `--burn-in K` runs the first K
 frames of each window without gradients and without loss, so that the recurrent state has warmed
 up when the loss starts.
 """
@@ -22,18 +20,16 @@ import torch.nn as nn
 from safetensors.torch import load_file, save_file
 
 from data import load_split, sample_batch
-from kernel_model import MIX_INIT_BIAS, KernelDenoiser, kernel_layers
+from kernel_model import KernelDenoiser, kernel_layers
 from kernel_model import export_tensors as kernel_export_tensors
 from losses import DEFAULT_WEIGHTS, LOSSES, TERM_NAMES, display_ssim, log_tonemap, loss_fn, relmse, temporal_l1
 from model import DECODERS, FORMAT, LAYERS, RECORD_SIZE, RecurrentDenoiser, export_tensors
 
-MODELS = DECODERS + ("kernel_mix",)
+MODELS = DECODERS
 
 
 def build_model(name):
-    if name in ("kernel", "kernel_mix"):
-        return KernelDenoiser(mix=name == "kernel_mix")
-    return RecurrentDenoiser()
+    return KernelDenoiser() if name == "kernel" else RecurrentDenoiser()
 
 
 def named_convs(model):
@@ -47,9 +43,7 @@ def load_weights(model, path):
     """Copies the tensors of a file train.py wrote into `model`. The direct model needs all of its
     layers; the kernel model takes every layer whose shapes match (so direct weights start its
     shared layers) and starts the others afresh. A `lucid-rae-v2` file's first layer, which has
-    fewer inputs, starts the first layer with the new inputs' weights at zero; a kernel file
-    without the mixing weight's channel starts `kernel_mix`'s with zero weights and a bias of
-    `MIX_INIT_BIAS` (the kernels filter this frame's samples, as the file's model did)."""
+    fewer inputs, starts the first layer with the new inputs' weights at zero."""
     tensors = load_file(path)
     loaded, skipped = [], []
     with torch.no_grad():
@@ -57,9 +51,6 @@ def load_weights(model, path):
             w, b = tensors.get(f"{name}.weight"), tensors.get(f"{name}.bias")
             if name == "enc0" and w is not None and w.shape[1] < conv.weight.shape[1]:
                 w = torch.cat([w, w.new_zeros(w.shape[0], conv.weight.shape[1] - w.shape[1], 3, 3)], 1)
-            if name == "out" and w is not None and b is not None and w.shape[0] + 1 == conv.weight.shape[0]:
-                w = torch.cat([w, w.new_zeros(1, *w.shape[1:])], 0)
-                b = torch.cat([b, b.new_full((1,), MIX_INIT_BIAS)], 0)
             if w is None or b is None or w.shape != conv.weight.shape or b.shape != conv.bias.shape:
                 skipped.append(name)
                 continue
@@ -200,7 +191,7 @@ def main():
     train_seconds = time.time() - start
     final = validate(model, val)
     if isinstance(model, KernelDenoiser):
-        layers, tensors = kernel_layers(model.mix), kernel_export_tensors(model)
+        layers, tensors = kernel_layers(), kernel_export_tensors(model)
     else:
         layers, tensors = LAYERS, export_tensors(model)
     fmt = FORMAT
