@@ -550,6 +550,56 @@ fn evaluate_without_method_folders_names_the_expected_ones() {
 }
 
 #[test]
+fn evaluate_maps_where_each_method_flickers() {
+    let dir = temp("evaluate-maps");
+    // 16x16 frames: a still reference, grey 1 but for a 2x2 block of 3 (2.9x the mean); `none`
+    // flickers by 0.5 on that block only, `svgf` is the reference.
+    let frame = |block: f32| {
+        let pixels = (0..256)
+            .map(|i| {
+                let v = if (i % 16) < 2 && i / 16 < 2 {
+                    block
+                } else {
+                    1.0
+                };
+                [v, v, v, 1.0]
+            })
+            .collect();
+        lucid_engine::capture::ImageData::from_pixels(16, 16, pixels).unwrap()
+    };
+    for (method, blocks) in [
+        ("reference", [3.0, 3.0, 3.0]),
+        ("svgf", [3.0, 3.0, 3.0]),
+        ("none", [3.0, 3.5, 3.0]),
+    ] {
+        std::fs::create_dir_all(dir.join(method)).unwrap();
+        for (i, block) in blocks.into_iter().enumerate() {
+            let path = dir.join(method).join(format!("{i:04}.exr"));
+            lucid_engine::capture::save(path, &frame(block)).unwrap();
+        }
+    }
+    let out = lucid(&["evaluate", dir.to_str().unwrap(), "--maps"]);
+    assert!(out.status.success(), "{}", stderr(&out));
+    let printed = String::from_utf8_lossy(&out.stdout).into_owned();
+    assert!(
+        printed.contains("none: temporal instability 0.0076, 100% of it from pixels over 2x"),
+        "{printed}"
+    );
+    for method in ["none", "svgf"] {
+        let png = image::open(dir.join("maps").join(format!("{method}.png"))).unwrap();
+        assert_eq!((png.width(), png.height()), (16, 16));
+        // The block is the scale's top for `none`, everything else its bottom.
+        let rgb = png.to_rgb8();
+        let (corner, elsewhere) = (rgb.get_pixel(0, 0), rgb.get_pixel(8, 8));
+        assert_eq!(corner == elsewhere, method == "svgf", "{method}");
+    }
+    let csv = std::fs::read_to_string(dir.join("maps").join("by_brightness.csv")).unwrap();
+    assert!(csv.contains("none,2,8,0.015625,1.000000,"), "{csv}");
+    assert!(csv.contains("svgf,2,8,0.015625,0.000000,0.000000"), "{csv}");
+    std::fs::remove_dir_all(&dir).unwrap();
+}
+
+#[test]
 fn a_gltf_without_camera_or_light_renders_and_says_what_it_supplied() {
     // One triangle, no camera, no light.
     let file = temp("bare.gltf");

@@ -306,7 +306,10 @@ fn converge_measures_another_renderers_series_against_a_reference_file() {
     assert!(out.status.success(), "{err}");
     assert!(!err.contains("reference:"), "rendered a reference: {err}");
     let json: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
-    assert!(json["reference"].as_str().unwrap().contains("reference.exr"));
+    assert!(json["reference"]
+        .as_str()
+        .unwrap()
+        .contains("reference.exr"));
     assert!(json["reference_spp"].is_null());
     let external = &json["external"][0];
     assert_eq!(external["name"], "Other, renderer");
@@ -321,7 +324,9 @@ fn converge_measures_another_renderers_series_against_a_reference_file() {
         assert!(many < few, "{metric}: 64 spp {many} not below 4 spp {few}");
     }
     // Measured as converge measures its own: 4 samples of the same renderer, the same error.
-    let own = json["configurations"][0]["final"]["rel_mse"].as_f64().unwrap();
+    let own = json["configurations"][0]["final"]["rel_mse"]
+        .as_f64()
+        .unwrap();
     let other = points[0]["rel_mse"].as_f64().unwrap();
     assert!(
         (0.5..2.0).contains(&(other / own)),
@@ -329,7 +334,8 @@ fn converge_measures_another_renderers_series_against_a_reference_file() {
     );
     let csv = std::fs::read_to_string(out_dir.join("converge.csv")).unwrap();
     assert!(
-        csv.lines().any(|l| l.starts_with("\"Other, renderer\",,,64,1,16,")),
+        csv.lines()
+            .any(|l| l.starts_with("\"Other, renderer\",,,64,1,16,")),
         "{csv}"
     );
     let svg = std::fs::read_to_string(out_dir.join("error_vs_time_rel_mse.svg")).unwrap();

@@ -34,6 +34,42 @@ pub fn temporal_instability(
     test_frames: &[ImageData],
     reference_frames: &[ImageData],
 ) -> Result<TemporalInstability, MetricsError> {
+    let Luminances {
+        test: test_lum,
+        reference: ref_lum,
+        reference_mean: ref_mean,
+    } = luminances(test_frames, reference_frames)?;
+    let pixels = reference_frames[0].pixels.len() as f64;
+    let per_pair: Vec<f64> = test_lum
+        .par_windows(2)
+        .zip(ref_lum.par_windows(2))
+        .map(|(t, r)| {
+            let sum = ordered_sum(t[0].len(), |i| {
+                ((t[1][i] - t[0][i]) - (r[1][i] - r[0][i])).abs()
+            });
+            sum / pixels / ref_mean
+        })
+        .collect();
+    let mean = per_pair.iter().sum::<f64>() / per_pair.len() as f64;
+    Ok(TemporalInstability { per_pair, mean })
+}
+
+/// Per frame, the luminance of every pixel, of a test and a reference sequence.
+pub(super) struct Luminances {
+    /// The test sequence's, per frame and pixel.
+    pub test: Vec<Vec<f64>>,
+    /// The reference's, per frame and pixel.
+    pub reference: Vec<Vec<f64>>,
+    /// The mean over the whole reference sequence (positive).
+    pub reference_mean: f64,
+}
+
+/// The luminances of `test_frames` and `reference_frames`, checking what [`temporal_instability`]
+/// requires.
+pub(super) fn luminances(
+    test_frames: &[ImageData],
+    reference_frames: &[ImageData],
+) -> Result<Luminances, MetricsError> {
     if test_frames.len() != reference_frames.len() {
         return Err(MetricsError::FrameCountMismatch {
             test: test_frames.len(),
@@ -62,23 +98,14 @@ pub fn temporal_instability(
     };
     let test_lum = luminance(test_frames);
     let ref_lum = luminance(reference_frames);
-
     let pixels = first.pixels.len() as f64;
     let ref_mean = ref_lum.iter().flatten().sum::<f64>() / (pixels * ref_lum.len() as f64);
     if !(ref_mean.is_finite() && ref_mean > 0.0) {
         return Err(MetricsError::DegenerateReference { mean: ref_mean });
     }
-
-    let per_pair: Vec<f64> = test_lum
-        .par_windows(2)
-        .zip(ref_lum.par_windows(2))
-        .map(|(t, r)| {
-            let sum = ordered_sum(t[0].len(), |i| {
-                ((t[1][i] - t[0][i]) - (r[1][i] - r[0][i])).abs()
-            });
-            sum / pixels / ref_mean
-        })
-        .collect();
-    let mean = per_pair.iter().sum::<f64>() / per_pair.len() as f64;
-    Ok(TemporalInstability { per_pair, mean })
+    Ok(Luminances {
+        test: test_lum,
+        reference: ref_lum,
+        reference_mean: ref_mean,
+    })
 }

@@ -23,9 +23,7 @@ use lucid_passes::denoise::neural::{InferencePath, NetworkWeights};
 use lucid_passes::renderer::{Algorithm, Denoiser, Renderer, SamplesPerPixel, Settings};
 use lucid_passes::tradeoff::measure::{measure, render_reference, REFERENCE_SPP_PER_FRAME};
 use lucid_passes::tradeoff::pareto::{pareto_front, time_to_converge};
-use lucid_passes::tradeoff::{
-    Clock, Config, ConfigResult, Limits, Measurement, Metric, Schedule,
-};
+use lucid_passes::tradeoff::{Clock, Config, ConfigResult, Limits, Measurement, Metric, Schedule};
 use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
 
@@ -244,7 +242,9 @@ pub fn run(args: &ConvergeArgs) -> anyhow::Result<()> {
         &args.out.join("converge.json"),
         serde_json::to_string_pretty(&json)?.as_bytes(),
     )?;
-    write_charts(&args.out, &results, &externals, clock, |m| summary.target(m))?;
+    write_charts(&args.out, &results, &externals, clock, |m| {
+        summary.target(m)
+    })?;
     if args.json {
         println!("{}", serde_json::to_string_pretty(&json)?);
     } else {
@@ -416,7 +416,10 @@ impl Summary<'_> {
         let args = self.args;
         let reference = match &args.reference {
             Some(path) => format!("the file {}", path.display()),
-            None => "path tracing, no denoiser, seed xor 0x9e3779b9, 16 samples per frame accumulated".to_string(),
+            None => {
+                "path tracing, no denoiser, seed xor 0x9e3779b9, 16 samples per frame accumulated"
+                    .to_string()
+            }
         };
         let time = match self.clock {
             Clock::Gpu => "gpu",
@@ -570,13 +573,15 @@ fn write_charts(
                     .map(|row| (row.gpu_ms, metric.of(row)))
                     .collect(),
             })
-            .chain(externals.iter().map(|e| Series {
-                name: e.label(),
-                points: e
-                    .points
-                    .iter()
-                    .map(|p| (p.measurement.gpu_ms, metric.of(&p.measurement)))
-                    .collect(),
+            .chain(externals.iter().map(|e| {
+                Series {
+                    name: e.label(),
+                    points: e
+                        .points
+                        .iter()
+                        .map(|p| (p.measurement.gpu_ms, metric.of(&p.measurement)))
+                        .collect(),
+                }
             }))
             .collect();
         let chart = converge_chart::error_vs_time(

@@ -1,6 +1,7 @@
 //! `lucid evaluate`: metrics of rendered sequences against their reference, per frame, as CSV and
 //! an SVG plot.
 
+use super::instability_maps;
 use super::render_options::exposure;
 use super::sequence::{frame_path, Method};
 use super::stability;
@@ -22,6 +23,11 @@ pub struct EvaluateArgs {
     /// Exposure in stops of the display mapping SSIM and FLIP compare.
     #[arg(long, default_value_t = 0.0, allow_negative_numbers = true, value_parser = exposure())]
     exposure: f32,
+    /// Also map where each method flickers: `maps/<method>.png` (per-pixel temporal instability,
+    /// one colour scale for all) and `maps/by_brightness.csv` (its share by the reference's
+    /// brightness).
+    #[arg(long)]
+    maps: bool,
 }
 
 /// Evaluates the folder.
@@ -30,7 +36,7 @@ pub fn run(args: &EvaluateArgs) -> anyhow::Result<()> {
         exposure: args.exposure,
         tone: capture::ToneCurve::Aces,
     };
-    evaluate_folder(&args.dir, &display)
+    evaluate_folder(&args.dir, &display, args.maps)
 }
 
 /// Methods whose frames other programs write into a sequence folder, evaluated when present:
@@ -50,9 +56,9 @@ const COLUMNS: [(&str, Metric); 5] = [
 ];
 
 /// Evaluates every method folder of `dir` against `dir/reference`, writing `metrics.csv` and
-/// `metrics.svg` there (and `stability.svg`/`.png` where methods have GPU times) and printing the
-/// means.
-pub fn evaluate_folder(dir: &Path, display: &PngEncoding) -> anyhow::Result<()> {
+/// `metrics.svg` there (and `stability.svg`/`.png` where methods have GPU times, and with `maps`
+/// the instability maps, `instability_maps.rs`) and printing the means.
+pub fn evaluate_folder(dir: &Path, display: &PngEncoding, maps: bool) -> anyhow::Result<()> {
     let methods = method_folders(dir)?;
     let reference = load_frames(&dir.join("reference"))?;
     let frames = methods
@@ -88,6 +94,25 @@ pub fn evaluate_folder(dir: &Path, display: &PngEncoding) -> anyhow::Result<()> 
         println!("{method:>8}: {}", means.join(", "));
     }
     println!("-> {} and {}", csv.display(), svg.display());
+    if maps {
+        let (maps, folder) = instability_maps::write(dir, &methods, &frames, &reference)?;
+        for m in &maps {
+            let bright: f64 = m
+                .bands
+                .iter()
+                .filter(|b| b.from >= instability_maps::BRIGHTNESS_EDGES[2])
+                .map(|b| b.instability)
+                .sum();
+            println!(
+                "{:>8}: temporal instability {:.4}, {:.0}% of it from pixels over {}x the mean brightness",
+                m.method,
+                m.map.mean(),
+                100.0 * bright,
+                instability_maps::BRIGHTNESS_EDGES[2]
+            );
+        }
+        println!("-> {} (where each method flickers)", folder.display());
+    }
     if let Some(chart) = chart {
         println!(
             "-> {} (stability against GPU time per frame)",

@@ -165,7 +165,7 @@ pub fn run(args: &SequenceArgs) -> anyhow::Result<()> {
     if args.no_evaluate {
         return Ok(());
     }
-    evaluate::evaluate_folder(&args.out, &args.options.display())
+    evaluate::evaluate_folder(&args.out, &args.options.display(), false)
 }
 
 /// The settings every method starts from: the options', or with `--algo auto` the algorithm and
