@@ -182,7 +182,7 @@ def neighbourhood_range(x):
     return -F.max_pool2d(-x, 3, stride=1, padding=1), F.max_pool2d(x, 3, stride=1, padding=1)
 
 
-def antialias_surface(rec, warped_albedo, warped_emission, n, mask):
+def antialias_surface(rec, warped_albedo, warped_emission, n, mask, emission_motion=EMISSION_MOTION):
     """The first hits' albedo and emission that re-modulate this frame's output, averaged over
     time: each frame's samples are jittered over the pixel, so one frame's are aliased and change
     from frame to frame at texture, emitter and object edges (the output flickered there).
@@ -190,7 +190,8 @@ def antialias_surface(rec, warped_albedo, warped_emission, n, mask):
     Where reprojection holds (`mask`), the warped albedo moves towards this frame's by
     max(1/n, SURFACE_ALPHA), n the running mean's history length this frame (as SVGF averages
     it). The emission, as log(1 + emission), the same way but with a weight of at least the
-    pixel's motion in pixels (`EMISSION_MOTION`), and its history clamped to the range of this
+    pixel's motion in pixels times `emission_motion` (the model's: `EMISSION_MOTION` unless its
+    weights file's metadata says otherwise), and its history clamped to the range of this
     frame's values over the pixel's 3x3 neighbourhood: under motion, at silhouettes, the
     background moves otherwise than the surface, so a bright emitter's or the sky's share in last
     frame's samples is not this frame's, and averaging it doubled the relMSE on `classroom`
@@ -202,7 +203,7 @@ def antialias_surface(rec, warped_albedo, warped_emission, n, mask):
     albedo = torch.where(ok, warped_albedo + (rec["albedo"] - warped_albedo) * alpha, rec["albedo"])
     emission = torch.log1p(rec["emission"])
     speed = torch.sqrt(rec["motion"][:, 0:1] ** 2 + rec["motion"][:, 1:2] ** 2)
-    alpha_emission = torch.maximum(alpha, torch.clamp(speed * EMISSION_MOTION, max=1.0))
+    alpha_emission = torch.maximum(alpha, torch.clamp(speed * emission_motion, max=1.0))
     low, high = neighbourhood_range(emission)
     prev = torch.minimum(torch.maximum(warped_emission, low), high)
     # A weight of 1 (a pixel or more of motion) keeps this frame's emission exactly.
@@ -258,6 +259,9 @@ class RecurrentDenoiser(nn.Module):
     def __init__(self):
         super().__init__()
         self.convs = nn.ModuleDict({name: nn.Conv2d(cin, cout, 3, padding=1) for name, cin, cout in LAYERS})
+        # `antialias_surface`'s weight of this frame's emission per pixel of motion (the weights
+        # file's `emission_motion` metadata).
+        self.emission_motion = EMISSION_MOTION
 
     def step(self, record, state, fp16_storage=False):
         """One frame. `record` [B,RECORD_SIZE,H,W]; `state` None (no history) or the dict returned
@@ -286,7 +290,9 @@ class RecurrentDenoiser(nn.Module):
         accum, moment, robust = accumulate(
             rec["demodulated"], warped_accum.detach(), warped_moment.detach(), warped_robust.detach(), mask
         )
-        albedo, emission = antialias_surface(rec, warped_albedo.detach(), warped_emission.detach(), accum[:, 3:4], mask)
+        albedo, emission = antialias_surface(
+            rec, warped_albedo.detach(), warped_emission.detach(), accum[:, 3:4], mask, self.emission_motion
+        )
         x = half(features(rec, warped, mask, accum, moment, robust), fp16_storage)
         warped, mask = x[:, 11:14], x[:, 14:15]  # as the output pass reads them: stored
         c = self.convs

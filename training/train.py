@@ -17,6 +17,7 @@ import time
 
 import torch
 import torch.nn as nn
+from safetensors import safe_open
 from safetensors.torch import load_file, save_file
 
 from data import load_split, sample_batch
@@ -43,8 +44,13 @@ def load_weights(model, path):
     """Copies the tensors of a file train.py wrote into `model`. The direct model needs all of its
     layers; the kernel model takes every layer whose shapes match (so direct weights start its
     shared layers) and starts the others afresh. A `lucid-rae-v2` file's first layer, which has
-    fewer inputs, starts the first layer with the new inputs' weights at zero."""
+    fewer inputs, starts the first layer with the new inputs' weights at zero. The file's
+    `emission_motion` metadata, when there, sets the model's."""
     tensors = load_file(path)
+    with safe_open(path, "pt") as f:
+        motion = (f.metadata() or {}).get("emission_motion")
+    if motion is not None:
+        model.emission_motion = float(motion)
     loaded, skipped = [], []
     with torch.no_grad():
         for name, conv in named_convs(model).items():
@@ -202,6 +208,7 @@ def main():
         "model": args.model,
         "loss": args.loss,
         "loss_weights": ",".join(str(w) for w in ws),
+        "emission_motion": str(model.emission_motion),
         "burn_in": str(args.burn_in),
         "steps": str(step),
         "data": args.data,

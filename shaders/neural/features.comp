@@ -35,6 +35,9 @@ layout(push_constant) uniform Params {
     uint width;
     uint height;
     uint history_valid;  // 0 on the first frame and after a reset: nothing is reprojected
+    // The least weight of this frame's emission in its average, per pixel of motion (the weights
+    // file's, passes/src/denoise/neural/weights.rs).
+    float emission_motion;
 } params;
 
 const float DEPTH_TOLERANCE = 0.05;
@@ -42,10 +45,8 @@ const float NORMAL_COS = 0.9;
 const float MIN_WEIGHT = 0.01;
 // The longest history the running mean averages; after that it is an exponential moving average.
 const float N_MAX = 32.0;
-// The least weight of this frame's albedo and emission in their averages over time, and of its
-// emission per pixel of motion.
+// The least weight of this frame's albedo and emission in their averages over time.
 const float SURFACE_ALPHA = 0.1;
-const float EMISSION_MOTION = 1.0;
 // The smallest 1 - luminance that `expand` divides by.
 const float EXPAND_MIN = 1e-3;
 
@@ -160,7 +161,7 @@ void main() {
     if (mask > 0.0) {
         float alpha = max(1.0 / n, SURFACE_ALPHA);
         albedo_mean = warped_albedo + (albedo - warped_albedo) * alpha;
-        float alpha_emission = max(alpha, min(length(motion.xy) * EMISSION_MOTION, 1.0));
+        float alpha_emission = max(alpha, min(length(motion.xy) * params.emission_motion, 1.0));
         // A pixel moving a pixel a frame or more keeps this frame's emission: no history to clamp.
         if (alpha_emission < 1.0) {
             vec3 low = emission;

@@ -37,7 +37,8 @@ mod weights;
 
 pub use network::{InferencePath, Network};
 pub use weights::{
-    Decoder, Layer, NetworkWeights, WeightsError, BUILTIN, FEATURES, FORMAT, KERNEL_TAPS, UNET,
+    Decoder, Layer, NetworkWeights, WeightsError, BUILTIN, EMISSION_MOTION, FEATURES, FORMAT,
+    KERNEL_TAPS, UNET,
 };
 
 use crate::denoise::gbuffer::GBuffer;
@@ -223,6 +224,18 @@ struct Tensor {
     size: (u32, u32),
 }
 
+/// Push constants of `features.comp`.
+#[repr(C)]
+#[derive(Clone, Copy, bytemuck::Pod, bytemuck::Zeroable)]
+struct FeaturesParams {
+    width: u32,
+    height: u32,
+    /// 0 on the first frame and after a reset: nothing is reprojected.
+    history_valid: u32,
+    /// [`NetworkWeights::emission_motion`].
+    emission_motion: f32,
+}
+
 /// Adds the denoiser over the frame `record` (from [`add_record`], or uploaded by a test) at
 /// `width` x `height`, with its history under the keys `<prefix>.output`, `<prefix>.surface`,
 /// `<prefix>.accum` (running mean and its length), `<prefix>.moment` (second moment of
@@ -262,11 +275,14 @@ pub fn add_neural(
         albedo_history.prev,
         emission_history.prev,
     ];
+    let emission_motion = network.emission_motion;
     p.read("b_record", record)
         .read("u_prev_output", prev[0])
-        .push_with(move |ctx| {
-            let valid = prev.iter().all(|&h| ctx.history_valid(h));
-            [width, height, u32::from(valid)]
+        .push_with(move |ctx| FeaturesParams {
+            width,
+            height,
+            history_valid: u32::from(prev.iter().all(|&h| ctx.history_valid(h))),
+            emission_motion,
         });
     p.history("u_prev_surface", "u_surface", surface_history);
     let accum = p.history("u_prev_accum", "u_accum", accum_history);

@@ -70,6 +70,8 @@ impl InferencePath {
 #[derive(Clone)]
 pub struct Network {
     pub(super) decoder: Decoder,
+    /// [`NetworkWeights::emission_motion`].
+    pub(super) emission_motion: f32,
     /// The layers, in execution order ([`Decoder::layers`]).
     pub(super) layers: Vec<Layer>,
     /// Every layer's float32 weights and bias (`conv.comp`'s layout).
@@ -108,6 +110,7 @@ impl Network {
         };
         Ok(Self {
             decoder: weights.decoder(),
+            emission_motion: weights.emission_motion(),
             layers: weights.layers().to_vec(),
             buffer,
             offsets: (0..weights.layers().len())

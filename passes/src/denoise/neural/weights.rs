@@ -161,6 +161,18 @@ pub enum WeightsError {
         /// The `decoder` metadata found (empty when absent).
         found: String,
     },
+    /// A metadata entry that sets a parameter holds no valid value.
+    #[error("denoiser weights {file}: metadata {key} {found:?}: {expected}")]
+    Metadata {
+        /// The file.
+        file: String,
+        /// The metadata key.
+        key: String,
+        /// Its value.
+        found: String,
+        /// What it must be.
+        expected: String,
+    },
     /// A tensor is missing, of the wrong type or shape, or holds a non-finite value.
     #[error("denoiser weights {file}: tensor {tensor}: {problem}")]
     Tensor {
@@ -173,10 +185,16 @@ pub enum WeightsError {
     },
 }
 
+/// The least weight of this frame's emission, per pixel of motion, in its average over time that
+/// re-modulates the output (`EMISSION_MOTION` in training/model.py, `antialias_surface`), where
+/// the weights file's `emission_motion` metadata does not set it.
+pub const EMISSION_MOTION: f32 = 1.0;
+
 /// Weights ready for upload: every layer's weights and bias, packed.
 #[derive(Clone, Debug, PartialEq)]
 pub struct NetworkWeights {
     decoder: Decoder,
+    emission_motion: f32,
     layers: Vec<Layer>,
     packed: Vec<f32>,
     offsets: Vec<u32>,
@@ -225,6 +243,21 @@ impl NetworkWeights {
             file: file.to_owned(),
             found,
         })?;
+        let found = entry("emission_motion");
+        let emission_motion = if found.is_empty() {
+            EMISSION_MOTION
+        } else {
+            found
+                .parse::<f32>()
+                .ok()
+                .filter(|v| v.is_finite() && *v >= 0.0)
+                .ok_or_else(|| WeightsError::Metadata {
+                    file: file.to_owned(),
+                    key: "emission_motion".into(),
+                    found,
+                    expected: "a finite number from 0 up".into(),
+                })?
+        };
         let tensors = SafeTensors::deserialize(bytes).map_err(|e| format_error(e.to_string()))?;
         let layers = decoder.layers();
         let mut packed = Vec::with_capacity(layers.iter().map(Layer::packed_len).sum());
@@ -253,6 +286,7 @@ impl NetworkWeights {
         }
         Ok(Self {
             decoder,
+            emission_motion,
             layers,
             packed,
             offsets,
@@ -262,6 +296,12 @@ impl NetworkWeights {
     /// The decoder these weights are for.
     pub fn decoder(&self) -> Decoder {
         self.decoder
+    }
+
+    /// The least weight of this frame's emission per pixel of motion in its average over time
+    /// (the file's `emission_motion` metadata, else [`EMISSION_MOTION`]).
+    pub fn emission_motion(&self) -> f32 {
+        self.emission_motion
     }
 
     /// The layers, in execution order ([`Decoder::layers`]).
@@ -324,6 +364,16 @@ mod tests {
         decoder: Decoder,
         edit: impl Fn(&str, &mut Vec<usize>, &mut Vec<f32>) -> bool,
     ) -> Vec<u8> {
+        file_with_metadata(format, decoder, &[], edit)
+    }
+
+    /// [`file_for`] with more metadata entries.
+    fn file_with_metadata(
+        format: &str,
+        decoder: Decoder,
+        extra: &[(&str, &str)],
+        edit: impl Fn(&str, &mut Vec<usize>, &mut Vec<f32>) -> bool,
+    ) -> Vec<u8> {
         let mut tensors = Vec::new();
         for layer in decoder.layers() {
             let (cin, cout) = (layer.inputs() as usize, layer.out as usize);
@@ -348,10 +398,11 @@ mod tests {
                 (name.clone(), view)
             })
             .collect();
-        let metadata = HashMap::from([
+        let mut metadata = HashMap::from([
             ("format".to_string(), format.to_string()),
             ("decoder".to_string(), decoder.name().to_string()),
         ]);
+        metadata.extend(extra.iter().map(|(k, v)| (k.to_string(), v.to_string())));
         safetensors::serialize(&views, &Some(metadata)).expect("serialize")
     }
 
@@ -377,6 +428,31 @@ mod tests {
             let loaded = NetworkWeights::from_bytes(&good, "w").expect("loads");
             assert_eq!(loaded.decoder(), decoder);
             assert_eq!(loaded.layers(), decoder.layers());
+        }
+    }
+
+    #[test]
+    fn the_emission_motion_comes_from_the_metadata_when_it_is_there() {
+        let plain = file_for(FORMAT, Decoder::Kernel, |_, _, _| true);
+        let weights = NetworkWeights::from_bytes(&plain, "w").expect("loads");
+        assert_eq!(weights.emission_motion(), EMISSION_MOTION);
+        let set = |value: &str| {
+            file_with_metadata(
+                FORMAT,
+                Decoder::Kernel,
+                &[("emission_motion", value)],
+                |_, _, _| true,
+            )
+        };
+        let weights = NetworkWeights::from_bytes(&set("0.25"), "w").expect("loads");
+        assert_eq!(weights.emission_motion(), 0.25);
+        for bad in ["-1", "NaN", "inf", "fast"] {
+            let message = error(&set(bad));
+            assert!(
+                message.contains("w.safetensors")
+                    && message.contains(&format!("metadata emission_motion \"{bad}\"")),
+                "{message}"
+            );
         }
     }
 
