@@ -169,7 +169,7 @@ void main() {
             for (int dy = -1; dy <= 1; ++dy) {
                 for (int dx = -1; dx <= 1; ++dx) {
                     ivec2 q = pixel + ivec2(dx, dy);
-                    if (pixel_in_bounds(q, ivec2(size()))) {
+                    if (inside_image(q, ivec2(size()))) {
                         vec3 e = log(vec3(1.0) + channel3(RECORD_EMISSION, q));
                         low = min(low, e);
                         high = max(high, e);

@@ -2,9 +2,12 @@
 //! `training/kernel_model.py`): two consecutive frames of committed fixtures (`references/
 //! neural_parity*.safetensors`, made by `training/make_parity.py`), so the features, every
 //! convolution, pooling and upsampling, the kernel decoder's filtering and compositing, the history
-//! warp and the recurrent blend are all covered. One fixture is of the committed weights, the other
+//! warp and the recurrent blend are all covered. One fixture is of the committed weights, another
 //! of weights with the other decoder (`references/neural_alternative_weights.safetensors`), so both
-//! decoders are checked whichever one ships. The running means of the noisy radiance and their
+//! decoders are checked whichever one ships; the third (`make_parity.py`'s synthetic frames, the
+//! committed weights) has a visible emitter and sub-pixel motion, so the emission's average over
+//! time that re-modulates the output (its history clamp and its weight per pixel of motion) is
+//! checked too. The running means of the noisy radiance and their
 //! second moments (reprojected in the second frame) are also compared directly, so they are checked
 //! whatever weight the network gives them. Every inference path the device runs is checked
 //! (lavapipe: the portable one; NVIDIA: the tensor-core one too), so where both run they agree
@@ -69,8 +72,8 @@ fn fixture(name: &'static str, weights: NetworkWeights) -> Fixture {
     }
 }
 
-/// The committed weights' fixture and the other decoder's.
-fn fixtures() -> [Fixture; 2] {
+/// The committed weights' fixture, the other decoder's and the emitters'.
+fn fixtures() -> [Fixture; 3] {
     let alternative = NetworkWeights::load(std::path::Path::new(&references(
         "neural_alternative_weights.safetensors",
     )))
@@ -78,6 +81,7 @@ fn fixtures() -> [Fixture; 2] {
     let fixtures = [
         fixture("neural_parity.safetensors", NetworkWeights::builtin()),
         fixture("neural_parity_alternative.safetensors", alternative),
+        fixture("neural_parity_emitters.safetensors", NetworkWeights::builtin()),
     ];
     let decoders = fixtures.each_ref().map(|f| f.weights.decoder());
     assert!(

@@ -188,7 +188,7 @@ pub enum WeightsError {
 /// The least weight of this frame's emission, per pixel of motion, in its average over time that
 /// re-modulates the output (`EMISSION_MOTION` in training/model.py, `antialias_surface`), where
 /// the weights file's `emission_motion` metadata does not set it.
-pub const EMISSION_MOTION: f32 = 1.0;
+pub const EMISSION_MOTION: f32 = 0.5;
 
 /// Weights ready for upload: every layer's weights and bias, packed.
 #[derive(Clone, Debug, PartialEq)]
