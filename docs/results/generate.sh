@@ -72,7 +72,7 @@ if [ -n "${MITSUBA:-}" ]; then
   run env PYTHONPATH="$MITSUBA" python3 "$here/../../bench/mitsuba/converge_cornell.py" \
     --size "$mitsuba_size" --out "$work" > "$out/mitsuba/mitsuba.txt"
   cp "$work/series.json" "$out/mitsuba/series.json"
-  run "$lucid" converge --scene cornell-box --size "$mitsuba_size" --algos pt --denoisers none \
+  run "$lucid" converge --scene cornell-box --size "$mitsuba_size" --algos pt --denoisers none --warmup 30 \
     --spp 1,16 --max-frames 1024 --budget-ms 100000 --reference "$work/reference.exr" \
     --external "Mitsuba 3=$work/series.json" --out "$out/mitsuba" > "$out/mitsuba/converge.txt"
 fi
