@@ -81,7 +81,10 @@ fn fixtures() -> [Fixture; 3] {
     let fixtures = [
         fixture("neural_parity.safetensors", NetworkWeights::builtin()),
         fixture("neural_parity_alternative.safetensors", alternative),
-        fixture("neural_parity_emitters.safetensors", NetworkWeights::builtin()),
+        fixture(
+            "neural_parity_emitters.safetensors",
+            NetworkWeights::builtin(),
+        ),
     ];
     let decoders = fixtures.each_ref().map(|f| f.weights.decoder());
     assert!(
