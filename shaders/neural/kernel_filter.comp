@@ -2,8 +2,8 @@
 // One scale of the kernel-predicting decoder (training/kernel_model.py, `apply_kernel`): the log
 // radiance of that scale filtered by the per-pixel 5x5 kernel whose weights are the softmax of the
 // first 25 channels of the head's output (taps row-major, borders replicated). The full scale reads
-// the log radiance from the input features (channels 0-2), the coarser ones from
-// kernel_radiance.comp's output. Writes float32 rgb.
+// the log radiance from the input features (channels 0-2), the coarser ones the radiance
+// features.comp pooled. Writes float32 rgb.
 #include "neural/tensor.glsl"
 
 layout(local_size_x = 8, local_size_y = 8) in;

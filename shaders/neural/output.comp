@@ -23,8 +23,8 @@ layout(set = 0, binding = 4, rgba32f) uniform writeonly image2D u_radiance;
 layout(set = 0, binding = 5, std430) readonly buffer Filtered { vec4 v[]; } b_filtered;
 layout(set = 0, binding = 6, std430) readonly buffer Detail { vec4 v[]; } b_detail;
 // The first hits' albedo and log(1 + emission) averaged over time (`antialias_surface`).
-layout(set = 0, binding = 7, rgba32f) uniform readonly image2D u_albedo;
-layout(set = 0, binding = 8, rgba32f) uniform readonly image2D u_emission;
+layout(set = 0, binding = 7, rgba32f) uniform readonly image2D u_albedo_mean;
+layout(set = 0, binding = 8, rgba32f) uniform readonly image2D u_emission_mean;
 
 layout(push_constant) uniform Params {
     uint width;
@@ -71,7 +71,7 @@ void main() {
     vec3 log_out = max(predicted * (1.0 - blend) + warped * blend, vec3(0.0));
     log_out = unpack_channels(pack_channels(vec4(log_out, 0.0))).rgb;
     imageStore(u_output, pixel, vec4(log_out, 0.0));
-    vec3 albedo = imageLoad(u_albedo, pixel).rgb;
-    vec3 emission = exp(imageLoad(u_emission, pixel).rgb) - 1.0;
+    vec3 albedo = imageLoad(u_albedo_mean, pixel).rgb;
+    vec3 emission = exp(imageLoad(u_emission_mean, pixel).rgb) - 1.0;
     imageStore(u_radiance, pixel, vec4((exp(log_out) - 1.0) * albedo + emission, 1.0));
 }
