@@ -18,7 +18,8 @@
 //!    compute ([`InferencePath`]).
 //! 4. **Decoder** ([`Decoder`]): either one output layer predicting log radiance directly, or
 //!    three predicting per-pixel 5x5 kernels that filter the noisy log radiance at full, half and
-//!    quarter resolution, composited coarse to fine (`shaders/neural/kernel_*.comp`).
+//!    quarter resolution, composited coarse to fine (`shaders/neural/kernel*`; the full scale is
+//!    filtered and composited in the output pass, `output.comp`).
 //! 5. **Output**: the predicted log radiance blended with the reprojected history by a learned
 //!    per-pixel weight (only where the mask allows), kept as the next frame's history, and
 //!    re-modulated by the first hits' albedo plus emission averaged over time (reprojected with the
@@ -348,24 +349,29 @@ pub fn add_neural(
     let (d1, _) = conv(g, 4, bottleneck, Some(e1), 0);
     let (d0, [d0_half, d0_quarter]) = conv(g, 5, d1, Some(e0), if kernel { 2 } else { 0 });
     let (net, _) = conv(g, 6, d0, None, 0);
-    // The kernel decoder's full-scale filtered radiance and the half scale's detail.
+    // The kernel decoder's half scale (its head's output and filtered radiance) and the quarter
+    // scale's detail; the output pass filters the full scale and composites.
     let scales = d0_half.zip(d0_quarter).map(|(f1, f2)| {
         let (half_net, _) = conv(g, 7, f1, None, 0);
         let (quarter_net, _) = conv(g, 8, f2, None, 0);
-        add_kernel_scales(g, pooled_radiance, features, [net, half_net, quarter_net])
+        let [half_filtered, quarter_detail] =
+            add_kernel_scales(g, pooled_radiance, [half_net, quarter_net]);
+        (half_net, half_filtered, quarter_detail)
     });
 
     let mut p = g.compute_pass(&format!("{prefix}.output"), &OUTPUT);
-    // The direct decoder has no filtered scales: its output is bound in their place (not read).
-    let [filtered, detail] = scales.unwrap_or([net.buffer; 2]);
+    // The direct decoder has no scales: its output is bound in their place (not read).
+    let (half_net, half_filtered, quarter_detail) = scales.unwrap_or((net, net.buffer, net.buffer));
     p.read("b_features", features.buffer)
         .read("b_net", net.buffer)
-        .read("b_filtered", filtered)
-        .read("b_detail", detail)
+        .read("b_half_logits", half_net.buffer)
+        .read("b_half_filtered", half_filtered)
+        .read("b_quarter_detail", quarter_detail)
         .read("u_albedo_mean", albedo)
         .read("u_emission_mean", emission)
         .specialize("KERNEL", kernel)
         .specialize("NET_CHANNELS", net.channels)
+        .specialize("HALF_CHANNELS", half_net.channels)
         .push(&[width, height]);
     p.write("u_output", output_history.cur);
     let radiance = p.create_image(
@@ -382,61 +388,38 @@ pub fn add_neural(
     }
 }
 
-/// Adds the kernel decoder's filtering (`training/kernel_model.py`, `KernelOutput`) from its heads'
-/// outputs `[full, half, quarter]` and the log radiance pooled to half and quarter resolution (by
-/// the features pass): each scale's log radiance filtered by its per-pixel kernels, then the
-/// differences the coarser scales add (`kernel_detail.comp`). Returns the full scale's filtered
-/// radiance and the half scale's detail, which the output pass composites.
+/// Adds the kernel decoder's coarser scales (`training/kernel_model.py`, `KernelOutput`) from its
+/// half and quarter heads' outputs and the log radiance the features pass pooled to their
+/// resolutions: each scale's log radiance filtered by its per-pixel kernels
+/// (`kernel_filter.comp`), then the difference the quarter scale adds (`kernel_detail.comp`).
+/// Returns the half scale's filtered radiance and the quarter scale's detail, which the output
+/// pass composites with the full scale it filters.
 fn add_kernel_scales(
     g: &mut RenderGraph,
     radiance: [BufferHandle; 2],
-    features: Tensor,
-    heads: [Tensor; 3],
+    heads: [Tensor; 2],
 ) -> [BufferHandle; 2] {
-    let sizes = heads.map(|t| t.size);
-    const SCALES: [&str; 3] = ["full", "half", "quarter"];
-    let filtered: Vec<BufferHandle> = (0..3)
-        .map(|level| {
-            let name = format!("neural.kernel_filter.{}", SCALES[level]);
-            let mut p = g.compute_pass(&name, &KERNEL_FILTER);
-            p.read("b_logits", heads[level].buffer)
-                .read("b_features", features.buffer)
-                // The full scale reads the features; the others their pooled radiance.
-                .read("b_radiance", radiance[level.max(1) - 1])
-                .specialize("LOGIT_CHANNELS", heads[level].channels)
-                .specialize("FROM_FEATURES", level == 0)
-                .push(&[sizes[level].0, sizes[level].1]);
-            let out = p.create_buffer("b_out", "neural.kernel_filtered", vec4_bytes(sizes[level]));
-            p.dispatch([sizes[level].0, sizes[level].1, 1]);
-            out
-        })
-        .collect();
-    let detail = |g: &mut RenderGraph, level: usize, coarser: Option<BufferHandle>| {
-        let name = format!("neural.kernel_detail.{}", SCALES[level]);
-        let mut p = g.compute_pass(&name, &KERNEL_DETAIL);
-        let coarser_size = sizes[(level + 1).min(2)];
-        p.read("b_filtered", filtered[level])
-            .read("b_finer", filtered[level - 1])
-            // Without a coarser scale the filtered radiance is bound in its place (not read).
-            .read("b_coarser", coarser.unwrap_or(filtered[level]))
-            .read("b_logits", heads[level].buffer)
+    const SCALES: [&str; 2] = ["half", "quarter"];
+    let filtered = [0, 1].map(|level| {
+        let size = heads[level].size;
+        let name = format!("neural.kernel_filter.{}", SCALES[level]);
+        let mut p = g.compute_pass(&name, &KERNEL_FILTER);
+        p.read("b_logits", heads[level].buffer)
+            .read("b_radiance", radiance[level])
             .specialize("LOGIT_CHANNELS", heads[level].channels)
-            .specialize("HAS_COARSER", coarser.is_some())
-            .push(&[
-                sizes[level].0,
-                sizes[level].1,
-                sizes[level - 1].0,
-                sizes[level - 1].1,
-                coarser_size.0,
-                coarser_size.1,
-            ]);
-        let out = p.create_buffer("b_out", "neural.kernel_detail", vec4_bytes(sizes[level]));
-        p.dispatch([sizes[level].0, sizes[level].1, 1]);
+            .push(&[size.0, size.1]);
+        let out = p.create_buffer("b_out", "neural.kernel_filtered", vec4_bytes(size));
+        p.dispatch([size.0, size.1, 1]);
         out
-    };
-    let quarter = detail(g, 2, None);
-    let half = detail(g, 1, Some(quarter));
-    [filtered[0], half]
+    });
+    let [half, quarter] = heads.map(|t| t.size);
+    let mut p = g.compute_pass("neural.kernel_detail.quarter", &KERNEL_DETAIL);
+    p.read("b_filtered", filtered[1])
+        .read("b_finer", filtered[0])
+        .push(&[quarter.0, quarter.1, half.0, half.1]);
+    let detail = p.create_buffer("b_out", "neural.kernel_detail", vec4_bytes(quarter));
+    p.dispatch([quarter.0, quarter.1, 1]);
+    [filtered[0], detail]
 }
 
 /// Bytes of a float32 vec4 per pixel at `size`.
