@@ -10,7 +10,7 @@
 // by channel 25 of the full scale's head (a), its blend weight channel 26. A workgroup filters the
 // full scale over its tile and the margin that the half scale's detail under the tile pools (in
 // shared memory, float32), then that detail, then composites; the half scale's filtered radiance
-// (kernel_filter.comp) and the quarter's detail (kernel_detail.comp) come from their passes.
+// and the quarter's detail come from kernel_filter.comp.
 #include "common/image_coords.glsl"
 #include "neural/tensor.glsl"
 #include "neural/kernel.glsl"

@@ -47,8 +47,7 @@ use crate::denoise::gbuffer::GBuffer;
 use crate::denoise::{DenoiseInputs, Denoised, FrameDenoiser, FrameInfo, TransportRequest};
 use crate::light_transport::SurfaceImages;
 use crate::shaders::neural::{
-    CONV, CONV_COOP, FEATURES as FEATURES_SHADER, KERNEL_DETAIL, KERNEL_FILTER, OUTPUT, POOL,
-    RECORD,
+    CONV, CONV_COOP, FEATURES as FEATURES_SHADER, KERNEL_FILTER, OUTPUT, POOL, RECORD,
 };
 use lucid_engine::capture::ImageData;
 use lucid_engine::graph::{BufferHandle, ComputePass, ImageHandle, RenderGraph};
@@ -391,35 +390,33 @@ pub fn add_neural(
 /// Adds the kernel decoder's coarser scales (`training/kernel_model.py`, `KernelOutput`) from its
 /// half and quarter heads' outputs and the log radiance the features pass pooled to their
 /// resolutions: each scale's log radiance filtered by its per-pixel kernels
-/// (`kernel_filter.comp`), then the difference the quarter scale adds (`kernel_detail.comp`).
-/// Returns the half scale's filtered radiance and the quarter scale's detail, which the output
-/// pass composites with the full scale it filters.
+/// (`kernel_filter.comp`), the quarter scale as the difference it adds to the half scale. Returns
+/// the half scale's filtered radiance and the quarter scale's difference, which the output pass
+/// composites with the full scale it filters.
 fn add_kernel_scales(
     g: &mut RenderGraph,
     radiance: [BufferHandle; 2],
     heads: [Tensor; 2],
 ) -> [BufferHandle; 2] {
-    const SCALES: [&str; 2] = ["half", "quarter"];
-    let filtered = [0, 1].map(|level| {
+    let filter = |g: &mut RenderGraph, level: usize, finer: Option<BufferHandle>| {
         let size = heads[level].size;
-        let name = format!("neural.kernel_filter.{}", SCALES[level]);
+        let finer_size = heads[0].size;
+        let name = format!("neural.kernel_filter.{}", ["half", "quarter"][level]);
         let mut p = g.compute_pass(&name, &KERNEL_FILTER);
         p.read("b_logits", heads[level].buffer)
             .read("b_radiance", radiance[level])
+            // Without a finer scale the radiance is bound in its place (not read).
+            .read("b_finer", finer.unwrap_or(radiance[level]))
             .specialize("LOGIT_CHANNELS", heads[level].channels)
-            .push(&[size.0, size.1]);
+            .specialize("DETAIL", finer.is_some())
+            .push(&[size.0, size.1, finer_size.0, finer_size.1]);
         let out = p.create_buffer("b_out", "neural.kernel_filtered", vec4_bytes(size));
         p.dispatch([size.0, size.1, 1]);
         out
-    });
-    let [half, quarter] = heads.map(|t| t.size);
-    let mut p = g.compute_pass("neural.kernel_detail.quarter", &KERNEL_DETAIL);
-    p.read("b_filtered", filtered[1])
-        .read("b_finer", filtered[0])
-        .push(&[quarter.0, quarter.1, half.0, half.1]);
-    let detail = p.create_buffer("b_out", "neural.kernel_detail", vec4_bytes(quarter));
-    p.dispatch([quarter.0, quarter.1, 1]);
-    [filtered[0], detail]
+    };
+    let half = filter(g, 0, None);
+    let quarter = filter(g, 1, Some(half));
+    [half, quarter]
 }
 
 /// Bytes of a float32 vec4 per pixel at `size`.
