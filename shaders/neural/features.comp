@@ -39,9 +39,11 @@ layout(set = 0, binding = 10, rgba32f) uniform readonly image2D u_prev_albedo_me
 layout(set = 0, binding = 11, rgba32f) uniform writeonly image2D u_albedo_mean;
 layout(set = 0, binding = 12, rgba32f) uniform readonly image2D u_prev_emission_mean;
 layout(set = 0, binding = 13, rgba32f) uniform writeonly image2D u_emission_mean;
-// The pooled log radiance (POOLED_RADIANCE), rgb of a vec4 per pixel of half and quarter resolution.
+// The pooled log radiance (POOLED_RADIANCE), rgb of a vec4 a pixel of half and quarter resolution.
 layout(set = 0, binding = 14, std430) writeonly buffer RadianceHalf { vec4 v[]; } b_radiance_half;
-layout(set = 0, binding = 15, std430) writeonly buffer RadianceQuarter { vec4 v[]; } b_radiance_quarter;
+layout(set = 0, binding = 15, std430) writeonly buffer RadianceQuarter {
+    vec4 v[];
+} b_radiance_quarter;
 
 layout(push_constant) uniform Params {
     uint width;

@@ -65,9 +65,11 @@ vec3 upsampled_quarter(ivec2 pixel, ivec2 half_size) {
     ivec2 i0, i1;
     vec2 f;
     bilinear_taps(pixel, half_size, coarse, i0, i1, f);
-    return bilinear_mix(
-        b_quarter_detail.v[i0.y * coarse.x + i0.x].rgb, b_quarter_detail.v[i0.y * coarse.x + i1.x].rgb,
-        b_quarter_detail.v[i1.y * coarse.x + i0.x].rgb, b_quarter_detail.v[i1.y * coarse.x + i1.x].rgb, f);
+    vec3 c00 = b_quarter_detail.v[i0.y * coarse.x + i0.x].rgb;
+    vec3 c01 = b_quarter_detail.v[i0.y * coarse.x + i1.x].rgb;
+    vec3 c10 = b_quarter_detail.v[i1.y * coarse.x + i0.x].rgb;
+    vec3 c11 = b_quarter_detail.v[i1.y * coarse.x + i1.x].rgb;
+    return bilinear_mix(c00, c01, c10, c11, f);
 }
 
 // Fills s_filtered (the full scale filtered) and then s_half_detail over the workgroup's regions,
@@ -139,7 +141,8 @@ void main() {
     if (KERNEL) {
         // Channels 24-27: the last kernel tap, the compositing weight, the blend weight, padding.
         vec4 o = kernel_logits(pixel, 6u);
-        predicted = unpack_channels(pack_channels(vec4(composited(pixel, o.y, full_origin, half_origin), 0.0))).rgb;
+        vec3 radiance = composited(pixel, o.y, full_origin, half_origin);
+        predicted = unpack_channels(pack_channels(vec4(radiance, 0.0))).rgb;
         blend_logit = o.z;
     } else {
         vec4 o = kernel_logits(pixel, 0u);

@@ -263,11 +263,12 @@ struct Tensor {
     size: (u32, u32),
 }
 
-/// Adds the denoiser over the frame's `inputs` at `width` x `height`, with its history under the keys `<prefix>.output`, `<prefix>.surface`,
-/// `<prefix>.accum` (running mean and its length), `<prefix>.moment` (second moment of
-/// luminance), `<prefix>.robust` (the range-compressed running mean and its second moment),
-/// `<prefix>.albedo` and `<prefix>.emission` (the first hits' albedo and log emission averaged over
-/// time); returns the denoised radiance and this frame's accumulation.
+/// Adds the denoiser over the frame's `inputs` at `width` x `height`, with its history under the
+/// keys `<prefix>.output`, `<prefix>.surface`, `<prefix>.accum` (running mean and its length),
+/// `<prefix>.moment` (second moment of luminance), `<prefix>.robust` (the range-compressed running
+/// mean and its second moment), `<prefix>.albedo` and `<prefix>.emission` (the first hits' albedo
+/// and log emission averaged over time); returns the denoised radiance and this frame's
+/// accumulation.
 pub fn add_neural(
     g: &mut RenderGraph,
     network: &Network,
