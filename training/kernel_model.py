@@ -1,6 +1,6 @@
 """The kernel-predicting decoder of the recurrent denoiser (format `lucid-rae-v3` with `decoder`
 metadata `kernel`), measured against the direct-predicting `model.RecurrentDenoiser`; the Vulkan
-inference runs both (`shaders/neural/kernel_*.comp` for this one).
+inference runs both (`shaders/neural/kernel*` and `output.comp` for this one).
 
 Everything but the output layer is `model.py`'s: the input features, the reprojected history, the
 U-Net convolutions of `model.LAYERS` up to `dec0`, the temporal blend with the warped history and

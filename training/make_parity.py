@@ -52,7 +52,9 @@ def synthetic():
         rec[t, 14] = -shift[0]
         rec[t, 15] = -shift[1]
         rec[t, 16] = torch.where(depth > 0, depth + 0.01, 0.0)
-    return rec
+    # Half floats, as `lucid dataset` stores records (the parity test uploads the half-precision
+    # channels into the G-buffer's half-precision images, exactly).
+    return rec.half().float()
 
 
 def from_dataset(root):

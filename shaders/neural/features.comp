@@ -8,28 +8,42 @@
 // standard deviation of its luminance. Also writes this frame's surface (depth, normal), running
 // means and second moments for the next frame, and the first hits' albedo and log(1 + emission)
 // averaged over time with the same taps (`antialias_surface`), which output.comp re-modulates by.
+// Reads the frame's inputs from the light transport's and the G-buffer's images (inputs.glsl).
+// With POOLED_RADIANCE (the kernel-predicting decoder, training/kernel_model.py, `KernelOutput`),
+// also the demodulated radiance (negative values clamped) 2x2 average-pooled once and twice, in
+// linear space, then log(1 + x) rounded to half precision, as kernel_filter.comp filters it at the
+// half and quarter scales; odd edges repeat the last pixel of each level, as pool.comp does.
 #include "common/image_coords.glsl"
 #include "common/math.glsl"
-#include "neural/record.glsl"
+#define INPUTS_BINDING 16
+#include "neural/inputs.glsl"
 #include "neural/tensor.glsl"
 
+// An 8x8 tile of pixels a workgroup: its 4x4 pixels of half and 2x2 of quarter resolution are
+// pooled from it alone.
 layout(local_size_x = 8, local_size_y = 8) in;
 
-layout(set = 0, binding = 0, std430) readonly buffer Record { float v[]; } b_record;
-layout(set = 0, binding = 1, rgba16f) uniform readonly image2D u_prev_output;
-layout(set = 0, binding = 2, rgba32f) uniform readonly image2D u_prev_surface;
-layout(set = 0, binding = 3, rgba32f) uniform writeonly image2D u_surface;
-layout(set = 0, binding = 4, std430) writeonly buffer Features { uvec2 v[]; } b_features;
-layout(set = 0, binding = 5, rgba32f) uniform readonly image2D u_prev_accum;
-layout(set = 0, binding = 6, rgba32f) uniform writeonly image2D u_accum;
-layout(set = 0, binding = 7, r32f) uniform readonly image2D u_prev_moment;
-layout(set = 0, binding = 8, r32f) uniform writeonly image2D u_moment;
-layout(set = 0, binding = 9, rgba32f) uniform readonly image2D u_prev_robust;
-layout(set = 0, binding = 10, rgba32f) uniform writeonly image2D u_robust;
-layout(set = 0, binding = 11, rgba32f) uniform readonly image2D u_prev_albedo;
-layout(set = 0, binding = 12, rgba32f) uniform writeonly image2D u_albedo;
-layout(set = 0, binding = 13, rgba32f) uniform readonly image2D u_prev_emission;
-layout(set = 0, binding = 14, rgba32f) uniform writeonly image2D u_emission;
+layout(constant_id = 0) const bool POOLED_RADIANCE = false;
+
+layout(set = 0, binding = 0, rgba16f) uniform readonly image2D u_prev_output;
+layout(set = 0, binding = 1, rgba32f) uniform readonly image2D u_prev_surface;
+layout(set = 0, binding = 2, rgba32f) uniform writeonly image2D u_surface;
+layout(set = 0, binding = 3, std430) writeonly buffer Features { uvec2 v[]; } b_features;
+layout(set = 0, binding = 4, rgba32f) uniform readonly image2D u_prev_accum;
+layout(set = 0, binding = 5, rgba32f) uniform writeonly image2D u_accum;
+layout(set = 0, binding = 6, r32f) uniform readonly image2D u_prev_moment;
+layout(set = 0, binding = 7, r32f) uniform writeonly image2D u_moment;
+layout(set = 0, binding = 8, rgba32f) uniform readonly image2D u_prev_robust;
+layout(set = 0, binding = 9, rgba32f) uniform writeonly image2D u_robust;
+layout(set = 0, binding = 10, rgba32f) uniform readonly image2D u_prev_albedo_mean;
+layout(set = 0, binding = 11, rgba32f) uniform writeonly image2D u_albedo_mean;
+layout(set = 0, binding = 12, rgba32f) uniform readonly image2D u_prev_emission_mean;
+layout(set = 0, binding = 13, rgba32f) uniform writeonly image2D u_emission_mean;
+// The pooled log radiance (POOLED_RADIANCE), rgb of a vec4 a pixel of half and quarter resolution.
+layout(set = 0, binding = 14, std430) writeonly buffer RadianceHalf { vec4 v[]; } b_radiance_half;
+layout(set = 0, binding = 15, std430) writeonly buffer RadianceQuarter {
+    vec4 v[];
+} b_radiance_quarter;
 
 layout(push_constant) uniform Params {
     uint width;
@@ -64,22 +78,61 @@ uvec2 size() {
     return uvec2(params.width, params.height);
 }
 
-float channel(uint c, ivec2 pixel) {
-    return b_record.v[record_index(c, pixel, size())];
+shared vec3 s_radiance[8][8];
+shared vec3 s_radiance_half[4][4];
+
+// The log of `mean` rounded to half precision, as the filter reads it (`pack_channels`).
+vec4 log_pooled(vec3 mean) {
+    return vec4(unpack_channels(pack_channels(vec4(log(vec3(1.0) + mean), 0.0))).rgb, 0.0);
 }
 
-vec3 channel3(uint c, ivec2 pixel) {
-    return vec3(channel(c, pixel), channel(c + 1u, pixel), channel(c + 2u, pixel));
+// Writes the workgroup's pixels of `radiance` (this invocation's, clamped to 0) 2x2 average-pooled
+// at half and quarter resolution. Every invocation of the workgroup calls it (barriers).
+void pool_radiance(vec3 radiance) {
+    uvec2 local = gl_LocalInvocationID.xy;
+    s_radiance[local.y][local.x] = radiance;
+    barrier();
+    ivec2 tile = ivec2(gl_WorkGroupID.xy);
+    ivec2 last = ivec2(size()) - 1;
+    ivec2 half_size = (ivec2(size()) + 1) / 2;
+    ivec2 half_pixel = tile * 4 + ivec2(local);
+    if (all(lessThan(local, uvec2(4u))) && pixel_in_bounds(half_pixel, half_size)) {
+        vec3 sum = vec3(0.0);
+        for (int i = 0; i < 4; ++i) {
+            ivec2 q = min(half_pixel * 2 + ivec2(i & 1, i >> 1), last) - tile * 8;
+            sum += s_radiance[q.y][q.x];
+        }
+        vec3 mean = 0.25 * sum;
+        s_radiance_half[local.y][local.x] = mean;
+        b_radiance_half.v[half_pixel.y * half_size.x + half_pixel.x] = log_pooled(mean);
+    }
+    barrier();
+    ivec2 quarter_size = (half_size + 1) / 2;
+    ivec2 quarter_pixel = tile * 2 + ivec2(local);
+    if (all(lessThan(local, uvec2(2u))) && pixel_in_bounds(quarter_pixel, quarter_size)) {
+        vec3 mean = vec3(0.0);
+        for (int i = 0; i < 4; ++i) {
+            ivec2 q = min(quarter_pixel * 2 + ivec2(i & 1, i >> 1), half_size - 1) - tile * 4;
+            mean += 0.25 * s_radiance_half[q.y][q.x];
+        }
+        b_radiance_quarter.v[quarter_pixel.y * quarter_size.x + quarter_pixel.x] = log_pooled(mean);
+    }
 }
 
 void main() {
     ivec2 pixel = ivec2(gl_GlobalInvocationID.xy);
-    if (!pixel_in_bounds(pixel, ivec2(size()))) {
+    bool inside = pixel_in_bounds(pixel, ivec2(size()));
+    vec3 demodulated = inside ? max(input_demodulated(pixel), vec3(0.0)) : vec3(0.0);
+    if (POOLED_RADIANCE) {
+        pool_radiance(demodulated);
+    }
+    if (!inside) {
         return;
     }
-    vec3 normal = channel3(RECORD_NORMAL, pixel);
-    float depth = channel(RECORD_DEPTH, pixel);
-    vec3 motion = channel3(RECORD_MOTION, pixel);
+    vec4 normal_roughness = input_normal_roughness(pixel);
+    vec3 normal = normal_roughness.xyz;
+    float depth = input_depth(pixel);
+    vec3 motion = input_motion(pixel);
     imageStore(u_surface, pixel, vec4(depth, normal));
 
     // The output history, the running means with the length and the second moments, warped together.
@@ -111,8 +164,8 @@ void main() {
                 warped_accum += w * imageLoad(u_prev_accum, ivec2(q));
                 warped_moment += w * imageLoad(u_prev_moment, ivec2(q)).r;
                 warped_robust += w * imageLoad(u_prev_robust, ivec2(q));
-                warped_albedo += w * imageLoad(u_prev_albedo, ivec2(q)).rgb;
-                warped_emission += w * imageLoad(u_prev_emission, ivec2(q)).rgb;
+                warped_albedo += w * imageLoad(u_prev_albedo_mean, ivec2(q)).rgb;
+                warped_emission += w * imageLoad(u_prev_emission_mean, ivec2(q)).rgb;
                 weight_sum += w;
             }
         }
@@ -130,8 +183,6 @@ void main() {
     } else {
         warped = vec3(0.0);
     }
-    vec3 demodulated = max(channel3(RECORD_DEMODULATED, pixel), vec3(0.0));
-
     // The running means (`accumulate`): this frame's values where nothing is reprojected.
     float lum = luminance(demodulated);
     vec3 squeezed = compress(demodulated);
@@ -154,9 +205,9 @@ void main() {
     // The first hits' albedo and log(1 + emission) averaged over time (`antialias_surface`): the
     // emission's weight at least the motion in pixels, its history clamped to the range of this
     // frame's over the 3x3 neighbourhood.
-    vec3 albedo = channel3(RECORD_ALBEDO, pixel);
+    vec3 albedo = input_albedo(pixel);
     vec3 albedo_mean = albedo;
-    vec3 emission = log(vec3(1.0) + channel3(RECORD_EMISSION, pixel));
+    vec3 emission = log(vec3(1.0) + input_emission(pixel));
     vec3 emission_mean = emission;
     if (mask > 0.0) {
         float alpha = max(1.0 / n, SURFACE_ALPHA);
@@ -170,7 +221,7 @@ void main() {
                 for (int dx = -1; dx <= 1; ++dx) {
                     ivec2 q = pixel + ivec2(dx, dy);
                     if (inside_image(q, ivec2(size()))) {
-                        vec3 e = log(vec3(1.0) + channel3(RECORD_EMISSION, q));
+                        vec3 e = log(vec3(1.0) + input_emission(q));
                         low = min(low, e);
                         high = max(high, e);
                     }
@@ -180,8 +231,8 @@ void main() {
             emission_mean = prev + (emission - prev) * alpha_emission;
         }
     }
-    imageStore(u_emission, pixel, vec4(emission_mean, 0.0));
-    imageStore(u_albedo, pixel, vec4(albedo_mean, 1.0));
+    imageStore(u_emission_mean, pixel, vec4(emission_mean, 0.0));
+    imageStore(u_albedo_mean, pixel, vec4(albedo_mean, 1.0));
 
     float mean_lum = luminance(mean);
     float variance = n > 1.0 ? max(moment - mean_lum * mean_lum, 0.0) : 0.0;
@@ -191,7 +242,7 @@ void main() {
     float robust_variance = n > 1.0 ? max(robust.a - robust_lum * robust_lum, 0.0) : 0.0;
     vec3 log_robust = log(vec3(1.0) + expand(robust.rgb));
 
-    float roughness = channel(RECORD_ROUGHNESS, pixel);
+    float roughness = normal_roughness.w;
     vec3 log_radiance = log(vec3(1.0) + demodulated);
     float log_depth = log(1.0 + max(depth, 0.0));
     uint at = tensor_index(pixel, params.width, FEATURE_GROUPS, 0u);

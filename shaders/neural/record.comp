@@ -1,17 +1,14 @@
 #version 460
-// Gathers the learned denoiser's per-pixel inputs (record.glsl) from the light transport's
-// surface images and the G-buffer.
+// Gathers the learned denoiser's per-pixel inputs (inputs.glsl) into a record (record.glsl): what
+// `lucid dataset` stores and image denoisers take their albedo and normal from. Inference reads
+// the inputs where it uses them (features.comp); this pass runs only where a record is read back.
 #include "common/image_coords.glsl"
+#define INPUTS_BINDING 0
+#include "neural/inputs.glsl"
 #include "neural/record.glsl"
 
 layout(local_size_x = 32, local_size_y = 2) in;
 
-layout(set = 0, binding = 0, rgba32f) uniform readonly image2D u_demodulated;
-layout(set = 0, binding = 1, rgba32f) uniform readonly image2D u_albedo;
-layout(set = 0, binding = 2, rgba32f) uniform readonly image2D u_emission;
-layout(set = 0, binding = 3, rgba16f) uniform readonly image2D u_normal_roughness;
-layout(set = 0, binding = 4, r32f) uniform readonly image2D u_depth;
-layout(set = 0, binding = 5, rgba16f) uniform readonly image2D u_motion;
 layout(set = 0, binding = 6, std430) writeonly buffer Record { float v[]; } b_record;
 
 void put(uint channel, ivec2 pixel, uvec2 size, float value) {
@@ -31,12 +28,12 @@ void main() {
         return;
     }
     uvec2 s = uvec2(size);
-    vec4 nr = imageLoad(u_normal_roughness, pixel);
-    put3(RECORD_DEMODULATED, pixel, s, min(imageLoad(u_demodulated, pixel).rgb, vec3(65504.0)));
-    put3(RECORD_ALBEDO, pixel, s, imageLoad(u_albedo, pixel).rgb);
-    put3(RECORD_EMISSION, pixel, s, min(imageLoad(u_emission, pixel).rgb, vec3(65504.0)));
+    vec4 nr = input_normal_roughness(pixel);
+    put3(RECORD_DEMODULATED, pixel, s, input_demodulated(pixel));
+    put3(RECORD_ALBEDO, pixel, s, input_albedo(pixel));
+    put3(RECORD_EMISSION, pixel, s, input_emission(pixel));
     put3(RECORD_NORMAL, pixel, s, nr.xyz);
     put(RECORD_ROUGHNESS, pixel, s, nr.w);
-    put(RECORD_DEPTH, pixel, s, imageLoad(u_depth, pixel).x);
-    put3(RECORD_MOTION, pixel, s, imageLoad(u_motion, pixel).xyz);
+    put(RECORD_DEPTH, pixel, s, input_depth(pixel));
+    put3(RECORD_MOTION, pixel, s, input_motion(pixel));
 }

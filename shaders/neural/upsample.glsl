@@ -13,4 +13,9 @@ void bilinear_taps(ivec2 pixel, ivec2 size, ivec2 source, out ivec2 i0, out ivec
     f = src - vec2(i0);
 }
 
+// The value at the taps' weights `f` of the four taps: `c01` at row i0 and column i1, and so on.
+vec3 bilinear_mix(vec3 c00, vec3 c01, vec3 c10, vec3 c11, vec2 f) {
+    return mix(mix(c00, c01, f.x), mix(c10, c11, f.x), f.y);
+}
+
 #endif

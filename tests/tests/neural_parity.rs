@@ -11,11 +11,15 @@
 //! second moments (reprojected in the second frame) are also compared directly, so they are checked
 //! whatever weight the network gives them. Every inference path the device runs is checked
 //! (lavapipe: the portable one; NVIDIA: the tensor-core one too), so where both run they agree
-//! within twice the tolerance.
+//! within twice the tolerance. The records' channels are uploaded into images of the formats the
+//! light transport and the G-buffer write, which inference reads as it reads a rendered frame's.
 
+use ash::vk;
+use half::f16;
 use lucid_engine::graph::{Access, RenderGraph};
+use lucid_engine::memory::ImageDesc;
 use lucid_passes::denoise::neural::{
-    self, Decoder, InferencePath, Network, NetworkWeights, RECORD_CHANNELS,
+    self, Decoder, FrameInputs, InferencePath, Network, NetworkWeights, RECORD_CHANNELS,
 };
 use safetensors::SafeTensors;
 
@@ -104,6 +108,108 @@ struct Frame {
     robust: Vec<[f32; 4]>,
 }
 
+/// The images of a record's channels: the first channel, how many, and the format of the image the
+/// light transport or the G-buffer writes them in (`FrameInputs`, in its order).
+const INPUT_IMAGES: [(usize, usize, vk::Format); 6] = [
+    (0, 3, vk::Format::R32G32B32A32_SFLOAT),
+    (3, 3, vk::Format::R32G32B32A32_SFLOAT),
+    (6, 3, vk::Format::R32G32B32A32_SFLOAT),
+    (9, 4, vk::Format::R16G16B16A16_SFLOAT),
+    (13, 1, vk::Format::R32_SFLOAT),
+    (14, 3, vk::Format::R16G16B16A16_SFLOAT),
+];
+
+/// Adds the passes uploading the channels of a planar `record` of `size` into the images of
+/// [`INPUT_IMAGES`] (the channels past a group's, and alpha, 0); panics where a half-precision
+/// image would not hold a value exactly (the fixtures' records are half floats, as `lucid dataset`
+/// stores them).
+fn upload_inputs(g: &mut RenderGraph, record: &[f32], (w, h): (usize, usize)) -> FrameInputs {
+    let plane = w * h;
+    let mut bytes: Vec<u8> = Vec::new();
+    let mut offsets = Vec::new();
+    for (first, count, format) in INPUT_IMAGES {
+        offsets.push(bytes.len() as u64);
+        let texel_channels = if format == vk::Format::R32_SFLOAT {
+            1
+        } else {
+            4
+        };
+        for i in 0..plane {
+            for k in 0..texel_channels {
+                let value = if k < count {
+                    record[(first + k) * plane + i]
+                } else {
+                    0.0
+                };
+                if format == vk::Format::R16G16B16A16_SFLOAT {
+                    let half = f16::from_f32(value);
+                    assert_eq!(
+                        half.to_f32(),
+                        value,
+                        "record channel {} is a half float",
+                        first + k
+                    );
+                    bytes.extend_from_slice(&half.to_bits().to_le_bytes());
+                } else {
+                    bytes.extend_from_slice(&value.to_le_bytes());
+                }
+            }
+        }
+    }
+    let mut p = g.add_pass("upload_record");
+    let staging = p.create_buffer("record", bytes.len() as u64);
+    let staging = p.write(staging, Access::TransferWrite);
+    p.execute(move |ctx| ctx.update_buffer(staging, &bytes));
+
+    let mut p = g.add_pass("upload_inputs");
+    let staging = p.read(staging, Access::TransferRead);
+    let images = INPUT_IMAGES.map(|(first, _, format)| {
+        let desc = ImageDesc::new(w as u32, h as u32, format);
+        let image = p.create_image(&format!("record channel {first}"), desc);
+        p.write(image, Access::TransferWrite)
+    });
+    p.execute(move |ctx| {
+        let buffer = ctx.buffer(staging)?.raw();
+        for (&image, &offset) in images.iter().zip(&offsets) {
+            let region = vk::BufferImageCopy::default()
+                .buffer_offset(offset)
+                .image_subresource(vk::ImageSubresourceLayers {
+                    aspect_mask: vk::ImageAspectFlags::COLOR,
+                    mip_level: 0,
+                    base_array_layer: 0,
+                    layer_count: 1,
+                })
+                .image_extent(vk::Extent3D {
+                    width: w as u32,
+                    height: h as u32,
+                    depth: 1,
+                });
+            // SAFETY: the command buffer is recording; the pass declared the staging buffer
+            // TransferRead and the image TransferWrite (so it is in TRANSFER_DST_OPTIMAL), and
+            // the region lies in both (the staging buffer holds every image's texels).
+            unsafe {
+                ctx.context().device().cmd_copy_buffer_to_image(
+                    ctx.command_buffer(),
+                    buffer,
+                    ctx.image(image)?.raw(),
+                    vk::ImageLayout::TRANSFER_DST_OPTIMAL,
+                    &[region],
+                )
+            };
+        }
+        Ok(())
+    });
+    let [demodulated, albedo, emission, normal_roughness, depth, motion] = images;
+    FrameInputs {
+        demodulated,
+        albedo,
+        emission,
+        normal_roughness,
+        depth,
+        motion,
+    }
+}
+
 /// The results of consecutive frames of `records` (each a planar record of `size`), by `network`
 /// from no history (each path keeps its own).
 fn denoise(
@@ -119,13 +225,9 @@ fn denoise(
     );
     let mut images = Vec::new();
     for record in records {
-        let data: Vec<u8> = bytemuck::cast_slice(record).to_vec();
         let mut g = RenderGraph::new();
-        let mut p = g.add_pass("upload_record");
-        let buffer = p.create_buffer("record", data.len() as u64);
-        let buffer = p.write(buffer, Access::TransferWrite);
-        p.execute(move |ctx| ctx.update_buffer(buffer, &data));
-        let images_of = neural::add_neural(&mut g, network, buffer, (w as u32, h as u32), &prefix);
+        let inputs = upload_inputs(&mut g, record, (w, h));
+        let images_of = neural::add_neural(&mut g, network, &inputs, (w as u32, h as u32), &prefix);
         let readbacks = [
             images_of.radiance,
             images_of.accum,

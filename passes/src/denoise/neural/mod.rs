@@ -2,21 +2,24 @@
 //! trained on Lucid's own frames (`training/`), run in Vulkan compute (`shaders/neural/`).
 //!
 //! Per frame:
-//! 1. **Record** ([`add_record`]): the light transport's surface images and the G-buffer are
-//!    gathered into one planar float buffer (`shaders/neural/record.glsl`), which is also what
-//!    `lucid dataset` writes for training.
+//! 1. **Inputs** ([`FrameInputs`]): the light transport's surface images and the G-buffer's, read
+//!    where they are used (`shaders/neural/inputs.glsl`). Where a frame's inputs are read back
+//!    (`lucid dataset`, image denoisers' albedo and normal), [`add_record`] gathers them into one
+//!    planar float buffer (`shaders/neural/record.glsl`); inference does not read it.
 //! 2. **Features**: log radiance, albedo, normal, roughness, log depth, last frame's output
 //!    reprojected by the motion vectors where depth and normal say the surface is the same, the
 //!    reprojection mask, and two running means of the noisy radiance reprojected with the same
 //!    taps (as SVGF accumulates it: log mean, history length, log standard deviation of luminance;
-//!    and of the radiance range-compressed against fireflies): 24 half-precision channels.
+//!    and of the radiance range-compressed against fireflies): 24 half-precision channels; for the
+//!    kernel decoder also the radiance pooled to half and quarter resolution.
 //! 3. **Network**: 3x3 convolutions at full, half and quarter resolution with skip connections
 //!    ([`UNET`]), fused bias and ReLU, average pooling down and nearest upsampling up (read in
 //!    place by the next convolution); on the tensor cores where the device has them, else portable
 //!    compute ([`InferencePath`]).
 //! 4. **Decoder** ([`Decoder`]): either one output layer predicting log radiance directly, or
 //!    three predicting per-pixel 5x5 kernels that filter the noisy log radiance at full, half and
-//!    quarter resolution, composited coarse to fine (`shaders/neural/kernel_*.comp`).
+//!    quarter resolution, composited coarse to fine (`shaders/neural/kernel*`; the full scale is
+//!    filtered and composited in the output pass, `output.comp`).
 //! 5. **Output**: the predicted log radiance blended with the reprojected history by a learned
 //!    per-pixel weight (only where the mask allows), kept as the next frame's history, and
 //!    re-modulated by the first hits' albedo plus emission averaged over time (reprojected with the
@@ -45,11 +48,10 @@ use crate::denoise::gbuffer::GBuffer;
 use crate::denoise::{DenoiseInputs, Denoised, FrameDenoiser, FrameInfo, TransportRequest};
 use crate::light_transport::SurfaceImages;
 use crate::shaders::neural::{
-    CONV, CONV_COOP, FEATURES as FEATURES_SHADER, KERNEL_DETAIL, KERNEL_FILTER, KERNEL_RADIANCE,
-    OUTPUT, POOL, RECORD,
+    CONV, CONV_COOP, FEATURES as FEATURES_SHADER, KERNEL_FILTER, OUTPUT, POOL, RECORD,
 };
 use lucid_engine::capture::ImageData;
-use lucid_engine::graph::{BufferHandle, ImageHandle, RenderGraph};
+use lucid_engine::graph::{BufferHandle, ComputePass, ImageHandle, RenderGraph};
 use lucid_engine::memory::ImageDesc;
 use lucid_engine::{EngineError, Result};
 
@@ -121,11 +123,12 @@ impl FrameDenoiser for NeuralDenoiser {
 
     fn add(&mut self, g: &mut RenderGraph, inputs: &DenoiseInputs) -> Denoised {
         let size = (inputs.width, inputs.height);
-        let record = add_record(g, &inputs.surface, &inputs.gbuffer, size);
+        let frame = FrameInputs::new(&inputs.surface, &inputs.gbuffer);
         Denoised {
-            image: add_neural(g, &self.network, record, size, &self.prefix).radiance,
+            image: add_neural(g, &self.network, &frame, size, &self.prefix).radiance,
             gradient: None,
-            record: Some(record),
+            // Culled unless read back.
+            record: Some(add_record(g, &frame, size)),
         }
     }
 
@@ -134,21 +137,58 @@ impl FrameDenoiser for NeuralDenoiser {
     }
 }
 
-/// Adds the pass gathering a frame's record from the light transport's `surface` images and the
-/// G-buffer; returns the record buffer (see [`record_bytes`]).
+/// The images the learned denoiser reads of a frame, each channel of a record
+/// (`shaders/neural/inputs.glsl`): the light transport's surface images and the G-buffer's, or a
+/// test's uploads of a record's channels.
+#[derive(Clone, Copy, Debug)]
+pub struct FrameInputs {
+    /// The demodulated radiance (rgb), `rgba32f`.
+    pub demodulated: ImageHandle,
+    /// The first hit's albedo (rgb), `rgba32f`.
+    pub albedo: ImageHandle,
+    /// The radiance the first hit emits towards the camera (rgb), `rgba32f`.
+    pub emission: ImageHandle,
+    /// The G-buffer normal (xyz) and roughness (w), `rgba16f`.
+    pub normal_roughness: ImageHandle,
+    /// The view-space depth (0 for the sky), `r32f`.
+    pub depth: ImageHandle,
+    /// The offset to last frame's pixel (xy) and last frame's depth of the point (z), `rgba16f`.
+    pub motion: ImageHandle,
+}
+
+impl FrameInputs {
+    /// A frame's inputs from the light transport's `surface` images and the G-buffer.
+    pub fn new(surface: &SurfaceImages, gbuffer: &GBuffer) -> Self {
+        Self {
+            demodulated: surface.demodulated,
+            albedo: surface.albedo,
+            emission: surface.emission,
+            normal_roughness: gbuffer.normal_roughness,
+            depth: gbuffer.depth,
+            motion: gbuffer.motion,
+        }
+    }
+
+    /// Binds the images to a pass whose shader includes `shaders/neural/inputs.glsl`.
+    fn read(&self, p: &mut ComputePass<'_>) {
+        p.read("u_demodulated", self.demodulated)
+            .read("u_albedo", self.albedo)
+            .read("u_emission", self.emission)
+            .read("u_normal_roughness", self.normal_roughness)
+            .read("u_depth", self.depth)
+            .read("u_motion", self.motion);
+    }
+}
+
+/// Adds the pass gathering a frame's `inputs` into a record; returns the record buffer (see
+/// [`record_bytes`]). Inference does not read it: the pass runs where the record is read back.
 pub fn add_record(
     g: &mut RenderGraph,
-    surface: &SurfaceImages,
-    gbuffer: &GBuffer,
+    inputs: &FrameInputs,
     (width, height): (u32, u32),
 ) -> BufferHandle {
     let mut p = g.compute_pass("neural.record", &RECORD);
-    p.read("u_demodulated", surface.demodulated)
-        .read("u_albedo", surface.albedo)
-        .read("u_emission", surface.emission)
-        .read("u_normal_roughness", gbuffer.normal_roughness)
-        .read("u_depth", gbuffer.depth)
-        .read("u_motion", gbuffer.motion);
+    inputs.read(&mut p);
     let record = p.create_buffer("b_record", "neural.record", record_bytes(width, height));
     p.dispatch([width, height, 1]);
     record
@@ -236,16 +276,16 @@ struct FeaturesParams {
     emission_motion: f32,
 }
 
-/// Adds the denoiser over the frame `record` (from [`add_record`], or uploaded by a test) at
-/// `width` x `height`, with its history under the keys `<prefix>.output`, `<prefix>.surface`,
-/// `<prefix>.accum` (running mean and its length), `<prefix>.moment` (second moment of
-/// luminance), `<prefix>.robust` (the range-compressed running mean and its second moment),
-/// `<prefix>.albedo` and `<prefix>.emission` (the first hits' albedo and log emission averaged over
-/// time); returns the denoised radiance and this frame's accumulation.
+/// Adds the denoiser over the frame's `inputs` at `width` x `height`, with its history under the
+/// keys `<prefix>.output`, `<prefix>.surface`, `<prefix>.accum` (running mean and its length),
+/// `<prefix>.moment` (second moment of luminance), `<prefix>.robust` (the range-compressed running
+/// mean and its second moment), `<prefix>.albedo` and `<prefix>.emission` (the first hits' albedo
+/// and log emission averaged over time); returns the denoised radiance and this frame's
+/// accumulation.
 pub fn add_neural(
     g: &mut RenderGraph,
     network: &Network,
-    record: BufferHandle,
+    inputs: &FrameInputs,
     (width, height): (u32, u32),
     prefix: &str,
 ) -> NeuralImages {
@@ -265,6 +305,7 @@ pub fn add_neural(
     let albedo_history = g.temporal_image(&keys.albedo, ImageDesc::rgba32f(width, height));
     let emission_history = g.temporal_image(&keys.emission, ImageDesc::rgba32f(width, height));
     let full = (width, height);
+    let kernel = network.decoder == Decoder::Kernel;
 
     let mut p = g.compute_pass(&format!("{prefix}.features"), &FEATURES_SHADER);
     let prev = [
@@ -276,8 +317,9 @@ pub fn add_neural(
         emission_history.prev,
     ];
     let emission_motion = network.emission_motion;
-    p.read("b_record", record)
-        .read("u_prev_output", prev[0])
+    inputs.read(&mut p);
+    p.read("u_prev_output", prev[0])
+        .specialize("POOLED_RADIANCE", kernel)
         .push_with(move |ctx| FeaturesParams {
             width,
             height,
@@ -288,8 +330,20 @@ pub fn add_neural(
     let accum = p.history("u_prev_accum", "u_accum", accum_history);
     let moment = p.history("u_prev_moment", "u_moment", moment_history);
     let robust = p.history("u_prev_robust", "u_robust", robust_history);
-    let albedo = p.history("u_prev_albedo", "u_albedo", albedo_history);
-    let emission = p.history("u_prev_emission", "u_emission", emission_history);
+    let albedo = p.history("u_prev_albedo_mean", "u_albedo_mean", albedo_history);
+    let emission = p.history("u_prev_emission_mean", "u_emission_mean", emission_history);
+    // The kernel decoder's radiance pooled to half and quarter resolution (16 bytes unwritten for
+    // the direct decoder).
+    let half = half_size(full);
+    let quarter = half_size(half);
+    let mut pooled_radiance = |binding: &str, size: (u32, u32)| {
+        let bytes = if kernel { vec4_bytes(size) } else { 16 };
+        p.create_buffer(binding, "neural.pooled_radiance", bytes)
+    };
+    let pooled_radiance = [
+        pooled_radiance("b_radiance_half", half),
+        pooled_radiance("b_radiance_quarter", quarter),
+    ];
     let features = Tensor {
         buffer: p.create_buffer(
             "b_features",
@@ -309,27 +363,31 @@ pub fn add_neural(
     let (e2, _) = conv(g, 2, p1.expect("pooled"), None, 0);
     let (bottleneck, _) = conv(g, 3, e2, None, 0);
     let (d1, _) = conv(g, 4, bottleneck, Some(e1), 0);
-    let kernel = network.decoder == Decoder::Kernel;
     let (d0, [d0_half, d0_quarter]) = conv(g, 5, d1, Some(e0), if kernel { 2 } else { 0 });
     let (net, _) = conv(g, 6, d0, None, 0);
-    // The kernel decoder's full-scale filtered radiance and the half scale's detail.
+    // The kernel decoder's half scale (its head's output and filtered radiance) and the quarter
+    // scale's detail; the output pass filters the full scale and composites.
     let scales = d0_half.zip(d0_quarter).map(|(f1, f2)| {
         let (half_net, _) = conv(g, 7, f1, None, 0);
         let (quarter_net, _) = conv(g, 8, f2, None, 0);
-        add_kernel_scales(g, record, features, [net, half_net, quarter_net])
+        let [half_filtered, quarter_detail] =
+            add_kernel_scales(g, pooled_radiance, [half_net, quarter_net]);
+        (half_net, half_filtered, quarter_detail)
     });
 
     let mut p = g.compute_pass(&format!("{prefix}.output"), &OUTPUT);
-    // The direct decoder has no filtered scales: its output is bound in their place (not read).
-    let [filtered, detail] = scales.unwrap_or([net.buffer; 2]);
+    // The direct decoder has no scales: its output is bound in their place (not read).
+    let (half_net, half_filtered, quarter_detail) = scales.unwrap_or((net, net.buffer, net.buffer));
     p.read("b_features", features.buffer)
         .read("b_net", net.buffer)
-        .read("b_filtered", filtered)
-        .read("b_detail", detail)
-        .read("u_albedo", albedo)
-        .read("u_emission", emission)
+        .read("b_half_logits", half_net.buffer)
+        .read("b_half_filtered", half_filtered)
+        .read("b_quarter_detail", quarter_detail)
+        .read("u_albedo_mean", albedo)
+        .read("u_emission_mean", emission)
         .specialize("KERNEL", kernel)
         .specialize("NET_CHANNELS", net.channels)
+        .specialize("HALF_CHANNELS", half_net.channels)
         .push(&[width, height]);
     p.write("u_output", output_history.cur);
     let radiance = p.create_image(
@@ -346,73 +404,41 @@ pub fn add_neural(
     }
 }
 
-/// Adds the kernel decoder's filtering (`training/kernel_model.py`, `KernelOutput`) from its heads'
-/// outputs `[full, half, quarter]`: each scale's log radiance filtered by its per-pixel kernels,
-/// then the differences the coarser scales add (`kernel_detail.comp`). Returns the full scale's
-/// filtered radiance and the half scale's detail, which the output pass composites.
+/// Adds the kernel decoder's coarser scales (`training/kernel_model.py`, `KernelOutput`) from its
+/// half and quarter heads' outputs and the log radiance the features pass pooled to their
+/// resolutions: each scale's log radiance filtered by its per-pixel kernels
+/// (`kernel_filter.comp`), the quarter scale as the difference it adds to the half scale. Returns
+/// the half scale's filtered radiance and the quarter scale's difference, which the output pass
+/// composites with the full scale it filters.
 fn add_kernel_scales(
     g: &mut RenderGraph,
-    record: BufferHandle,
-    features: Tensor,
-    heads: [Tensor; 3],
+    radiance: [BufferHandle; 2],
+    heads: [Tensor; 2],
 ) -> [BufferHandle; 2] {
-    let sizes = heads.map(|t| t.size);
-    const SCALES: [&str; 3] = ["full", "half", "quarter"];
-    let vec4_bytes = |(w, h): (u32, u32)| u64::from(w) * u64::from(h) * 16;
-    let radiance: Vec<BufferHandle> = (1..3)
-        .map(|level| {
-            let name = format!("neural.kernel_radiance.{}", SCALES[level]);
-            let mut p = g.compute_pass(&name, &KERNEL_RADIANCE);
-            p.read("b_record", record)
-                .specialize("LEVEL", level as u32)
-                .push(&[features.size.0, features.size.1]);
-            let out = p.create_buffer("b_out", "neural.kernel_radiance", vec4_bytes(sizes[level]));
-            p.dispatch([sizes[level].0, sizes[level].1, 1]);
-            out
-        })
-        .collect();
-    let filtered: Vec<BufferHandle> = (0..3)
-        .map(|level| {
-            let name = format!("neural.kernel_filter.{}", SCALES[level]);
-            let mut p = g.compute_pass(&name, &KERNEL_FILTER);
-            p.read("b_logits", heads[level].buffer)
-                .read("b_features", features.buffer)
-                // The full scale reads the features; the others their pooled radiance.
-                .read("b_radiance", radiance[level.max(1) - 1])
-                .specialize("LOGIT_CHANNELS", heads[level].channels)
-                .specialize("FROM_FEATURES", level == 0)
-                .push(&[sizes[level].0, sizes[level].1]);
-            let out = p.create_buffer("b_out", "neural.kernel_filtered", vec4_bytes(sizes[level]));
-            p.dispatch([sizes[level].0, sizes[level].1, 1]);
-            out
-        })
-        .collect();
-    let detail = |g: &mut RenderGraph, level: usize, coarser: Option<BufferHandle>| {
-        let name = format!("neural.kernel_detail.{}", SCALES[level]);
-        let mut p = g.compute_pass(&name, &KERNEL_DETAIL);
-        let coarser_size = sizes[(level + 1).min(2)];
-        p.read("b_filtered", filtered[level])
-            .read("b_finer", filtered[level - 1])
-            // Without a coarser scale the filtered radiance is bound in its place (not read).
-            .read("b_coarser", coarser.unwrap_or(filtered[level]))
-            .read("b_logits", heads[level].buffer)
+    let filter = |g: &mut RenderGraph, level: usize, finer: Option<BufferHandle>| {
+        let size = heads[level].size;
+        let finer_size = heads[0].size;
+        let name = format!("neural.kernel_filter.{}", ["half", "quarter"][level]);
+        let mut p = g.compute_pass(&name, &KERNEL_FILTER);
+        p.read("b_logits", heads[level].buffer)
+            .read("b_radiance", radiance[level])
+            // Without a finer scale the radiance is bound in its place (not read).
+            .read("b_finer", finer.unwrap_or(radiance[level]))
             .specialize("LOGIT_CHANNELS", heads[level].channels)
-            .specialize("HAS_COARSER", coarser.is_some())
-            .push(&[
-                sizes[level].0,
-                sizes[level].1,
-                sizes[level - 1].0,
-                sizes[level - 1].1,
-                coarser_size.0,
-                coarser_size.1,
-            ]);
-        let out = p.create_buffer("b_out", "neural.kernel_detail", vec4_bytes(sizes[level]));
-        p.dispatch([sizes[level].0, sizes[level].1, 1]);
+            .specialize("DETAIL", finer.is_some())
+            .push(&[size.0, size.1, finer_size.0, finer_size.1]);
+        let out = p.create_buffer("b_out", "neural.kernel_filtered", vec4_bytes(size));
+        p.dispatch([size.0, size.1, 1]);
         out
     };
-    let quarter = detail(g, 2, None);
-    let half = detail(g, 1, Some(quarter));
-    [filtered[0], half]
+    let half = filter(g, 0, None);
+    let quarter = filter(g, 1, Some(half));
+    [half, quarter]
+}
+
+/// Bytes of a float32 vec4 per pixel at `size`.
+fn vec4_bytes((width, height): (u32, u32)) -> u64 {
+    u64::from(width) * u64::from(height) * 16
 }
 
 /// Bytes of a half-precision tensor of `channels` at `size`.
