@@ -128,6 +128,9 @@ fn upload_inputs(g: &mut RenderGraph, record: &[f32], (w, h): (usize, usize)) ->
     let mut bytes: Vec<u8> = Vec::new();
     let mut offsets = Vec::new();
     for (first, count, format) in INPUT_IMAGES {
+        // Each image's texels start at a multiple of 16 bytes (a copy's buffer offset must be a
+        // multiple of its texel size; an r32f plane of an odd pixel count would misalign the next).
+        bytes.resize(bytes.len().next_multiple_of(16), 0);
         offsets.push(bytes.len() as u64);
         let texel_channels = if format == vk::Format::R32_SFLOAT {
             1
