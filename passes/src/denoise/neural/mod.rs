@@ -464,7 +464,6 @@ fn add_conv(
     debug_assert_eq!(in0.channels, layer.in0);
     debug_assert_eq!(in1.map_or(0, |t| t.channels), layer.in1);
     let size = in1.map_or(in0.size, |t| t.size);
-    debug_assert!(!layer.upsamples_first_input() || in0.size == half_size(size));
     let name = format!("neural.{}", layer.name);
     let shader = match network.path {
         InferencePath::Portable => &CONV,
@@ -491,17 +490,10 @@ fn add_conv(
         (Some(half_weights), Some((_, half_offsets))) => {
             let bias = offset + 9 * layer.inputs() * out_channels / 4;
             let half_offset = half_offsets[index];
-            // Workgroups of eight subgroups, 16 pixels each, and up to 32 output channels
-            // (64-channel layers in two workgroups): the fastest of the configurations measured
-            // on an H100 (`bench/README.md`); more pixels per subgroup spill registers. A layer
-            // whose first input is upsampled takes the fold layout (32 x 4 tiles).
-            let (subgroups, group_tiles) = (8, 2);
-            let fold = layer.upsamples_first_input();
-            let tile = if fold {
-                (32, subgroups / 2)
-            } else {
-                (16, subgroups)
-            };
+            // Workgroups of eight subgroups, one row of 16 pixels each, and up to 32 output
+            // channels (64-channel layers in two workgroups): the fastest of the configurations
+            // measured on an H100 (`bench/README.md`); more rows per subgroup spill registers.
+            let (subgroups, rows, group_tiles) = (8, 1, 2);
             let tiles = out_channels.div_ceil(16);
             let half = half_size(size);
             let quarter = half_size(half);
@@ -524,15 +516,15 @@ fn add_conv(
                 pooled(2, "b_pooled_twice", quarter),
             ];
             p.read("b_half_weights", half_weights)
-                .specialize("FOLD", fold)
+                .specialize("ROWS", rows)
                 .specialize("POOL_LEVELS", pool_levels)
                 .specialize("GROUP_TILES", group_tiles)
                 .specialize("local_size_x", 32 * subgroups)
                 .push(&[push[0], push[1], push[2], push[3], bias, half_offset]);
-            // A workgroup per tile and group of output tiles.
+            // A workgroup per 16 x (subgroups * rows) tile and group of output tiles.
             p.dispatch([
-                size.0.div_ceil(tile.0) * 32 * subgroups,
-                size.1.div_ceil(tile.1),
+                size.0.div_ceil(16) * 32 * subgroups,
+                size.1.div_ceil(subgroups * rows),
                 tiles.div_ceil(group_tiles),
             ]);
             (output, pooled)

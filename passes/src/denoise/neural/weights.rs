@@ -53,12 +53,6 @@ impl Layer {
         }
     }
 
-    /// Whether the first input comes from the level below, upsampled 2x by nearest neighbour (a
-    /// decoder layer: the layers with a skip connection).
-    pub fn upsamples_first_input(&self) -> bool {
-        self.in1 > 0
-    }
-
     /// Input channels in all.
     pub fn inputs(&self) -> u32 {
         self.in0 + self.in1
