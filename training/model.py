@@ -61,10 +61,6 @@ N_MAX = 32.0
 # measured against 1, 0.25 and 0 on the held-out paths, training/README.md).
 SURFACE_ALPHA = 0.1
 EMISSION_MOTION = 0.5
-# Where a pixel's 3x3 neighbourhood has no depth more than EMISSION_PARALLAX away from its own,
-# relatively (and is all sky or all not), its emission's weight ignores the motion: no silhouette,
-# so no parallax between what its samples saw last frame and this frame. 0: every pixel's counts.
-EMISSION_PARALLAX = 0.0
 LUMINANCE = (0.2126, 0.7152, 0.0722)
 
 
@@ -187,17 +183,7 @@ def neighbourhood_range(x):
     return -F.max_pool2d(-x, 3, stride=1, padding=1), F.max_pool2d(x, 3, stride=1, padding=1)
 
 
-def without_parallax(depth, parallax):
-    """Whether each pixel's 3x3 neighbourhood (the pixels inside the image) has depths within
-    `parallax` of its own, relatively, and is all sky (depth 0) or all not [B,1,H,W]."""
-    low, high = neighbourhood_range(depth)
-    sky = depth <= 0.0
-    near = (high - depth <= parallax * depth) & (depth - low <= parallax * depth) & (low > 0.0)
-    return (parallax > 0.0) & torch.where(sky, high <= 0.0, near)
-
-
-def antialias_surface(rec, warped_albedo, warped_emission, n, mask, emission_motion=EMISSION_MOTION,
-                      emission_parallax=EMISSION_PARALLAX):
+def antialias_surface(rec, warped_albedo, warped_emission, n, mask, emission_motion=EMISSION_MOTION):
     """The first hits' albedo and emission that re-modulate this frame's output, averaged over
     time: each frame's samples are jittered over the pixel, so one frame's are aliased and change
     from frame to frame at texture, emitter and object edges (the output flickered there).
@@ -211,9 +197,7 @@ def antialias_surface(rec, warped_albedo, warped_emission, n, mask, emission_mot
     background moves otherwise than the surface, so a bright emitter's or the sky's share in last
     frame's samples is not this frame's, and averaging it doubled the relMSE on `classroom`
     (training/README.md); a still or slowly moving camera gets steady emitter edges, a light
-    switched off leaves no trail. Where the pixel's neighbourhood has no silhouette
-    (`without_parallax` with `emission_parallax`), the motion does not count. Elsewhere both are
-    this frame's. Returns (albedo, log emission),
+    switched off leaves no trail. Elsewhere both are this frame's. Returns (albedo, log emission),
     [B,3,H,W] each."""
     ok = mask > 0.0
     alpha = torch.clamp(1.0 / n, min=SURFACE_ALPHA)
@@ -221,7 +205,6 @@ def antialias_surface(rec, warped_albedo, warped_emission, n, mask, emission_mot
     emission = torch.log1p(rec["emission"])
     speed = torch.sqrt(rec["motion"][:, 0:1] ** 2 + rec["motion"][:, 1:2] ** 2)
     alpha_emission = torch.maximum(alpha, torch.clamp(speed * emission_motion, max=1.0))
-    alpha_emission = torch.where(without_parallax(rec["depth"], emission_parallax), alpha, alpha_emission)
     low, high = neighbourhood_range(emission)
     prev = torch.minimum(torch.maximum(warped_emission, low), high)
     # A weight of 1 (a pixel or more of motion) keeps this frame's emission exactly.
@@ -280,7 +263,6 @@ class RecurrentDenoiser(nn.Module):
         # `antialias_surface`'s weight of this frame's emission per pixel of motion (the weights
         # file's `emission_motion` metadata).
         self.emission_motion = EMISSION_MOTION
-        self.emission_parallax = EMISSION_PARALLAX
 
     def step(self, record, state, fp16_storage=False):
         """One frame. `record` [B,RECORD_SIZE,H,W]; `state` None (no history) or the dict returned
@@ -310,8 +292,7 @@ class RecurrentDenoiser(nn.Module):
             rec["demodulated"], warped_accum.detach(), warped_moment.detach(), warped_robust.detach(), mask
         )
         albedo, emission = antialias_surface(
-            rec, warped_albedo.detach(), warped_emission.detach(), accum[:, 3:4], mask, self.emission_motion,
-            self.emission_parallax
+            rec, warped_albedo.detach(), warped_emission.detach(), accum[:, 3:4], mask, self.emission_motion
         )
         x = half(features(rec, warped, mask, accum, moment, robust), fp16_storage)
         warped, mask = x[:, 11:14], x[:, 14:15]  # as the output pass reads them: stored

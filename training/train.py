@@ -45,13 +45,12 @@ def load_weights(model, path):
     layers; the kernel model takes every layer whose shapes match (so direct weights start its
     shared layers) and starts the others afresh. A `lucid-rae-v2` file's first layer, which has
     fewer inputs, starts the first layer with the new inputs' weights at zero. The file's
-    `emission_motion` and `emission_parallax` metadata, when there, set the model's."""
+    `emission_motion` metadata, when there, sets the model's."""
     tensors = load_file(path)
     with safe_open(path, "pt") as f:
-        metadata = f.metadata() or {}
-    for key in ("emission_motion", "emission_parallax"):
-        if key in metadata:
-            setattr(model, key, float(metadata[key]))
+        motion = (f.metadata() or {}).get("emission_motion")
+    if motion is not None:
+        model.emission_motion = float(motion)
     loaded, skipped = [], []
     with torch.no_grad():
         for name, conv in named_convs(model).items():
@@ -210,7 +209,6 @@ def main():
         "loss": args.loss,
         "loss_weights": ",".join(str(w) for w in ws),
         "emission_motion": str(model.emission_motion),
-        "emission_parallax": str(model.emission_parallax),
         "burn_in": str(args.burn_in),
         "steps": str(step),
         "data": args.data,

@@ -52,9 +52,6 @@ layout(push_constant) uniform Params {
     // The least weight of this frame's emission in its average, per pixel of motion (the weights
     // file's, passes/src/denoise/neural/weights.rs).
     float emission_motion;
-    // The largest relative depth difference in a pixel's 3x3 neighbourhood under which the motion
-    // does not weigh its emission (the weights file's; 0: every pixel's does).
-    float emission_parallax;
 } params;
 
 const float DEPTH_TOLERANCE = 0.05;
@@ -79,27 +76,6 @@ vec3 expand(vec3 rgb) {
 
 uvec2 size() {
     return uvec2(params.width, params.height);
-}
-
-// Whether the depths of `pixel`'s 3x3 neighbourhood (the pixels inside the image) are within
-// emission_parallax of its own `depth`, relatively, and all sky or all not.
-bool without_parallax(ivec2 pixel, float depth) {
-    if (params.emission_parallax <= 0.0) {
-        return false;
-    }
-    for (int dy = -1; dy <= 1; ++dy) {
-        for (int dx = -1; dx <= 1; ++dx) {
-            ivec2 q = pixel + ivec2(dx, dy);
-            if (!inside_image(q, ivec2(size()))) {
-                continue;
-            }
-            float d = input_depth(q);
-            if ((d <= 0.0) != (depth <= 0.0) || abs(d - depth) > params.emission_parallax * depth) {
-                return false;
-            }
-        }
-    }
-    return true;
 }
 
 shared vec3 s_radiance[8][8];
@@ -237,12 +213,6 @@ void main() {
         float alpha = max(1.0 / n, SURFACE_ALPHA);
         albedo_mean = warped_albedo + (albedo - warped_albedo) * alpha;
         float alpha_emission = max(alpha, min(length(motion.xy) * params.emission_motion, 1.0));
-        // No silhouette around the pixel: the surfaces its samples saw move together, so its
-        // emission's history holds whatever the motion.
-        bool linear = alpha_emission > alpha && without_parallax(pixel, depth);
-        if (linear) {
-            alpha_emission = alpha;
-        }
         // A pixel moving a pixel a frame or more keeps this frame's emission: no history to clamp.
         if (alpha_emission < 1.0) {
             vec3 low = emission;
@@ -258,9 +228,7 @@ void main() {
                 }
             }
             vec3 prev = clamp(warped_emission, low, high);
-            emission_mean = linear
-                ? log(vec3(1.0) + mix(exp(prev) - 1.0, exp(emission) - 1.0, alpha_emission))
-                : prev + (emission - prev) * alpha_emission;
+            emission_mean = prev + (emission - prev) * alpha_emission;
         }
     }
     imageStore(u_emission_mean, pixel, vec4(emission_mean, 0.0));

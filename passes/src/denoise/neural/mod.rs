@@ -40,8 +40,8 @@ mod weights;
 
 pub use network::{InferencePath, Network};
 pub use weights::{
-    Decoder, Layer, NetworkWeights, WeightsError, BUILTIN, EMISSION_MOTION, EMISSION_PARALLAX,
-    FEATURES, FORMAT, KERNEL_TAPS, UNET,
+    Decoder, Layer, NetworkWeights, WeightsError, BUILTIN, EMISSION_MOTION, FEATURES, FORMAT,
+    KERNEL_TAPS, UNET,
 };
 
 use crate::denoise::gbuffer::GBuffer;
@@ -274,8 +274,6 @@ struct FeaturesParams {
     history_valid: u32,
     /// [`NetworkWeights::emission_motion`].
     emission_motion: f32,
-    /// [`NetworkWeights::emission_parallax`].
-    emission_parallax: f32,
 }
 
 /// Adds the denoiser over the frame's `inputs` at `width` x `height`, with its history under the
@@ -318,7 +316,7 @@ pub fn add_neural(
         albedo_history.prev,
         emission_history.prev,
     ];
-    let (emission_motion, emission_parallax) = (network.emission_motion, network.emission_parallax);
+    let emission_motion = network.emission_motion;
     inputs.read(&mut p);
     p.read("u_prev_output", prev[0])
         .specialize("POOLED_RADIANCE", kernel)
@@ -327,7 +325,6 @@ pub fn add_neural(
             height,
             history_valid: u32::from(prev.iter().all(|&h| ctx.history_valid(h))),
             emission_motion,
-            emission_parallax,
         });
     p.history("u_prev_surface", "u_surface", surface_history);
     let accum = p.history("u_prev_accum", "u_accum", accum_history);

@@ -190,19 +190,11 @@ pub enum WeightsError {
 /// the weights file's `emission_motion` metadata does not set it.
 pub const EMISSION_MOTION: f32 = 0.5;
 
-/// The largest relative depth difference within a pixel's 3x3 neighbourhood under which its
-/// emission's average over time ignores the motion ([`EMISSION_MOTION`]): no silhouette there, so
-/// no parallax between the surfaces its samples saw last frame and this frame
-/// (`EMISSION_PARALLAX` in training/model.py, `antialias_surface`); 0 ignores no pixel's motion.
-/// Where the weights file's `emission_parallax` metadata does not set it.
-pub const EMISSION_PARALLAX: f32 = 0.0;
-
 /// Weights ready for upload: every layer's weights and bias, packed.
 #[derive(Clone, Debug, PartialEq)]
 pub struct NetworkWeights {
     decoder: Decoder,
     emission_motion: f32,
-    emission_parallax: f32,
     layers: Vec<Layer>,
     packed: Vec<f32>,
     offsets: Vec<u32>,
@@ -251,25 +243,21 @@ impl NetworkWeights {
             file: file.to_owned(),
             found,
         })?;
-        // A number from 0 up from the metadata, else `default`.
-        let number = |key: &str, default: f32| {
-            let found = entry(key);
-            if found.is_empty() {
-                return Ok(default);
-            }
+        let found = entry("emission_motion");
+        let emission_motion = if found.is_empty() {
+            EMISSION_MOTION
+        } else {
             found
                 .parse::<f32>()
                 .ok()
                 .filter(|v| v.is_finite() && *v >= 0.0)
                 .ok_or_else(|| WeightsError::Metadata {
                     file: file.to_owned(),
-                    key: key.into(),
+                    key: "emission_motion".into(),
                     found,
                     expected: "a finite number from 0 up".into(),
-                })
+                })?
         };
-        let emission_motion = number("emission_motion", EMISSION_MOTION)?;
-        let emission_parallax = number("emission_parallax", EMISSION_PARALLAX)?;
         let tensors = SafeTensors::deserialize(bytes).map_err(|e| format_error(e.to_string()))?;
         let layers = decoder.layers();
         let mut packed = Vec::with_capacity(layers.iter().map(Layer::packed_len).sum());
@@ -299,7 +287,6 @@ impl NetworkWeights {
         Ok(Self {
             decoder,
             emission_motion,
-            emission_parallax,
             layers,
             packed,
             offsets,
@@ -315,13 +302,6 @@ impl NetworkWeights {
     /// (the file's `emission_motion` metadata, else [`EMISSION_MOTION`]).
     pub fn emission_motion(&self) -> f32 {
         self.emission_motion
-    }
-
-    /// The largest relative depth difference in a pixel's neighbourhood under which its emission's
-    /// average over time ignores the motion (the file's `emission_parallax` metadata, else
-    /// [`EMISSION_PARALLAX`]).
-    pub fn emission_parallax(&self) -> f32 {
-        self.emission_parallax
     }
 
     /// The layers, in execution order ([`Decoder::layers`]).
@@ -452,30 +432,27 @@ mod tests {
     }
 
     #[test]
-    fn the_emission_weights_come_from_the_metadata_when_it_is_there() {
+    fn the_emission_motion_comes_from_the_metadata_when_it_is_there() {
         let plain = file_for(FORMAT, Decoder::Kernel, |_, _, _| true);
         let weights = NetworkWeights::from_bytes(&plain, "w").expect("loads");
         assert_eq!(weights.emission_motion(), EMISSION_MOTION);
-        assert_eq!(weights.emission_parallax(), EMISSION_PARALLAX);
-        type Getter = fn(&NetworkWeights) -> f32;
-        let keys: [(&str, Getter); 2] = [
-            ("emission_motion", NetworkWeights::emission_motion),
-            ("emission_parallax", NetworkWeights::emission_parallax),
-        ];
-        for (key, get) in keys {
-            let set = |value: &str| {
-                file_with_metadata(FORMAT, Decoder::Kernel, &[(key, value)], |_, _, _| true)
-            };
-            let weights = NetworkWeights::from_bytes(&set("0.25"), "w").expect("loads");
-            assert_eq!(get(&weights), 0.25, "{key}");
-            for bad in ["-1", "NaN", "inf", "fast"] {
-                let message = error(&set(bad));
-                assert!(
-                    message.contains("w.safetensors")
-                        && message.contains(&format!("metadata {key} \"{bad}\"")),
-                    "{message}"
-                );
-            }
+        let set = |value: &str| {
+            file_with_metadata(
+                FORMAT,
+                Decoder::Kernel,
+                &[("emission_motion", value)],
+                |_, _, _| true,
+            )
+        };
+        let weights = NetworkWeights::from_bytes(&set("0.25"), "w").expect("loads");
+        assert_eq!(weights.emission_motion(), 0.25);
+        for bad in ["-1", "NaN", "inf", "fast"] {
+            let message = error(&set(bad));
+            assert!(
+                message.contains("w.safetensors")
+                    && message.contains(&format!("metadata emission_motion \"{bad}\"")),
+                "{message}"
+            );
         }
     }
 
