@@ -97,7 +97,8 @@ pub struct Measurement {
 pub struct ConfigResult {
     /// The configuration.
     pub config: Config,
-    /// The measurements, at the frames the [`Schedule`] picks.
+    /// The measurements, by increasing time: one per target of the [`Schedule`] reached (a frame
+    /// that reached several has a row for each), and one for the last frame if it reached none.
     pub rows: Vec<Measurement>,
     /// Frames rendered.
     pub frames: u32,
@@ -325,7 +326,8 @@ pub struct Limits {
     pub warmup: u32,
     /// Most frames, whatever the budget (at least 1).
     pub max_frames: u32,
-    /// GPU milliseconds after which no further frame starts.
+    /// GPU milliseconds after which no further frame starts (once the frame that spent them was
+    /// measured: see [`Sampling`]).
     pub budget_ms: f64,
 }
 
