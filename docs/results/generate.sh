@@ -4,8 +4,9 @@
 # Per scene of SCENES (default: every built-in scene but furnace):
 #   - `lucid converge` (still camera): error against GPU time per configuration (ALGOS x
 #     DENOISERS x SPP samples per pixel per frame, each for BUDGET_MS of GPU time, at SIZE, against
-#     a REFERENCE_SPP reference): OUT_DIR/<scene>/converge.{csv,json} and its charts (error
-#     against GPU time, speed against accuracy with the Pareto front);
+#     a REFERENCE_SPP reference, measured at the same ladder of GPU times up to BUDGET_MS):
+#     OUT_DIR/<scene>/converge.{csv,json} and its charts (error against GPU time, speed against
+#     accuracy with the Pareto front, time to converge);
 #   - `lucid bench` per algorithm at each of TABLE_SIZES (1 sample, FRAMES frames): the frame
 #     time table (the study's Table 4.1): OUT_DIR/<scene>/bench_<algo>_<size>.json.
 # Then the denoisers' time on classroom (or the first scene) at each of DENOISER_SIZES (the

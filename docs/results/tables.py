@@ -9,6 +9,7 @@ Python's standard library only.
 """
 
 import json
+import math
 import sys
 from pathlib import Path
 
@@ -102,10 +103,14 @@ def denoiser_table(out):
 
 
 def at_time(config, ms):
-    """The last measured row at or before `ms` of GPU time, or None when the configuration did not
+    """The row measured for `ms` of GPU time where `ms` is on converge's time ladder (the first frame
+    to reach it), else the last measured row at or before it; None when the configuration did not
     run that long."""
     if config["gpu_ms"] < ms:
         return None
+    for r in config["rows"]:
+        if r.get("target_ms") == ms:
+            return r
     best = None
     for r in config["rows"]:
         if r["gpu_ms"] <= ms * 1.0001:
@@ -174,28 +179,39 @@ def stability_table(out):
     return lines
 
 
+def time_to_error(config, metric, error):
+    """The GPU time at which the configuration's `metric` first falls to `error`, interpolated
+    log-log between the measured times around it (errors fall about as a power of the time); None
+    when it never does within its run."""
+    before = None
+    for row in config["rows"]:
+        if row[metric] <= error:
+            if before is None or min(before[metric], row[metric], error) <= 0:
+                return row["gpu_ms"]
+            (t0, e0), (t1, e1) = (before["gpu_ms"], before[metric]), (row["gpu_ms"], row[metric])
+            f = (math.log(error) - math.log(e0)) / (math.log(e1) - math.log(e0))
+            return math.exp(math.log(t0) + f * (math.log(t1) - math.log(t0)))
+        before = row
+    return None
+
+
 def mitsuba_table(summary):
-    """Per sample count of Mitsuba's series: its time and errors beside Lucid's configurations'
-    at the same number of samples (frames x samples per frame), times as each measured them."""
+    """Per image of Mitsuba's series: its time and relMSE beside the GPU time each of Lucid's
+    configurations took to the same relMSE (measured at converge's time ladder, interpolated
+    between its steps), times as each measured them."""
     mitsuba = summary["external"][0]
-    lucid = {}
-    for c in summary["configurations"]:
-        for row in c["rows"]:
-            lucid[(c["config"], row["frame"] * c["spp"])] = row
-    configs = [c["config"] for c in summary["configurations"]]
+    configs = summary["configurations"]
     lines = [
-        "| spp | Mitsuba ms | " + " | ".join(f"Lucid {c} ms (x faster)" for c in configs)
-        + " | Mitsuba relMSE | " + " | ".join(f"Lucid {c} relMSE" for c in configs) + " |",
-        "| --- |" + " --- |" * (2 + 2 * len(configs)),
+        "| spp | Mitsuba ms | Mitsuba relMSE | "
+        + " | ".join(f"Lucid {c['config']} ms to that relMSE (x faster)" for c in configs) + " |",
+        "| --- |" + " --- |" * (2 + len(configs)),
     ]
     for p in mitsuba["points"]:
-        times, errors = [], []
+        times = []
         for c in configs:
-            row = lucid.get((c, p["spp"]))
-            times.append("-" if row is None else f"{row['gpu_ms']:.1f} ({p['ms'] / row['gpu_ms']:.2f}x)")
-            errors.append("-" if row is None else f"{row['rel_mse']:.5f}")
-        lines.append(f"| {p['spp']} | {p['ms']:.1f} | " + " | ".join(times) + f" | {p['rel_mse']:.5f} | "
-                     + " | ".join(errors) + " |")
+            ms = time_to_error(c, "rel_mse", p["rel_mse"])
+            times.append("-" if ms is None else f"{ms:.1f} ({p['ms'] / ms:.2f}x)")
+        lines.append(f"| {p['spp']} | {p['ms']:.1f} | {p['rel_mse']:.5f} | " + " | ".join(times) + " |")
     return lines
 
 
@@ -236,7 +252,8 @@ def main():
               f"each image (render calls of at most 64 samples per pixel, median of 3, after a "
               f"warm-up at that count). Lucid: the GPU time of its frames' passes (path tracing, "
               f"accumulation, tone mapping), summed as samples accumulate, at 1 and 16 samples "
-              f"per pixel a frame.\n")
+              f"per pixel a frame; the time it took to each Mitsuba image's relMSE is interpolated "
+              f"between the times converge measured it at.\n")
         print("\n".join(mitsuba_table(summary)) + "\n")
         print("![relMSE against time](mitsuba/error_vs_time_rel_mse.svg) "
               "![FLIP against time](mitsuba/error_vs_time_flip.svg)\n")
@@ -246,14 +263,19 @@ def main():
         print(
             f"Still camera, {summary['size'][0]}x{summary['size'][1]}, reference "
             f"{summary['reference_spp']} samples, each configuration (algorithm/denoiser/samples "
-            f"per pixel per frame) for {summary['budget_ms']:g} ms of GPU time.\n"
+            f"per pixel per frame) for {summary['budget_ms']:g} ms of GPU time, each measured at "
+            f"the first frame to reach each of the same GPU times"
+            + (f" ({', '.join(f'{t:g}' for t in summary['time_ladder_ms'])} ms)"
+               if "time_ladder_ms" in summary else "") + ".\n"
         )
-        print("DSSIM (1/SSIM - 1) after the study's accumulated GPU times, frames in brackets "
-              "(the study's Table 4.3):\n")
+        print("DSSIM (1/SSIM - 1) after the study's accumulated GPU times (the last measurement at "
+              "or before each, or the one for it where it is one of the measured times), frames in "
+              "brackets (the study's Table 4.3):\n")
         print("\n".join(quality_table(summary)) + "\n")
         print("\n".join(converge_table(summary)) + "\n")
         print(f"![speed against accuracy]({scene}/speed_vs_accuracy.svg) "
-              f"![DSSIM against GPU time]({scene}/error_vs_time_dssim.svg)\n")
+              f"![DSSIM against GPU time]({scene}/error_vs_time_dssim.svg) "
+              f"![time to converge]({scene}/time_to_converge.svg)\n")
 
 
 if __name__ == "__main__":

@@ -9,6 +9,10 @@ use run_lucid::{lucid, stderr, temp};
 
 const METRICS: [&str; 3] = ["dssim", "flip", "rel_mse"];
 
+/// The GPU time each configuration of the measuring test spends: several frames of 32x32 on
+/// lavapipe.
+const BUDGET_MS: &str = "300";
+
 /// Equal but for serde_json's parsing, which may be one unit in the last place off.
 fn same(json: Option<f64>, csv: Option<f64>) -> bool {
     match (json, csv) {
@@ -21,7 +25,9 @@ fn same(json: Option<f64>, csv: Option<f64>) -> bool {
 #[derive(Debug)]
 struct Row {
     frame: u32,
+    target_ms: Option<f64>,
     gpu_ms: f64,
+    frame_ms: f64,
     errors: BTreeMap<&'static str, f64>,
 }
 
@@ -31,26 +37,56 @@ fn read_csv(path: &Path) -> BTreeMap<String, Vec<Row>> {
     let mut lines = text.lines();
     assert_eq!(
         lines.next(),
-        Some("config,algo,denoiser,spp,frame,gpu_ms,dssim,flip,rel_mse")
+        Some("config,algo,denoiser,spp,frame,target_ms,gpu_ms,frame_ms,dssim,flip,rel_mse")
     );
     let mut configs: BTreeMap<String, Vec<Row>> = BTreeMap::new();
     for line in lines {
         let f: Vec<&str> = line.split(',').collect();
-        assert_eq!(f.len(), 9, "{line}");
+        assert_eq!(f.len(), 11, "{line}");
         assert_eq!(f[0], format!("{}/{}/{}", f[1], f[2], f[3]), "{line}");
         let number = |i: usize| f[i].parse::<f64>().unwrap();
         let errors = METRICS
             .iter()
             .enumerate()
-            .map(|(k, &m)| (m, number(6 + k)))
+            .map(|(k, &m)| (m, number(8 + k)))
             .collect();
         configs.entry(f[0].to_string()).or_default().push(Row {
             frame: f[4].parse().unwrap(),
-            gpu_ms: number(5),
+            target_ms: (!f[5].is_empty()).then(|| number(5)),
+            gpu_ms: number(6),
+            frame_ms: number(7),
             errors,
         });
     }
     configs
+}
+
+/// Checks that `rows` were measured at every time of `ladder`, each at the first frame to reach
+/// it (its time at most one frame past the target), and at the last frame.
+fn assert_measured_at_the_ladder(config: &str, rows: &[Row], ladder: &[f64]) {
+    let targets: Vec<f64> = rows.iter().filter_map(|r| r.target_ms).collect();
+    assert_eq!(targets, ladder, "{config}: the same target times: {rows:?}");
+    for row in rows {
+        let target = row.target_ms.unwrap();
+        assert!(row.gpu_ms >= target, "{config}: before its target: {row:?}");
+        assert!(
+            row.gpu_ms - row.frame_ms < target * (1.0 + 1e-12),
+            "{config}: more than one frame past its target: {row:?}"
+        );
+        assert!(row.frame_ms > 0.0, "{config}: {row:?}");
+    }
+    for w in rows.windows(2) {
+        if w[0].frame == w[1].frame {
+            assert_eq!(w[0].gpu_ms, w[1].gpu_ms, "{config}: one frame, one time");
+            assert_eq!(w[0].errors, w[1].errors, "{config}: one frame, one image");
+        } else {
+            assert!(w[1].frame > w[0].frame, "{config}: frames in order");
+            assert!(
+                w[1].gpu_ms - w[1].frame_ms >= w[0].gpu_ms * (1.0 - 1e-12),
+                "{config}: GPU time accumulates: {w:?}"
+            );
+        }
+    }
 }
 
 #[test]
@@ -69,9 +105,9 @@ fn converge_writes_errors_that_fall_as_samples_accumulate_and_charts() {
         "--spp",
         "1,2",
         "--max-frames",
-        "4",
+        "1000",
         "--budget-ms",
-        "1000000",
+        BUDGET_MS,
         // relMSE divides by the reference: a 16-sample one has dark pixels where it is lit.
         "--reference-spp",
         "64",
@@ -96,14 +132,26 @@ fn converge_writes_errors_that_fall_as_samples_accumulate_and_charts() {
     let csv = read_csv(&dir.join("converge.csv"));
     let names: Vec<&str> = csv.keys().map(String::as_str).collect();
     assert_eq!(names, ["pt/none/1", "pt/none/2", "pt/svgf/1", "pt/svgf/2"]);
+    // Every configuration spends the budget well within --max-frames, so each is measured at
+    // every time of the ladder, the budget last.
+    let ladder: Vec<f64> = json["time_ladder_ms"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|t| t.as_f64().unwrap())
+        .collect();
+    let budget: f64 = BUDGET_MS.parse().unwrap();
+    assert_eq!(ladder.len(), 3 * 6 + 1, "{ladder:?}");
+    assert_eq!(
+        (ladder[0], ladder[ladder.len() - 1]),
+        (budget / 1000.0, budget)
+    );
     for (config, rows) in &csv {
-        // 4 frames, each measured (1, 2, 3 and 4 are all on the geometric schedule).
-        let frames: Vec<u32> = rows.iter().map(|r| r.frame).collect();
-        assert_eq!(frames, [1, 2, 3, 4], "{config}");
+        assert_measured_at_the_ladder(config, rows, &ladder);
         assert!(rows[0].gpu_ms > 0.0, "{config}");
         assert!(
-            rows.windows(2).all(|w| w[1].gpu_ms > w[0].gpu_ms),
-            "{config}: GPU time accumulates: {rows:?}"
+            rows.last().unwrap().frame > 1,
+            "{config}: more than one frame in the budget: {rows:?}"
         );
         for row in rows {
             for (metric, value) in &row.errors {
@@ -121,9 +169,10 @@ fn converge_writes_errors_that_fall_as_samples_accumulate_and_charts() {
         for metric in METRICS {
             assert!(
                 last.errors[metric] < first.errors[metric],
-                "{config}: {metric} must fall from {} (1 frame) to {} (4 frames)",
+                "{config}: {metric} must fall from {} (1 frame) to {} ({} frames)",
                 first.errors[metric],
-                last.errors[metric]
+                last.errors[metric],
+                last.frame
             );
         }
     }
@@ -138,8 +187,18 @@ fn converge_writes_errors_that_fall_as_samples_accumulate_and_charts() {
     for c in configurations {
         let name = c["config"].as_str().unwrap();
         let rows = &csv[name];
-        assert_eq!(c["frames"], 4);
-        assert_eq!(c["rows"].as_array().unwrap().len(), rows.len());
+        let last = &rows[rows.len() - 1];
+        assert_eq!(c["frames"], last.frame);
+        let json_rows = c["rows"].as_array().unwrap();
+        assert_eq!(json_rows.len(), rows.len());
+        for (j, row) in json_rows.iter().zip(rows) {
+            assert!(same(j["target_ms"].as_f64(), row.target_ms), "{name}: {j}");
+            assert!(same(j["gpu_ms"].as_f64(), Some(row.gpu_ms)), "{name}: {j}");
+            assert!(
+                same(j["frame_ms"].as_f64(), Some(row.frame_ms)),
+                "{name}: {j}"
+            );
+        }
         for metric in METRICS {
             let target = targets[metric].as_f64().unwrap();
             let expected = rows
@@ -159,7 +218,8 @@ fn converge_writes_errors_that_fall_as_samples_accumulate_and_charts() {
         let flip = c["time_to_converge_ms"]["flip"].as_f64();
         assert!(same(flip, Some(rows[0].gpu_ms)), "{name}: {flip:?}");
         let per_frame = c["gpu_ms_per_frame"].as_f64().unwrap();
-        assert!((per_frame * 4.0 - rows[3].gpu_ms).abs() < 1e-9 * rows[3].gpu_ms.max(1.0));
+        let frames = f64::from(last.frame);
+        assert!((per_frame * frames - last.gpu_ms).abs() < 1e-9 * last.gpu_ms.max(1.0));
     }
     for metric in METRICS {
         let front = json["pareto_front"][metric].as_array().unwrap();
@@ -170,7 +230,7 @@ fn converge_writes_errors_that_fall_as_samples_accumulate_and_charts() {
         .iter()
         .map(|m| format!("error_vs_time_{m}"))
         .collect();
-    charts.push("speed_vs_accuracy".into());
+    charts.extend(["speed_vs_accuracy".into(), "time_to_converge".into()]);
     for chart in charts {
         let png = std::fs::read(dir.join(format!("{chart}.png"))).unwrap();
         assert!(png.starts_with(b"\x89PNG"), "{chart}.png");
@@ -182,6 +242,14 @@ fn converge_writes_errors_that_fall_as_samples_accumulate_and_charts() {
             "{chart}.svg"
         );
     }
+    // A configuration that never reached a target is marked on the time-to-converge chart.
+    let never = configurations.iter().any(|c| {
+        METRICS
+            .iter()
+            .any(|m| c["time_to_converge_ms"][m].is_null())
+    });
+    let svg = std::fs::read_to_string(dir.join("time_to_converge.svg")).unwrap();
+    assert_eq!(svg.contains("never in"), never, "never-converged marks");
     std::fs::remove_dir_all(&dir).unwrap();
 }
 
@@ -335,7 +403,7 @@ fn converge_measures_another_renderers_series_against_a_reference_file() {
     let csv = std::fs::read_to_string(out_dir.join("converge.csv")).unwrap();
     assert!(
         csv.lines()
-            .any(|l| l.starts_with("\"Other, renderer\",,,64,1,16,")),
+            .any(|l| l.starts_with("\"Other, renderer\",,,64,1,,16,16,")),
         "{csv}"
     );
     let svg = std::fs::read_to_string(out_dir.join("error_vs_time_rel_mse.svg")).unwrap();

@@ -45,10 +45,16 @@ fn the_results_script_writes_its_tables_and_charts() {
         "Stability against time per frame",
         "| svgf | ",
         "stability/stability.svg",
+        "cornell-box/time_to_converge.svg",
+        "the first frame to reach each of the same GPU times (0.03, ",
     ] {
         assert!(page.contains(heading), "{heading} missing from:\n{page}");
     }
-    for chart in ["speed_vs_accuracy.svg", "error_vs_time_dssim.svg"] {
+    for chart in [
+        "speed_vs_accuracy.svg",
+        "error_vs_time_dssim.svg",
+        "time_to_converge.svg",
+    ] {
         assert!(out.join("cornell-box").join(chart).exists(), "{chart}");
     }
     let commands = std::fs::read_to_string(out.join("commands.txt")).expect("commands.txt");

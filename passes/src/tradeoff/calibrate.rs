@@ -397,7 +397,9 @@ mod tests {
                     },
                     rows: vec![Measurement {
                         frame: 4,
+                        target_ms: None,
                         gpu_ms: 4.0 * ms,
+                        frame_ms: ms,
                         dssim: 2.0 * flip,
                         flip,
                         rel_mse: flip * flip,

@@ -28,8 +28,8 @@ pub fn pareto_front(points: &[(f64, f64)]) -> Vec<usize> {
     front
 }
 
-/// The cumulative GPU time of the first measurement whose `metric` falls below `target`; `None`
-/// if none does.
+/// The cumulative GPU time of the first measurement whose `metric` falls below `target` (its
+/// actual time, not the target time it was taken for); `None` if none does.
 pub fn time_to_converge(rows: &[Measurement], metric: Metric, target: f64) -> Option<f64> {
     rows.iter()
         .find(|row| metric.of(row) < target)
@@ -62,7 +62,9 @@ mod tests {
     fn time_to_converge_is_the_first_time_below_the_target() {
         let row = |frame, gpu_ms, dssim| Measurement {
             frame,
+            target_ms: None,
             gpu_ms,
+            frame_ms: 2.0,
             dssim,
             flip: 0.5,
             rel_mse: 0.5,

@@ -1,6 +1,7 @@
 //! `lucid converge`: error against GPU time as samples accumulate, for every configuration
 //! (algorithm x denoiser x samples per pixel per frame) of one scene seen by a still camera,
-//! against a many-sample reference (rendered, or a file); written as CSV, JSON and charts
+//! against a many-sample reference (rendered, or a file), measured at the same ladder of GPU times
+//! for every configuration (`Schedule::TimeLadder`); written as CSV, JSON and charts
 //! (`converge_chart.rs`). Another renderer's images join the charts with `--external`
 //! (`external_series.rs`).
 
@@ -57,7 +58,9 @@ pub struct ConvergeArgs {
     #[arg(long, default_value = "1,2,4", value_parser = spp_list())]
     spp: List<SamplesPerPixel>,
     /// GPU time each configuration may spend, in milliseconds (the sum of its frames' pass times;
-    /// wall time on a device without timestamp queries).
+    /// wall time on a device without timestamp queries). Every configuration is measured at the
+    /// first frame to reach each step of a ladder of times up to it: 1, 1.5, 2, 3, 5 and 7 times
+    /// powers of ten from a thousandth of the budget, and the budget itself.
     #[arg(long, default_value_t = 1000.0, value_parser = finite_f64(1e-3, 1e9))]
     budget_ms: f64,
     /// Frames each configuration renders first, not measured (pipeline creation, caches), before
@@ -95,8 +98,8 @@ pub struct ConvergeArgs {
     /// committed ones.
     #[arg(long)]
     neural_weights: Option<PathBuf>,
-    /// Output folder: `converge.csv`, `converge.json`, `error_vs_time_<metric>.png/.svg` and
-    /// `speed_vs_accuracy.png/.svg`.
+    /// Output folder: `converge.csv`, `converge.json`, `error_vs_time_<metric>.png/.svg`,
+    /// `speed_vs_accuracy.png/.svg` and `time_to_converge.png/.svg`.
     #[arg(long, default_value = "converge")]
     out: PathBuf,
     /// Print the JSON summary to stdout instead of the table.
@@ -209,7 +212,7 @@ pub fn run(args: &ConvergeArgs) -> anyhow::Result<()> {
             config.apply(base),
             &reference,
             limits,
-            Schedule::Geometric,
+            Schedule::TimeLadder,
             clock,
             &mut || progress.inc(),
         )
@@ -284,18 +287,23 @@ fn write(path: &Path, bytes: &[u8]) -> anyhow::Result<()> {
 }
 
 /// The CSV's header.
-pub const CSV_HEADER: &str = "config,algo,denoiser,spp,frame,gpu_ms,dssim,flip,rel_mse";
+pub const CSV_HEADER: &str =
+    "config,algo,denoiser,spp,frame,target_ms,gpu_ms,frame_ms,dssim,flip,rel_mse";
 
 /// One line per measurement; numbers in full precision (what the JSON's times to converge are
-/// computed from). An external series' lines have its name as the configuration, no algorithm or
-/// denoiser, its images' samples per pixel and frame 1 (each image is one render).
+/// computed from). `target_ms` is the step of the time ladder the line was measured for (empty
+/// for a last frame that reached none), `gpu_ms` the time actually accumulated then (at most
+/// `frame_ms`, its last frame's time, past the target). An external series' lines have its name
+/// as the configuration, no algorithm, denoiser or target, its images' samples per pixel and
+/// frame 1 (each image is one render).
 fn to_csv(results: &[ConfigResult], externals: &[ExternalResult]) -> String {
     let mut out = format!("{CSV_HEADER}\n");
     let mut line = |config: &str, algo: &str, denoiser: &str, spp: u32, row: &Measurement| {
+        let target = row.target_ms.map_or(String::new(), |t| t.to_string());
         let _ = writeln!(
             out,
-            "{config},{algo},{denoiser},{spp},{},{},{},{},{}",
-            row.frame, row.gpu_ms, row.dssim, row.flip, row.rel_mse
+            "{config},{algo},{denoiser},{spp},{},{target},{},{},{},{},{}",
+            row.frame, row.gpu_ms, row.frame_ms, row.dssim, row.flip, row.rel_mse
         );
     };
     for r in results {
@@ -383,7 +391,9 @@ impl Summary<'_> {
                     "pareto": per_metric(&|m| json!(on_front(m, i))),
                     "rows": r.rows.iter().map(|row| json!({
                         "frame": row.frame,
+                        "target_ms": row.target_ms,
                         "gpu_ms": row.gpu_ms,
+                        "frame_ms": row.frame_ms,
                         "dssim": row.dssim,
                         "flip": row.flip,
                         "rel_mse": row.rel_mse,
@@ -434,6 +444,7 @@ impl Summary<'_> {
             "seed": args.seed,
             "reference_spp": args.reference.is_none().then(|| args.reference_spp.get()),
             "budget_ms": args.budget_ms,
+            "time_ladder_ms": Schedule::TimeLadder.targets(args.budget_ms),
             "max_frames": args.max_frames,
             "warmup": args.warmup,
             "reference": reference,
@@ -549,8 +560,9 @@ fn speed_accuracy(results: &[ConfigResult], metric: Metric) -> Vec<(f64, f64)> {
         .collect()
 }
 
-/// `error_vs_time_<metric>.png/.svg` (with the external series) and `speed_vs_accuracy.png/.svg`
-/// (Lucid's configurations: an external series has no time per frame).
+/// `error_vs_time_<metric>.png/.svg` (with the external series), `speed_vs_accuracy.png/.svg`
+/// (Lucid's configurations: an external series has no time per frame) and
+/// `time_to_converge.png/.svg` (both).
 fn write_charts(
     out: &Path,
     results: &[ConfigResult],
@@ -567,9 +579,7 @@ fn write_charts(
             .iter()
             .map(|r| Series {
                 name: r.config.name(),
-                points: r
-                    .rows
-                    .iter()
+                points: measured_frames(&r.rows)
                     .map(|row| (row.gpu_ms, metric.of(row)))
                     .collect(),
             })
@@ -614,5 +624,49 @@ fn write_charts(
     let chart = converge_chart::speed_vs_accuracy(&format!("{time} per frame (ms)"), &panels)?;
     write(&out.join("speed_vs_accuracy.png"), &chart.png)?;
     write(&out.join("speed_vs_accuracy.svg"), chart.svg.as_bytes())?;
+    let panels: Vec<converge_chart::ConvergePanel> = Metric::ALL
+        .iter()
+        .map(|&metric| converge_panel(results, externals, metric, target(metric), time))
+        .collect();
+    let chart = converge_chart::time_to_converge(&format!("{time} (ms, accumulated)"), &panels)?;
+    write(&out.join("time_to_converge.png"), &chart.png)?;
+    write(&out.join("time_to_converge.svg"), chart.svg.as_bytes())?;
     Ok(())
+}
+
+/// One row per measured frame: a frame that reached several targets of the time ladder has a
+/// row for each, the same point on an error-against-time chart.
+fn measured_frames(rows: &[Measurement]) -> impl Iterator<Item = &Measurement> {
+    rows.iter()
+        .enumerate()
+        .filter(|(i, row)| *i == 0 || rows[i - 1].frame != row.frame)
+        .map(|(_, row)| row)
+}
+
+/// The time-to-converge panel of `metric`: per configuration, then per external series, the
+/// time it first measured an error below `target` and how long it ran.
+fn converge_panel(
+    results: &[ConfigResult],
+    externals: &[ExternalResult],
+    metric: Metric,
+    target: f64,
+    time: &str,
+) -> converge_chart::ConvergePanel {
+    let reached = |name: String, rows: &[Measurement], ran_ms: f64| converge_chart::Reached {
+        name,
+        ms: time_to_converge(rows, metric, target),
+        ran_ms,
+    };
+    let own = results
+        .iter()
+        .map(|r| reached(r.config.name(), &r.rows, r.gpu_ms));
+    let other = externals.iter().map(|e| {
+        let rows = e.rows();
+        let ran_ms = rows.iter().map(|row| row.gpu_ms).fold(0.0, f64::max);
+        reached(e.label(), &rows, ran_ms)
+    });
+    converge_chart::ConvergePanel {
+        title: format!("{time} to {} < {target}", metric.label()),
+        entries: own.chain(other).collect(),
+    }
 }

@@ -1,6 +1,7 @@
 //! The charts of `lucid converge`, drawn with `plotters` as PNG (bitmap backend, encoded by
-//! `image`) and SVG: error against time (log-log, a line per configuration) and speed against
-//! accuracy (a point per configuration, the Pareto front connected).
+//! `image`) and SVG: error against time (log-log, a line per configuration), speed against
+//! accuracy (a point per configuration, the Pareto front connected) and time to converge (a bar
+//! per configuration).
 
 use anyhow::anyhow;
 use image::codecs::png::PngEncoder;
@@ -42,6 +43,24 @@ pub struct Panel {
     pub front: Vec<usize>,
 }
 
+/// One configuration of a [`time_to_converge`] panel.
+pub struct Reached {
+    /// The configuration, on the vertical axis.
+    pub name: String,
+    /// The time (ms) it first measured an error below the target; `None` if it never did.
+    pub ms: Option<f64>,
+    /// How long it ran (ms): where a configuration that never converged is marked.
+    pub ran_ms: f64,
+}
+
+/// One panel of [`time_to_converge`]: a metric's target and every configuration's time to it.
+pub struct ConvergePanel {
+    /// The panel's caption.
+    pub title: String,
+    /// The configurations, top to bottom.
+    pub entries: Vec<Reached>,
+}
+
 /// Error against time, log-log, a line (with a dot per measurement) per series, and the error
 /// `target` (what "converged" means) as a dashed line.
 pub fn error_vs_time(
@@ -68,6 +87,18 @@ pub fn error_vs_time(
 pub fn speed_vs_accuracy(x_label: &str, panels: &[Panel]) -> anyhow::Result<Chart> {
     let width = 520 * panels.len().max(1) as u32;
     render(&SpeedVsAccuracy { x_label, panels }, (width, 520))
+}
+
+/// One panel per metric: a horizontal bar per configuration to the time it converged at (log
+/// time axis, labelled with the time), and a grey cross with `never in T ms` at the end of its run
+/// for a configuration that never did.
+pub fn time_to_converge(x_label: &str, panels: &[ConvergePanel]) -> anyhow::Result<Chart> {
+    let rows = panels.iter().map(|p| p.entries.len()).max().unwrap_or(0) as u32;
+    let width = 560 * panels.len().max(1) as u32;
+    render(
+        &TimeToConverge { x_label, panels },
+        (width, (100 + 30 * rows).max(320)),
+    )
 }
 
 /// Something plotters draws, onto any backend.
@@ -324,6 +355,107 @@ impl Figure for SpeedVsAccuracy<'_> {
     }
 }
 
+struct TimeToConverge<'a> {
+    x_label: &'a str,
+    panels: &'a [ConvergePanel],
+}
+
+impl Figure for TimeToConverge<'_> {
+    fn draw<DB: DrawingBackend>(
+        &self,
+        root: &DrawingArea<DB, Shift>,
+    ) -> Result<(), DrawingAreaErrorKind<DB::ErrorType>> {
+        root.fill(&WHITE)?;
+        let areas = root.split_evenly((1, self.panels.len().max(1)));
+        for (panel, area) in self.panels.iter().zip(&areas) {
+            draw_time_to_converge(panel, self.x_label, area)?;
+        }
+        Ok(())
+    }
+}
+
+/// One panel of [`time_to_converge`]: a slot per entry, the first at the top.
+fn draw_time_to_converge<DB: DrawingBackend>(
+    panel: &ConvergePanel,
+    x_label: &str,
+    area: &DrawingArea<DB, Shift>,
+) -> Result<(), DrawingAreaErrorKind<DB::ErrorType>> {
+    let count = panel.entries.len() as i32;
+    let times = panel
+        .entries
+        .iter()
+        .flat_map(|e| e.ms.into_iter().chain([e.ran_ms]));
+    // Room on the right for the labels.
+    let x = log_range(times, 4.0);
+    let left = x.start;
+    let slot = |i: usize| count - 1 - i as i32;
+    let names: Vec<&str> = panel.entries.iter().map(|e| e.name.as_str()).collect();
+    let name_of = |v: &SegmentValue<i32>| match v {
+        SegmentValue::CenterOf(y) | SegmentValue::Exact(y) => usize::try_from(count - 1 - y)
+            .ok()
+            .and_then(|i| names.get(i))
+            .map_or(String::new(), |n| n.to_string()),
+        SegmentValue::Last => String::new(),
+    };
+    let longest = names.iter().map(|n| n.len()).max().unwrap_or(0) as u32;
+    let mut chart = ChartBuilder::on(area)
+        .caption(&panel.title, (FONT, 20))
+        .margin(16)
+        .x_label_area_size(44)
+        .y_label_area_size(16 + 7 * longest)
+        // Integer ranges include their end: one slot per entry.
+        .build_cartesian_2d(log_axis(x), (0..(count - 1).max(0)).into_segmented())?;
+    chart
+        .configure_mesh()
+        .x_desc(x_label)
+        .x_label_formatter(&tick)
+        .y_label_formatter(&name_of)
+        .disable_y_mesh()
+        .label_style((FONT, 13))
+        .axis_desc_style((FONT, 14))
+        .draw()?;
+    let reached: Vec<(i32, f64)> = panel
+        .entries
+        .iter()
+        .enumerate()
+        .filter_map(|(i, e)| {
+            e.ms.filter(|ms| drawable(&(*ms, 1.0)))
+                .map(|ms| (slot(i), ms))
+        })
+        .collect();
+    chart.draw_series(reached.iter().map(|&(y, ms)| {
+        let mut bar = Rectangle::new(
+            [
+                (left, SegmentValue::Exact(y)),
+                (ms, SegmentValue::Exact(y + 1)),
+            ],
+            BLUE.mix(0.6).filled(),
+        );
+        bar.set_margin(4, 4, 0, 0);
+        bar
+    }))?;
+    chart.draw_series(reached.iter().map(|&(y, ms)| {
+        EmptyElement::at((ms, SegmentValue::CenterOf(y)))
+            + Text::new(tick(&ms), (5, -7), (FONT, 12).into_font())
+    }))?;
+    let never = panel
+        .entries
+        .iter()
+        .enumerate()
+        .filter(|(_, e)| e.ms.is_none() && drawable(&(e.ran_ms, 1.0)));
+    let grey = RGBColor(110, 110, 110);
+    chart.draw_series(never.map(|(i, e)| {
+        EmptyElement::at((e.ran_ms, SegmentValue::CenterOf(slot(i))))
+            + Cross::new((0, 0), 5, grey.stroke_width(2))
+            + Text::new(
+                format!("never in {} ms", tick(&e.ran_ms)),
+                (8, -7),
+                (FONT, 12).into_font().color(&grey),
+            )
+    }))?;
+    Ok(())
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -355,6 +487,45 @@ mod tests {
         assert!(chart.png.starts_with(b"\x89PNG"));
         assert!(chart.svg.contains("Pareto front") && chart.svg.contains("\nb\n"));
         let empty = error_vs_time("none", "x", "y", f64::NAN, &[]).unwrap();
+        assert!(empty.png.starts_with(b"\x89PNG"));
+    }
+
+    #[test]
+    fn times_to_converge_are_bars_and_the_configurations_that_never_converge_are_marked() {
+        let entry = |name: &str, ms, ran_ms| Reached {
+            name: name.into(),
+            ms,
+            ran_ms,
+        };
+        let panel = ConvergePanel {
+            title: "GPU time to DSSIM < 0.1".into(),
+            entries: vec![
+                entry("pt/none/1", Some(700.0), 1300.0),
+                entry("pt/svgf/1", Some(15.0), 1300.0),
+                entry("bdpt/none/1", None, 1300.0),
+            ],
+        };
+        let chart = time_to_converge("GPU time (ms)", &[panel]).unwrap();
+        assert!(chart.png.starts_with(b"\x89PNG"));
+        for text in [
+            "pt/svgf/1",
+            "bdpt/none/1",
+            "never in 1300 ms",
+            "\n700\n",
+            "\n15\n",
+        ] {
+            assert!(chart.svg.contains(text), "{text} missing");
+        }
+        assert_eq!(
+            chart.svg.matches("<rect").count(),
+            1 + 2,
+            "background and two bars"
+        );
+        let nothing = ConvergePanel {
+            title: "none".into(),
+            entries: Vec::new(),
+        };
+        let empty = time_to_converge("x", &[nothing]).unwrap();
         assert!(empty.png.starts_with(b"\x89PNG"));
     }
 

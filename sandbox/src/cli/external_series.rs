@@ -70,7 +70,8 @@ pub struct ExternalSeries {
 pub struct ExternalPoint {
     /// Samples per pixel of the image.
     pub spp: u32,
-    /// Its time (`ms`) and errors; `frame` is 1: each image is one render.
+    /// Its time (`ms`, also `frame_ms`) and errors; `frame` is 1 and `target_ms` none: each
+    /// image is one render.
     pub measurement: Measurement,
 }
 
@@ -159,7 +160,9 @@ impl ExternalSeries {
                     spp: point.spp,
                     measurement: Measurement {
                         frame: 1,
+                        target_ms: None,
                         gpu_ms: point.ms,
+                        frame_ms: point.ms,
                         dssim: m.dssim,
                         flip: m.flip,
                         rel_mse: m.rel_mse,
