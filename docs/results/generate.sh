@@ -74,7 +74,7 @@ if [ -n "${MITSUBA:-}" ]; then
     --size "$mitsuba_size" --out "$work" > "$out/mitsuba/mitsuba.txt"
   cp "$work/series.json" "$out/mitsuba/series.json"
   run "$lucid" converge --scene cornell-box --size "$mitsuba_size" --algos pt --denoisers none --warmup 30 \
-    --spp 1,16 --max-frames 1024 --budget-ms 100000 --reference "$work/reference.exr" \
+    --spp 1,16 --max-frames 1024 --budget-ms 20000 --reference "$work/reference.exr" \
     --external "Mitsuba 3=$work/series.json" --out "$out/mitsuba" > "$out/mitsuba/converge.txt"
 fi
 python3 "$here/tables.py" "$out" > "$out/README.md"
