@@ -40,7 +40,6 @@ layout(set = 0, binding = 9, rgba32f) uniform readonly image2D u_emission_mean;
 layout(push_constant) uniform Params {
     uint width;
     uint height;
-    float history_floor;  // the least weight of the history where reprojection holds
 } params;
 
 const uint BLEND_CHANNEL = 25u;  // a, the weight of the coarser scale's detail
@@ -150,7 +149,7 @@ void main() {
         predicted = o.rgb;
         blend_logit = o.w;
     }
-    float blend = mask * max(1.0 / (1.0 + exp(-blend_logit)), params.history_floor);
+    float blend = mask / (1.0 + exp(-blend_logit));
     vec3 log_out = max(predicted * (1.0 - blend) + warped * blend, vec3(0.0));
     log_out = unpack_channels(pack_channels(vec4(log_out, 0.0))).rgb;
     imageStore(u_output, pixel, vec4(log_out, 0.0));

@@ -388,7 +388,7 @@ pub fn add_neural(
         .specialize("KERNEL", kernel)
         .specialize("NET_CHANNELS", net.channels)
         .specialize("HALF_CHANNELS", half_net.channels)
-        .push(&[width, height, network.history_floor.to_bits()]);
+        .push(&[width, height]);
     p.write("u_output", output_history.cur);
     let radiance = p.create_image(
         "u_radiance",

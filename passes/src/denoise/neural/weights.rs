@@ -190,17 +190,11 @@ pub enum WeightsError {
 /// the weights file's `emission_motion` metadata does not set it.
 pub const EMISSION_MOTION: f32 = 0.5;
 
-/// The least weight of the reprojected history in the output's blend where reprojection holds
-/// (`HISTORY_FLOOR` in training/model.py), where the weights file's `history_floor` metadata does
-/// not set it: 0, the network's own weight.
-pub const HISTORY_FLOOR: f32 = 0.0;
-
 /// Weights ready for upload: every layer's weights and bias, packed.
 #[derive(Clone, Debug, PartialEq)]
 pub struct NetworkWeights {
     decoder: Decoder,
     emission_motion: f32,
-    history_floor: f32,
     layers: Vec<Layer>,
     packed: Vec<f32>,
     offsets: Vec<u32>,
@@ -249,25 +243,21 @@ impl NetworkWeights {
             file: file.to_owned(),
             found,
         })?;
-        // A number from 0 up to `max` from the metadata, else `default`.
-        let number = |key: &str, default: f32, max: f32| {
-            let found = entry(key);
-            if found.is_empty() {
-                return Ok(default);
-            }
+        let found = entry("emission_motion");
+        let emission_motion = if found.is_empty() {
+            EMISSION_MOTION
+        } else {
             found
                 .parse::<f32>()
                 .ok()
-                .filter(|v| v.is_finite() && (0.0..=max).contains(v))
+                .filter(|v| v.is_finite() && *v >= 0.0)
                 .ok_or_else(|| WeightsError::Metadata {
                     file: file.to_owned(),
-                    key: key.into(),
+                    key: "emission_motion".into(),
                     found,
-                    expected: format!("a number from 0 to {max}"),
-                })
+                    expected: "a finite number from 0 up".into(),
+                })?
         };
-        let emission_motion = number("emission_motion", EMISSION_MOTION, f32::MAX)?;
-        let history_floor = number("history_floor", HISTORY_FLOOR, 1.0)?;
         let tensors = SafeTensors::deserialize(bytes).map_err(|e| format_error(e.to_string()))?;
         let layers = decoder.layers();
         let mut packed = Vec::with_capacity(layers.iter().map(Layer::packed_len).sum());
@@ -297,7 +287,6 @@ impl NetworkWeights {
         Ok(Self {
             decoder,
             emission_motion,
-            history_floor,
             layers,
             packed,
             offsets,
@@ -313,12 +302,6 @@ impl NetworkWeights {
     /// (the file's `emission_motion` metadata, else [`EMISSION_MOTION`]).
     pub fn emission_motion(&self) -> f32 {
         self.emission_motion
-    }
-
-    /// The least weight of the reprojected history in the output's blend (the file's
-    /// `history_floor` metadata, else [`HISTORY_FLOOR`]).
-    pub fn history_floor(&self) -> f32 {
-        self.history_floor
     }
 
     /// The layers, in execution order ([`Decoder::layers`]).
