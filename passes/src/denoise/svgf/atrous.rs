@@ -51,7 +51,7 @@ pub(super) fn add(
         };
         let step = 1 << i;
         let mut pass = g.compute_pass("svgf.atrous", shader);
-        pass.read("u_in", filtered)
+        pass.sample("u_in", filtered)
             .read("u_depth", gbuffer.depth)
             .read("u_normal_roughness", gbuffer.normal_roughness)
             .read("u_depth_slope", depth_slope);
