@@ -38,31 +38,37 @@ shared uvec4 s_svgf_texel[SVGF_ATROUS_ROWS * SVGF_ATROUS_COLUMNS];
 // surface is (the sky, outside the image): a tap there weighs exactly 0, as if skipped.
 shared vec2 s_svgf_depth_luminance[SVGF_ATROUS_ROWS * SVGF_ATROUS_COLUMNS];
 
-// Where a workgroup's tile lies (see the layout above).
+// Where a workgroup's tile lies (see the layout above). The step and the run are powers of two:
+// their divisions are shifts.
 struct SvgfAtrousTile {
     ivec2 origin;
     int run;
+    int run_shift;
     int columns;
 };
 
 SvgfAtrousTile svgf_atrous_tile() {
     int step = params.step;
+    int step_shift = findLSB(step);
     SvgfAtrousTile tile;
     tile.run = min(step, SVGF_ATROUS_MAX_RUN);
-    tile.columns = tile.run * (SVGF_ATROUS_GROUP / tile.run + 2 * SVGF_ATROUS_HALO);
-    // Workgroups go through the runs of residues first, then the tiles of each residue's grid.
-    int runs = step / tile.run;
+    tile.run_shift = findLSB(tile.run);
+    tile.columns = SVGF_ATROUS_GROUP + 2 * SVGF_ATROUS_HALO * tile.run;
+    // Workgroups go through the step / run runs of residues first, then the tiles of each
+    // residue's grid.
+    int runs_shift = step_shift - tile.run_shift;
     ivec2 group = ivec2(gl_WorkGroupID.xy);
-    ivec2 residue = ivec2(group.x % runs * tile.run, group.y % step);
-    ivec2 first = ivec2(group.x / runs * (SVGF_ATROUS_GROUP / tile.run),
-                        group.y / step * SVGF_ATROUS_GROUP);
+    ivec2 residue = ivec2((group.x & ((1 << runs_shift) - 1)) << tile.run_shift,
+                          group.y & (step - 1));
+    ivec2 first = ivec2((group.x >> runs_shift) * (SVGF_ATROUS_GROUP >> tile.run_shift),
+                        (group.y >> step_shift) * SVGF_ATROUS_GROUP);
     tile.origin = residue + step * (first - SVGF_ATROUS_HALO);
     return tile;
 }
 
 ivec2 svgf_atrous_cell_pixel(SvgfAtrousTile tile, ivec2 cell) {
-    return tile.origin + ivec2(cell.x % tile.run, 0)
-        + params.step * ivec2(cell.x / tile.run, cell.y);
+    return tile.origin + ivec2(cell.x & (tile.run - 1), 0)
+        + params.step * ivec2(cell.x >> tile.run_shift, cell.y);
 }
 
 uvec4 svgf_atrous_texel(ivec2 cell) {
@@ -86,31 +92,37 @@ vec2 svgf_atrous_depth_luminance(ivec2 cell) {
     return s_svgf_depth_luminance[cell.y * SVGF_ATROUS_COLUMNS + cell.x];
 }
 
-// Reads the tile into shared memory, the workgroup's invocations taking every 256th cell.
+// Reads tile cell `cell` into shared memory: no surface outside the image.
+void svgf_atrous_load_cell(SvgfAtrousTile tile, ivec2 cell, ivec2 size) {
+    ivec2 q = svgf_atrous_cell_pixel(tile, cell);
+    uvec4 texel = uvec4(0u);
+    vec2 depth_luminance = vec2(svgf_atrous_no_surface(), 0.0);
+    if (inside_image(q, size)) {
+        vec4 c = texelFetch(u_in, q, 0);
+        vec3 n = imageLoad(u_normal_roughness, q).xyz;
+        texel = uvec4(packHalf2x16(c.rg), packHalf2x16(c.ba), packHalf2x16(n.xy),
+                      packHalf2x16(vec2(n.z, 0.0)));
+        float z = imageLoad(u_depth, q).x;
+        depth_luminance = vec2(z > 0.0 ? z : svgf_atrous_no_surface(), luminance(c.rgb));
+    }
+    s_svgf_texel[cell.y * SVGF_ATROUS_COLUMNS + cell.x] = texel;
+    s_svgf_depth_luminance[cell.y * SVGF_ATROUS_COLUMNS + cell.x] = depth_luminance;
+}
+
+// Reads the tile into shared memory, invocation (x, y) taking the cells (x + 16 i, y + 16 j).
 void svgf_atrous_load(SvgfAtrousTile tile, ivec2 size) {
-    int cells = tile.columns * SVGF_ATROUS_ROWS;
-    for (int i = int(gl_LocalInvocationIndex); i < cells;
-         i += SVGF_ATROUS_GROUP * SVGF_ATROUS_GROUP) {
-        ivec2 cell = ivec2(i % tile.columns, i / tile.columns);
-        ivec2 q = svgf_atrous_cell_pixel(tile, cell);
-        uvec4 texel = uvec4(0u);
-        vec2 depth_luminance = vec2(svgf_atrous_no_surface(), 0.0);
-        if (all(greaterThanEqual(q, ivec2(0))) && all(lessThan(q, size))) {
-            vec4 c = texelFetch(u_in, q, 0);
-            vec3 n = imageLoad(u_normal_roughness, q).xyz;
-            texel = uvec4(packHalf2x16(c.rg), packHalf2x16(c.ba), packHalf2x16(n.xy),
-                          packHalf2x16(vec2(n.z, 0.0)));
-            float z = imageLoad(u_depth, q).x;
-            depth_luminance = vec2(z > 0.0 ? z : svgf_atrous_no_surface(), luminance(c.rgb));
+    for (int row = int(gl_LocalInvocationID.y); row < SVGF_ATROUS_ROWS; row += SVGF_ATROUS_GROUP) {
+        for (int column = int(gl_LocalInvocationID.x); column < tile.columns;
+             column += SVGF_ATROUS_GROUP) {
+            svgf_atrous_load_cell(tile, ivec2(column, row), size);
         }
-        s_svgf_texel[cell.y * SVGF_ATROUS_COLUMNS + cell.x] = texel;
-        s_svgf_depth_luminance[cell.y * SVGF_ATROUS_COLUMNS + cell.x] = depth_luminance;
     }
 }
 
 // The standard deviations of the 3x3 pixels around `pixel`, row by row, clamped at the image's
-// border (by the sampler): four gathers of 2x2 texels, whose corner is `pixel`'s top left. From
-// step 2 on a pixel's neighbours are not in its tile.
+// border (by the sampler): four gathers of 2x2 texels, the first ending at `pixel` (its
+// coordinate is the corner between pixel - 1 and pixel). From step 2 on a pixel's neighbours
+// are not in its tile.
 float[9] svgf_atrous_deviations(ivec2 pixel, ivec2 size) {
     vec2 corner = vec2(pixel) / vec2(size);
     // Each gather's texels: x (left, bottom), y (right, bottom), z (right, top), w (left, top).
