@@ -149,10 +149,45 @@ float svgf_blurred_variance(ivec2 pixel, ivec2 size) {
     return blurred_variance;
 }
 
+// log2 of the 5x5 B3-spline kernel's 1D weights 0, 1 and 2 taps from the centre, relative to the
+// centre's (3/8, 1/4, 1/16 over 3/8).
+const float SVGF_ATROUS_LOG2_KERNEL[3] = float[3](0.0, log2(0.25 / 0.375), log2(0.0625 / 0.375));
+const float SVGF_LOG2E = 1.44269504088896;
+
+// What the edge-stopping weights of a centre pixel's taps divide by, as rates of exp2: each tap's
+// weight is exp2(log2 kernel + sigma_n log2(max(n.n_q, 0)) - |z - z_q| depth_rate(distance)
+// - |l - l_q| luminance_rate), the kernel weight times svgf_edge_weight in one exp2.
+struct SvgfAtrousRates {
+    // The depth rate is log2(e) / (depth_slope * distance in taps + depth_offset).
+    float depth_slope;
+    float depth_offset;
+    float luminance_rate;
+};
+
+SvgfAtrousRates svgf_atrous_rates(float z, float slope, float blurred_variance) {
+    SvgfAtrousRates rates;
+    rates.depth_slope = params.sigma_z * slope * float(params.step);
+    rates.depth_offset = 1e-3 * z + 1e-6;
+    float sigma_l_std = params.sigma_l * sqrt(max(blurred_variance, 0.0));
+    rates.luminance_rate = SVGF_LOG2E / (sigma_l_std + 1e-8);
+    return rates;
+}
+
+// The weight of the tap (dx, dy) taps away, at depth and luminance `tap_zl` and normal `tap_n`,
+// of a centre at `zl` and `n` (0 where the tap's depth is -infinity, no surface).
+float svgf_atrous_weight(SvgfAtrousRates rates, ivec2 d, vec2 zl, vec3 n, vec2 tap_zl,
+                         vec3 tap_n) {
+    float depth_rate = SVGF_LOG2E / (rates.depth_slope * length(vec2(d)) + rates.depth_offset);
+    float exponent = SVGF_ATROUS_LOG2_KERNEL[abs(d.x)] + SVGF_ATROUS_LOG2_KERNEL[abs(d.y)]
+        + params.sigma_n * log2(max(dot(n, tap_n), 0.0))
+        - abs(zl.x - tap_zl.x) * depth_rate - abs(zl.y - tap_zl.y) * rates.luminance_rate;
+    return exp2(exponent);
+}
+
 // The 5x5 B3-spline kernel taps `params.step` pixels apart around tile cell `cell`, weighted by
 // depth (with the centre's `slope`), normal and luminance edge stopping (the luminance scale is
-// the standard deviation from `blurred_variance`). Variance is filtered with the squared weights.
-// Taps where no surface is weigh 0.
+// the standard deviation from `blurred_variance`): svgf_atrous_weight. Variance is filtered with
+// the squared weights.
 vec4 svgf_atrous_filter(int run, ivec2 cell, float slope, float blurred_variance) {
     uvec4 texel = svgf_atrous_texel(cell);
     vec4 centre = svgf_atrous_color(texel);
@@ -160,12 +195,10 @@ vec4 svgf_atrous_filter(int run, ivec2 cell, float slope, float blurred_variance
     if (zl.x <= 0.0) {
         return centre;
     }
-    float variance = svgf_filtered_variance(centre);
     vec3 n = svgf_atrous_normal(texel);
-    float sigma_l_std = params.sigma_l * sqrt(max(blurred_variance, 0.0));
-    const float kernel[3] = float[3](0.375, 0.25, 0.0625);
+    SvgfAtrousRates rates = svgf_atrous_rates(zl.x, slope, blurred_variance);
     vec3 color_sum = centre.rgb;
-    float variance_sum = variance;
+    float variance_sum = svgf_filtered_variance(centre);
     float weight_sum = 1.0;
     for (int dy = -2; dy <= 2; ++dy) {
         for (int dx = -2; dx <= 2; ++dx) {
@@ -173,16 +206,15 @@ vec4 svgf_atrous_filter(int run, ivec2 cell, float slope, float blurred_variance
                 continue;
             }
             ivec2 q = cell + ivec2(dx * run, dy);
-            vec2 tap_zl = svgf_atrous_depth_luminance(q);
             uvec4 tap_texel = svgf_atrous_texel(q);
             vec4 tap = svgf_atrous_color(tap_texel);
-            float w = kernel[abs(dx)] * kernel[abs(dy)] / (kernel[0] * kernel[0])
-                * svgf_edge_weight(zl.x, tap_zl.x, slope,
-                                   float(params.step) * length(vec2(dx, dy)), n,
-                                   svgf_atrous_normal(tap_texel), zl.y, tap_zl.y, sigma_l_std,
-                                   params.sigma_z, params.sigma_n);
+            float w = svgf_atrous_weight(rates, ivec2(dx, dy), zl, n,
+                                         svgf_atrous_depth_luminance(q),
+                                         svgf_atrous_normal(tap_texel));
             color_sum += w * tap.rgb;
-            variance_sum += w * w * svgf_filtered_variance(tap);
+            // w^2 times the variance, the square of the standard deviation the texel holds.
+            float weighted_deviation = w * tap.a;
+            variance_sum += weighted_deviation * weighted_deviation;
             weight_sum += w;
         }
     }
