@@ -1,8 +1,8 @@
 // One iteration of SVGF's edge-avoiding a-trous wavelet filter, its taps read from shared memory.
-// Requires math.glsl, image_coords.glsl, svgf/common.glsl, the images `u_in` (illumination rgb,
-// standard deviation a: svgf_pack_filtered), `u_depth`, `u_normal_roughness`, `u_depth_slope`
-// (svgf/variance.comp), and `params` with `step` (a power of two), `sigma_z`, `sigma_n`,
-// `sigma_l`. Declares the workgroup size; the dispatch is `threads` in
+// Requires math.glsl, image_coords.glsl, svgf/common.glsl, the sampler `u_in` (illumination rgb,
+// standard deviation a: svgf_pack_filtered; clamped to its edge), the images `u_depth`,
+// `u_normal_roughness`, `u_depth_slope` (svgf/variance.comp), and `params` with `step` (a power
+// of two), `sigma_z`, `sigma_n`, `sigma_l`. Declares the workgroup size; the dispatch is `threads` in
 // passes/src/denoise/svgf/atrous.rs.
 //
 // Work layout. A workgroup of 16x16 invocations filters pixels `step` apart in y (one residue of
@@ -29,41 +29,46 @@ const int SVGF_ATROUS_ROWS = SVGF_ATROUS_GROUP + 2 * SVGF_ATROUS_HALO;
 const int SVGF_ATROUS_MAX_RUN = 4;
 const int SVGF_ATROUS_COLUMNS =
     SVGF_ATROUS_MAX_RUN * (SVGF_ATROUS_GROUP / SVGF_ATROUS_MAX_RUN + 2 * SVGF_ATROUS_HALO);
-// Row stride of the depths: 16 modulo 32 words, so that the two rows of 16 cells a subgroup of 32
-// reads fall in different banks.
-const int SVGF_ATROUS_DEPTH_STRIDE = 48;
 
 // Per cell, as the halves the images hold: illumination rg, illumination b and standard
 // deviation, normal xy, normal z (and 16 unused bits).
 shared uvec4 s_svgf_texel[SVGF_ATROUS_ROWS * SVGF_ATROUS_COLUMNS];
-// Per cell, the view depth; 0 outside the image, which the taps skip as they skip the sky.
-shared float s_svgf_depth[SVGF_ATROUS_ROWS * SVGF_ATROUS_DEPTH_STRIDE];
 
-// Where a workgroup's tile lies (see the layout above).
+// Per cell, the view depth and the illumination's luminance. The depth is -infinity where no
+// surface is (the sky, outside the image): a tap there weighs exactly 0, as if skipped.
+shared vec2 s_svgf_depth_luminance[SVGF_ATROUS_ROWS * SVGF_ATROUS_COLUMNS];
+
+// Where a workgroup's tile lies (see the layout above). The step and the run are powers of two:
+// their divisions are shifts.
 struct SvgfAtrousTile {
     ivec2 origin;
     int run;
+    int run_shift;
     int columns;
 };
 
 SvgfAtrousTile svgf_atrous_tile() {
     int step = params.step;
+    int step_shift = findLSB(step);
     SvgfAtrousTile tile;
     tile.run = min(step, SVGF_ATROUS_MAX_RUN);
-    tile.columns = tile.run * (SVGF_ATROUS_GROUP / tile.run + 2 * SVGF_ATROUS_HALO);
-    // Workgroups go through the runs of residues first, then the tiles of each residue's grid.
-    int runs = step / tile.run;
+    tile.run_shift = findLSB(tile.run);
+    tile.columns = SVGF_ATROUS_GROUP + 2 * SVGF_ATROUS_HALO * tile.run;
+    // Workgroups go through the step / run runs of residues first, then the tiles of each
+    // residue's grid.
+    int runs_shift = step_shift - tile.run_shift;
     ivec2 group = ivec2(gl_WorkGroupID.xy);
-    ivec2 residue = ivec2(group.x % runs * tile.run, group.y % step);
-    ivec2 first = ivec2(group.x / runs * (SVGF_ATROUS_GROUP / tile.run),
-                        group.y / step * SVGF_ATROUS_GROUP);
+    ivec2 residue = ivec2((group.x & ((1 << runs_shift) - 1)) << tile.run_shift,
+                          group.y & (step - 1));
+    ivec2 first = ivec2((group.x >> runs_shift) * (SVGF_ATROUS_GROUP >> tile.run_shift),
+                        (group.y >> step_shift) * SVGF_ATROUS_GROUP);
     tile.origin = residue + step * (first - SVGF_ATROUS_HALO);
     return tile;
 }
 
 ivec2 svgf_atrous_cell_pixel(SvgfAtrousTile tile, ivec2 cell) {
-    return tile.origin + ivec2(cell.x % tile.run, 0)
-        + params.step * ivec2(cell.x / tile.run, cell.y);
+    return tile.origin + ivec2(cell.x & (tile.run - 1), 0)
+        + params.step * ivec2(cell.x >> tile.run_shift, cell.y);
 }
 
 uvec4 svgf_atrous_texel(ivec2 cell) {
@@ -78,64 +83,122 @@ vec3 svgf_atrous_normal(uvec4 texel) {
     return vec3(unpackHalf2x16(texel.z), unpackHalf2x16(texel.w).x);
 }
 
-float svgf_atrous_depth(ivec2 cell) {
-    return s_svgf_depth[cell.y * SVGF_ATROUS_DEPTH_STRIDE + cell.x];
+// The depth of a cell where no surface is: -infinity.
+float svgf_atrous_no_surface() {
+    return -uintBitsToFloat(0x7f800000u);
 }
 
-// Reads the tile into shared memory, the workgroup's invocations taking every 256th cell.
+vec2 svgf_atrous_depth_luminance(ivec2 cell) {
+    return s_svgf_depth_luminance[cell.y * SVGF_ATROUS_COLUMNS + cell.x];
+}
+
+// Reads tile cell `cell` into shared memory: no surface outside the image.
+void svgf_atrous_load_cell(SvgfAtrousTile tile, ivec2 cell, ivec2 size) {
+    ivec2 q = svgf_atrous_cell_pixel(tile, cell);
+    uvec4 texel = uvec4(0u);
+    vec2 depth_luminance = vec2(svgf_atrous_no_surface(), 0.0);
+    if (inside_image(q, size)) {
+        vec4 c = texelFetch(u_in, q, 0);
+        vec3 n = imageLoad(u_normal_roughness, q).xyz;
+        texel = uvec4(packHalf2x16(c.rg), packHalf2x16(c.ba), packHalf2x16(n.xy),
+                      packHalf2x16(vec2(n.z, 0.0)));
+        float z = imageLoad(u_depth, q).x;
+        depth_luminance = vec2(z > 0.0 ? z : svgf_atrous_no_surface(), luminance(c.rgb));
+    }
+    s_svgf_texel[cell.y * SVGF_ATROUS_COLUMNS + cell.x] = texel;
+    s_svgf_depth_luminance[cell.y * SVGF_ATROUS_COLUMNS + cell.x] = depth_luminance;
+}
+
+// Reads the tile into shared memory, invocation (x, y) taking the cells (x + 16 i, y + 16 j).
 void svgf_atrous_load(SvgfAtrousTile tile, ivec2 size) {
-    int cells = tile.columns * SVGF_ATROUS_ROWS;
-    for (int i = int(gl_LocalInvocationIndex); i < cells;
-         i += SVGF_ATROUS_GROUP * SVGF_ATROUS_GROUP) {
-        ivec2 cell = ivec2(i % tile.columns, i / tile.columns);
-        ivec2 q = svgf_atrous_cell_pixel(tile, cell);
-        uvec4 texel = uvec4(0u);
-        float z = 0.0;
-        if (all(greaterThanEqual(q, ivec2(0))) && all(lessThan(q, size))) {
-            vec4 c = imageLoad(u_in, q);
-            vec3 n = imageLoad(u_normal_roughness, q).xyz;
-            texel = uvec4(packHalf2x16(c.rg), packHalf2x16(c.ba), packHalf2x16(n.xy),
-                          packHalf2x16(vec2(n.z, 0.0)));
-            z = imageLoad(u_depth, q).x;
+    for (int row = int(gl_LocalInvocationID.y); row < SVGF_ATROUS_ROWS; row += SVGF_ATROUS_GROUP) {
+        for (int column = int(gl_LocalInvocationID.x); column < tile.columns;
+             column += SVGF_ATROUS_GROUP) {
+            svgf_atrous_load_cell(tile, ivec2(column, row), size);
         }
-        s_svgf_texel[cell.y * SVGF_ATROUS_COLUMNS + cell.x] = texel;
-        s_svgf_depth[cell.y * SVGF_ATROUS_DEPTH_STRIDE + cell.x] = z;
     }
 }
 
+// The standard deviations of the 3x3 pixels around `pixel`, row by row, clamped at the image's
+// border (by the sampler): four gathers of 2x2 texels, the first ending at `pixel` (its
+// coordinate is the corner between pixel - 1 and pixel). From step 2 on a pixel's neighbours
+// are not in its tile.
+float[9] svgf_atrous_deviations(ivec2 pixel, ivec2 size) {
+    vec2 corner = vec2(pixel) / vec2(size);
+    // Each gather's texels: x (left, bottom), y (right, bottom), z (right, top), w (left, top).
+    vec4 top_left = textureGather(u_in, corner, 3);
+    vec4 top_right = textureGatherOffset(u_in, corner, ivec2(2, 0), 3);
+    vec4 bottom_left = textureGatherOffset(u_in, corner, ivec2(0, 2), 3);
+    vec4 bottom_right = textureGatherOffset(u_in, corner, ivec2(2, 2), 3);
+    return float[9](top_left.w, top_left.z, top_right.w, top_left.x, top_left.y, top_right.x,
+                    bottom_left.w, bottom_left.z, bottom_right.w);
+}
+
 // The 3x3 Gaussian of the variance around `pixel`, clamped at the image's border: the luminance
-// scale of the edge stopping. From step 2 on a pixel's neighbours are not in its tile: they are
-// read from `u_in`.
+// scale of the edge stopping.
 float svgf_blurred_variance(ivec2 pixel, ivec2 size) {
     const float gauss[2] = float[2](0.25, 0.125);
+    float deviations[9] = svgf_atrous_deviations(pixel, size);
     float blurred_variance = 0.0;
     for (int dy = -1; dy <= 1; ++dy) {
         for (int dx = -1; dx <= 1; ++dx) {
-            ivec2 q = clamp(pixel + ivec2(dx, dy), ivec2(0), size - 1);
-            blurred_variance += gauss[abs(dx)] * gauss[abs(dy)] * 4.0
-                * svgf_filtered_variance(imageLoad(u_in, q));
+            float deviation = deviations[3 * dy + dx + 4];
+            blurred_variance += gauss[abs(dx)] * gauss[abs(dy)] * 4.0 * (deviation * deviation);
         }
     }
     return blurred_variance;
 }
 
+// log2 of the 5x5 B3-spline kernel's 1D weights 0, 1 and 2 taps from the centre, relative to the
+// centre's (3/8, 1/4, 1/16 over 3/8).
+const float SVGF_ATROUS_LOG2_KERNEL[3] = float[3](0.0, log2(0.25 / 0.375), log2(0.0625 / 0.375));
+const float SVGF_LOG2E = 1.44269504088896;
+
+// What the edge-stopping weights of a centre pixel's taps divide by, as rates of exp2: each tap's
+// weight is exp2(log2 kernel + sigma_n log2(max(n.n_q, 0)) - |z - z_q| depth_rate(distance)
+// - |l - l_q| luminance_rate), the kernel weight times svgf_edge_weight in one exp2.
+struct SvgfAtrousRates {
+    // The depth rate is log2(e) / (depth_slope * distance in taps + depth_offset).
+    float depth_slope;
+    float depth_offset;
+    float luminance_rate;
+};
+
+SvgfAtrousRates svgf_atrous_rates(float z, float slope, float blurred_variance) {
+    SvgfAtrousRates rates;
+    rates.depth_slope = params.sigma_z * slope * float(params.step);
+    rates.depth_offset = 1e-3 * z + 1e-6;
+    float sigma_l_std = params.sigma_l * sqrt(max(blurred_variance, 0.0));
+    rates.luminance_rate = SVGF_LOG2E / (sigma_l_std + 1e-8);
+    return rates;
+}
+
+// The weight of the tap (dx, dy) taps away, at depth and luminance `tap_zl` and normal `tap_n`,
+// of a centre at `zl` and `n` (0 where the tap's depth is -infinity, no surface).
+float svgf_atrous_weight(SvgfAtrousRates rates, ivec2 d, vec2 zl, vec3 n, vec2 tap_zl,
+                         vec3 tap_n) {
+    float depth_rate = SVGF_LOG2E / (rates.depth_slope * length(vec2(d)) + rates.depth_offset);
+    float exponent = SVGF_ATROUS_LOG2_KERNEL[abs(d.x)] + SVGF_ATROUS_LOG2_KERNEL[abs(d.y)]
+        + params.sigma_n * log2(max(dot(n, tap_n), 0.0))
+        - abs(zl.x - tap_zl.x) * depth_rate - abs(zl.y - tap_zl.y) * rates.luminance_rate;
+    return exp2(exponent);
+}
+
 // The 5x5 B3-spline kernel taps `params.step` pixels apart around tile cell `cell`, weighted by
 // depth (with the centre's `slope`), normal and luminance edge stopping (the luminance scale is
-// the standard deviation from `blurred_variance`). Variance is filtered with the squared weights.
+// the standard deviation from `blurred_variance`): svgf_atrous_weight. Variance is filtered with
+// the squared weights.
 vec4 svgf_atrous_filter(int run, ivec2 cell, float slope, float blurred_variance) {
     uvec4 texel = svgf_atrous_texel(cell);
     vec4 centre = svgf_atrous_color(texel);
-    float z = svgf_atrous_depth(cell);
-    if (z <= 0.0) {
+    vec2 zl = svgf_atrous_depth_luminance(cell);
+    if (zl.x <= 0.0) {
         return centre;
     }
-    float variance = svgf_filtered_variance(centre);
     vec3 n = svgf_atrous_normal(texel);
-    float l = luminance(centre.rgb);
-    float sigma_l_std = params.sigma_l * sqrt(max(blurred_variance, 0.0));
-    const float kernel[3] = float[3](0.375, 0.25, 0.0625);
+    SvgfAtrousRates rates = svgf_atrous_rates(zl.x, slope, blurred_variance);
     vec3 color_sum = centre.rgb;
-    float variance_sum = variance;
+    float variance_sum = svgf_filtered_variance(centre);
     float weight_sum = 1.0;
     for (int dy = -2; dy <= 2; ++dy) {
         for (int dx = -2; dx <= 2; ++dx) {
@@ -143,18 +206,15 @@ vec4 svgf_atrous_filter(int run, ivec2 cell, float slope, float blurred_variance
                 continue;
             }
             ivec2 q = cell + ivec2(dx * run, dy);
-            float zq = svgf_atrous_depth(q);
-            if (zq <= 0.0) {
-                continue;
-            }
             uvec4 tap_texel = svgf_atrous_texel(q);
             vec4 tap = svgf_atrous_color(tap_texel);
-            float w = kernel[abs(dx)] * kernel[abs(dy)] / (kernel[0] * kernel[0])
-                * svgf_edge_weight(z, zq, slope, float(params.step) * length(vec2(dx, dy)), n,
-                                   svgf_atrous_normal(tap_texel), l, luminance(tap.rgb),
-                                   sigma_l_std, params.sigma_z, params.sigma_n);
+            float w = svgf_atrous_weight(rates, ivec2(dx, dy), zl, n,
+                                         svgf_atrous_depth_luminance(q),
+                                         svgf_atrous_normal(tap_texel));
             color_sum += w * tap.rgb;
-            variance_sum += w * w * svgf_filtered_variance(tap);
+            // w^2 times the variance, the square of the standard deviation the texel holds.
+            float weighted_deviation = w * tap.a;
+            variance_sum += weighted_deviation * weighted_deviation;
             weight_sum += w;
         }
     }
@@ -165,7 +225,7 @@ vec4 svgf_atrous_filter(int run, ivec2 cell, float slope, float blurred_variance
 // texel (`filtered`, at `pixel`). The pixel's own reads (depth slope, blurred variance) go out
 // before the tile's, so that they wait together.
 bool svgf_atrous(out ivec2 pixel, out vec4 filtered) {
-    ivec2 size = imageSize(u_in);
+    ivec2 size = textureSize(u_in, 0);
     SvgfAtrousTile tile = svgf_atrous_tile();
     ivec2 cell = ivec2(gl_LocalInvocationID.xy)
         + ivec2(SVGF_ATROUS_HALO * tile.run, SVGF_ATROUS_HALO);

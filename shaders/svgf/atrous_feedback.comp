@@ -5,7 +5,7 @@
 #include "common/image_coords.glsl"
 #include "svgf/common.glsl"
 
-layout(set = 0, binding = 0, rgba16f) uniform readonly image2D u_in;
+layout(set = 0, binding = 0) uniform sampler2D u_in;
 layout(set = 0, binding = 1, r32f) uniform readonly image2D u_depth;
 layout(set = 0, binding = 2, rgba16f) uniform readonly image2D u_normal_roughness;
 layout(set = 0, binding = 3, r32f) uniform readonly image2D u_depth_slope;

@@ -3,9 +3,9 @@
 //!
 //! Each iteration's workgroup filters 16x16 pixels a step apart (in x, runs of up to 4 adjacent
 //! pixels a step apart) and first reads the tile their 5x5 taps cover into shared memory: per
-//! pixel, 1.6 to 2.5 texels of each of the illumination, depth and normal images, and 10 fetches
-//! of its own (the depth slope, the 3x3 blurred variance), about 15 in all where taps reading the
-//! images would take 87 (the iterations are bound by the number of fetches more than by bytes).
+//! pixel, 1.6 to 2.5 texels of each of the illumination, depth and normal images, and 5 fetches
+//! of its own (the depth slope, four gathers of the 3x3 standard deviations the luminance scale
+//! blurs), about 10 in all where taps reading the images would take 87.
 
 use super::SvgfParams;
 use crate::denoise::gbuffer::GBuffer;
@@ -51,7 +51,7 @@ pub(super) fn add(
         };
         let step = 1 << i;
         let mut pass = g.compute_pass("svgf.atrous", shader);
-        pass.read("u_in", filtered)
+        pass.sample("u_in", filtered)
             .read("u_depth", gbuffer.depth)
             .read("u_normal_roughness", gbuffer.normal_roughness)
             .read("u_depth_slope", depth_slope);
