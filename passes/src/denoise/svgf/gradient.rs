@@ -35,7 +35,9 @@ pub(super) struct GradientInputs {
     pub height: u32,
 }
 
-/// Adds the gradient passes; returns per stratum (filtered luminance difference, normaliser).
+/// Adds the gradient passes; returns per stratum (filtered luminance difference, normaliser). When
+/// nothing was replayed this frame the gradients are zero, and so is their filtered image: the
+/// filter passes are not added.
 pub(super) fn add(g: &mut RenderGraph, inputs: &GradientInputs) -> ImageHandle {
     let stratum = inputs.stratum;
     let (gw, gh) = (
@@ -63,6 +65,9 @@ pub(super) fn add(g: &mut RenderGraph, inputs: &GradientInputs) -> ImageHandle {
         }
     });
     pass.dispatch([gw, gh, 1]);
+    if inputs.replay.stratum == 0 {
+        return out;
+    }
     (0..FILTER_ITERATIONS).fold(out, |input, i| {
         let mut pass = g.compute_pass("svgf.gradient_filter", &GRADIENT_FILTER);
         pass.read("u_in", input);
