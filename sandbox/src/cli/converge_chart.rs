@@ -201,6 +201,15 @@ fn log_ticks(range: &std::ops::Range<f64>) -> (Vec<f64>, Vec<f64>) {
     (bold, light)
 }
 
+/// `root` filled white and split into `panels` areas side by side (at least one).
+fn side_by_side<DB: DrawingBackend>(
+    root: &DrawingArea<DB, Shift>,
+    panels: usize,
+) -> Result<Vec<DrawingArea<DB, Shift>>, DrawingAreaErrorKind<DB::ErrorType>> {
+    root.fill(&WHITE)?;
+    Ok(root.split_evenly((1, panels.max(1))))
+}
+
 /// Whether a point can be drawn on log-log axes.
 fn drawable(&(x, y): &(f64, f64)) -> bool {
     x.is_finite() && y.is_finite() && x > 0.0 && y > 0.0
@@ -302,9 +311,11 @@ impl Figure for SpeedVsAccuracy<'_> {
         &self,
         root: &DrawingArea<DB, Shift>,
     ) -> Result<(), DrawingAreaErrorKind<DB::ErrorType>> {
-        root.fill(&WHITE)?;
-        let areas = root.split_evenly((1, self.panels.len().max(1)));
-        for (panel, area) in self.panels.iter().zip(&areas) {
+        for (panel, area) in self
+            .panels
+            .iter()
+            .zip(&side_by_side(root, self.panels.len())?)
+        {
             // Room on the right and above for the points' names.
             let x = log_range(panel.points.iter().map(|(_, p)| p.0), 2.0);
             let y = log_range(panel.points.iter().map(|(_, p)| p.1), 1.3);
@@ -365,9 +376,11 @@ impl Figure for TimeToConverge<'_> {
         &self,
         root: &DrawingArea<DB, Shift>,
     ) -> Result<(), DrawingAreaErrorKind<DB::ErrorType>> {
-        root.fill(&WHITE)?;
-        let areas = root.split_evenly((1, self.panels.len().max(1)));
-        for (panel, area) in self.panels.iter().zip(&areas) {
+        for (panel, area) in self
+            .panels
+            .iter()
+            .zip(&side_by_side(root, self.panels.len())?)
+        {
             draw_time_to_converge(panel, self.x_label, area)?;
         }
         Ok(())
