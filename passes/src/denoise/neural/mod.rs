@@ -490,10 +490,11 @@ fn add_conv(
         (Some(half_weights), Some((_, half_offsets))) => {
             let bias = offset + 9 * layer.inputs() * out_channels / 4;
             let half_offset = half_offsets[index];
-            // Workgroups of eight subgroups, one row of 16 pixels each, and up to 32 output
+            // Workgroups of four subgroups, two rows of 16 pixels each, and up to 32 output
             // channels (64-channel layers in two workgroups): the fastest of the configurations
-            // measured on an H100 (`bench/README.md`); more rows per subgroup spill registers.
-            let (subgroups, rows, group_tiles) = (8, 1, 2);
+            // measured on an H100 (`bench/README.md`); a subgroup's two rows share the staged
+            // rows their taps read, three rows take too many registers.
+            let (subgroups, rows, group_tiles) = (4, 2, 2);
             let tiles = out_channels.div_ceil(16);
             let half = half_size(size);
             let quarter = half_size(half);
