@@ -16,7 +16,8 @@
 #   dataset.json          the dataset's index
 # (6 files: what the GPU machine sends back is limited to 8.)
 # A variant is MODEL:LOSS[:BURN_IN[:SEED[:WEIGHTS]]] (train.py's --model, --loss, --burn-in, --seed,
-# --weights: the loss terms' weights, comma-separated) and is named
+# --weights: the loss terms' weights, comma-separated; a BURN_IN of J-K draws each step's from J to
+# K, train.py's --burn-in-min J --burn-in K) and is named
 # MODEL-LOSS[-burnK][-seedN][-wA_B_C]. VARIANTS defaults to
 # "direct:l1grad:12 kernel:l1grad:12"; SEED (0) is the seed of variants that name none: the same
 # seed draws the same training windows. Also: LUCID, SHARDS, ROOMS, FRAMES, SEQUENCES
@@ -45,7 +46,11 @@ for v in $variants; do
     if [ "$n" = "$name" ]; then echo "variant $name twice" >&2; exit 2; fi
   done
   names+=("$name")
-  args+=("--model $model --loss $loss --burn-in ${burn:-0} --seed ${seed:-${SEED:-0}}${weights:+ --weights $weights}")
+  burn_args="--burn-in ${burn:-0}"
+  if [[ $burn == *-* ]]; then
+    burn_args="--burn-in-min ${burn%-*} --burn-in ${burn#*-}"
+  fi
+  args+=("--model $model --loss $loss $burn_args --seed ${seed:-${SEED:-0}}${weights:+ --weights $weights}")
 done
 ship=${SHIP:-${names[0]}}
 mkdir -p "$out"

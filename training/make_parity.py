@@ -3,7 +3,8 @@ of per-pixel records and what `model.py` (or `kernel_model.py`, as the weights' 
 says) computes from them with the given weights (half-precision storage emulated): the denoised
 radiance (`expected`), the running mean with its length (`accum`), the second moment of luminance
 (`moment`) and the range-compressed running mean with its second moment (`robust`), which
-`tests/neural_parity.rs` checks the Vulkan inference against.
+`tests/neural_parity.rs` checks the Vulkan inference against. The synthetic pair also has each
+pixel's object id (`objects`; the others are all one object, as records have no ids).
 
     python3 make_parity.py --weights ../passes/src/denoise/neural/lucid-rae-v3.safetensors \
         [--data DATASET_DIR | --records FIXTURE] --out ../tests/references/neural_parity.safetensors
@@ -11,7 +12,8 @@ radiance (`expected`), the running mean with its length (`accum`), the second mo
 With `--data`, the frames are a 32x24 crop of the first validation sequence's first two frames;
 with `--records`, the records of an existing fixture (to keep its frames when only the model or
 the weights change); without either, a synthetic pair (a textured plane seen by a camera that
-moves by a sub-pixel offset, sky in a corner, and an object appearing in the second frame).
+moves by a sub-pixel offset, an emitter on it that is an object of its own, sky in a corner, and
+an object appearing in the second frame).
 Run it again whenever the weights change.
 """
 
@@ -23,15 +25,17 @@ import torch
 from safetensors.torch import load_file, save_file
 
 from data import dataset_folders
-from model import RECORD_SIZE
+from model import OBJECT_BITS, RECORD_SIZE
 from train import build_model, load_weights
 
 W, H = 32, 24
 
 
 def synthetic():
+    """The synthetic records and their object ids ([2,1,H,W], as the shaders keep them)."""
     g = torch.Generator().manual_seed(7)
     rec = torch.zeros(2, RECORD_SIZE, H, W)
+    objects = torch.zeros(2, 1, H, W)
     ys, xs = torch.meshgrid(torch.arange(H).float(), torch.arange(W).float(), indexing="ij")
     shift = torch.tensor([0.35, -0.6])
     for t in range(2):
@@ -40,7 +44,9 @@ def synthetic():
         albedo = torch.stack([0.5 + 0.4 * torch.sin(u * 0.7), 0.5 + 0.4 * torch.cos(v * 0.5), 0.6 + 0.0 * u])
         rec[t, 0:3] = torch.empty(3, H, W).exponential_(1.0, generator=g) * (1.0 + 0.5 * torch.sin(u * 0.2))
         rec[t, 3:6] = albedo
-        rec[t, 6:9] = torch.where((u > 20) & (v < 6), 4.0, 0.0).expand(3, H, W)
+        emitter = (u > 20) & (v < 6)
+        rec[t, 6:9] = torch.where(emitter, 4.0, 0.0).expand(3, H, W)
+        objects[t, 0] = torch.where(emitter, 1.0, 0.0)
         n = torch.stack([0.1 * torch.sin(u * 0.3), torch.ones_like(u), 0.1 * torch.cos(v * 0.3)])
         rec[t, 9:12] = n / n.norm(dim=0, keepdim=True)
         rec[t, 12] = 0.3 + 0.2 * torch.sin(u * 0.1)
@@ -48,13 +54,15 @@ def synthetic():
         depth[:3, :5] = 0.0  # sky
         if t == 1:
             depth[12:20, 8:16] = 1.5  # an object that last frame did not see here: disoccluded
+            objects[t, 0, 12:20, 8:16] = 2.0
+        objects[t, 0, :3, :5] = float(OBJECT_BITS)  # the sky's id
         rec[t, 13] = depth
         rec[t, 14] = -shift[0]
         rec[t, 15] = -shift[1]
         rec[t, 16] = torch.where(depth > 0, depth + 0.01, 0.0)
     # Half floats, as `lucid dataset` stores records (the parity test uploads the half-precision
     # channels into the G-buffer's half-precision images, exactly).
-    return rec.half().float()
+    return rec.half().float(), objects
 
 
 def from_dataset(root):
@@ -78,23 +86,27 @@ def main():
     decoder = safe_open_metadata(args.weights).get("decoder", "direct")
     model = build_model(decoder)
     load_weights(model, args.weights)
+    objects = None
     if args.data:
         record, source = from_dataset(args.data), args.data
     elif args.records:
         fixture = load_file(args.records)
-        record = fixture["record"]
+        record, objects = fixture["record"], fixture.get("objects")
         source = safe_open_metadata(args.records).get("source", args.records)
     else:
-        record, source = synthetic(), "synthetic"
+        (record, objects), source = synthetic(), "synthetic"
     expected, accum, moment, robust, state = [], [], [], [], None
     with torch.no_grad():
         for t in range(record.shape[0]):
-            y, state = model.step(record[t : t + 1], state, fp16_storage=True)
+            frame_objects = None if objects is None else objects[t : t + 1]
+            y, state = model.step(record[t : t + 1], state, fp16_storage=True, objects=frame_objects)
             expected.append(y[0])
             accum.append(state["accum"][0])
             moment.append(state["moment"][0])
             robust.append(state["robust"][0])
     tensors = {"record": record, "expected": expected, "accum": accum, "moment": moment, "robust": robust}
+    if objects is not None:
+        tensors["objects"] = objects
     tensors = {k: (torch.stack(v) if isinstance(v, list) else v).contiguous() for k, v in tensors.items()}
     metadata = {"weights": Path(args.weights).name, "decoder": decoder, "source": source}
     save_file(tensors, args.out, metadata=metadata)

@@ -7,7 +7,8 @@ the input features (with last frame's output and two running means of the noisy 
 it and one of it range-compressed against fireflies, warped by the motion vectors and masked where
 reprojection fails), the U-Net of 3x3 convolutions, and the
 output (a blend of the network's prediction with the warped history, re-modulated by the first
-hits' albedo plus emission averaged over time with the same warp, `antialias_surface`). With
+hits' albedo plus emission averaged over time with the same warp's taps of the same object,
+`antialias_surface`). With
 `fp16_storage=True` every tensor the shaders store in half precision is rounded to it here too,
 so the parity test can compare tightly.
 
@@ -56,11 +57,14 @@ MIN_WEIGHT = 0.01
 # (Rec. 709, `luminance` in shaders/common/math.glsl).
 N_MAX = 32.0
 # The first hits' albedo and emission that re-modulate the output are averaged over time as SVGF's
-# temporal pass averages them: each frame's values weigh at least SURFACE_ALPHA, and this frame's
-# emission at least EMISSION_MOTION times the pixel's motion in pixels (`antialias_surface`; 0.5
-# measured against 1, 0.25 and 0 on the held-out paths, training/README.md).
+# temporal pass averages them, from taps of the same object: each frame's values weigh at least
+# SURFACE_ALPHA, and this frame's emission at least EMISSION_MOTION times the pixel's motion in
+# pixels (`antialias_surface`; 0 measured against 0.25 and 0.5 on the held-out paths once the
+# taps had to be of the same object, training/README.md).
 SURFACE_ALPHA = 0.1
-EMISSION_MOTION = 0.5
+EMISSION_MOTION = 0.0
+# The bits of an object id the emission's history keeps in the shaders (exact in a float32).
+OBJECT_BITS = 0xFFFFFF
 LUMINANCE = (0.2126, 0.7152, 0.0722)
 
 
@@ -78,12 +82,14 @@ def half(x, enabled):
     return x.half().float() if enabled else x
 
 
-def warp_history(history, prev_surface, motion, normal, depth):
+def warp_history(history, prev_surface, motion, normal, depth, objects, surface_channels):
     """Bilinear reprojection of last frame's `history` [B,C,H,W] to this frame's pixels, each of
     the four taps kept only where last frame saw the same surface (depth within 5% of the depth
-    the motion vectors expect, normals within about 25 degrees; sky only to sky). Returns the
-    warped history and the validity mask [B,1,H,W] (1 where the taps' weights sum to at least
-    0.01)."""
+    the motion vectors expect, normals within about 25 degrees; sky only to sky). The last
+    `surface_channels` of the history (the averaged albedo and emission) keep, of those taps, only
+    the ones whose object (`prev_surface` channel 4) is this pixel's (`objects` [B,1,H,W]), and
+    are normalised by their own weights. Returns the warped history, the validity mask [B,1,H,W]
+    (1 where the taps' weights sum to at least 0.01) and the surface channels' own mask."""
     b, _, h, w = history.shape
     ys, xs = torch.meshgrid(
         torch.arange(h, device=history.device, dtype=torch.float32),
@@ -100,8 +106,12 @@ def warp_history(history, prev_surface, motion, normal, depth):
     here_sky = depth[:, 0] <= 0.0
     prev_depth = prev_surface[:, 0:1]
     prev_normal = prev_surface[:, 1:4]
-    acc = torch.zeros_like(history)
+    prev_objects = prev_surface[:, 4:5]
+    split = history.shape[1] - surface_channels
+    acc = torch.zeros_like(history[:, :split])
+    surface_acc = torch.zeros_like(history[:, split:])
     wsum = torch.zeros_like(expected)
+    surface_wsum = torch.zeros_like(expected)
     for dx, dy in ((0, 0), (1, 0), (0, 1), (1, 1)):
         qx = bx + dx
         qy = by + dy
@@ -125,11 +135,20 @@ def warp_history(history, prev_surface, motion, normal, depth):
         )
         valid = inside & torch.where(here_sky, q_sky, (~q_sky) & same)
         wv = torch.where(valid, wgt, torch.zeros_like(wgt))
-        acc = acc + wv.unsqueeze(1) * q_hist
+        acc = acc + wv.unsqueeze(1) * q_hist[:, :split]
         wsum = wsum + wv
-    ok = wsum >= MIN_WEIGHT
-    warped = torch.where(ok.unsqueeze(1), acc / wsum.clamp_min(1e-8).unsqueeze(1), torch.zeros_like(acc))
-    return warped, ok.float().unsqueeze(1)
+        same_object = valid & (gather(prev_objects)[:, 0] == objects[:, 0])
+        wo = torch.where(same_object, wgt, torch.zeros_like(wgt))
+        surface_acc = surface_acc + wo.unsqueeze(1) * q_hist[:, split:]
+        surface_wsum = surface_wsum + wo
+
+    def normalised(total, weights):
+        ok = weights >= MIN_WEIGHT
+        return torch.where(ok.unsqueeze(1), total / weights.clamp_min(1e-8).unsqueeze(1), torch.zeros_like(total)), ok
+
+    warped, ok = normalised(acc, wsum)
+    warped_surface, surface_ok = normalised(surface_acc, surface_wsum)
+    return torch.cat([warped, warped_surface], 1), ok.float().unsqueeze(1), surface_ok.float().unsqueeze(1)
 
 
 def luminance(rgb):
@@ -188,17 +207,15 @@ def antialias_surface(rec, warped_albedo, warped_emission, n, mask, emission_mot
     time: each frame's samples are jittered over the pixel, so one frame's are aliased and change
     from frame to frame at texture, emitter and object edges (the output flickered there).
 
-    Where reprojection holds (`mask`), the warped albedo moves towards this frame's by
-    max(1/n, SURFACE_ALPHA), n the running mean's history length this frame (as SVGF averages
-    it). The emission, as log(1 + emission), the same way but with a weight of at least the
-    pixel's motion in pixels times `emission_motion` (the model's: `EMISSION_MOTION` unless its
-    weights file's metadata says otherwise), and its history clamped to the range of this
-    frame's values over the pixel's 3x3 neighbourhood: under motion, at silhouettes, the
-    background moves otherwise than the surface, so a bright emitter's or the sky's share in last
-    frame's samples is not this frame's, and averaging it doubled the relMSE on `classroom`
-    (training/README.md); a still or slowly moving camera gets steady emitter edges, a light
-    switched off leaves no trail. Elsewhere both are this frame's. Returns (albedo, log emission),
-    [B,3,H,W] each."""
+    Where taps of the same object were reprojected (`mask`), the warped albedo moves towards this
+    frame's by max(1/n, SURFACE_ALPHA), n the running mean's history length this frame (as SVGF
+    averages it). The emission, as log(1 + emission), the same way but with a weight of at least
+    the pixel's motion in pixels times `emission_motion` (the model's: `EMISSION_MOTION` unless
+    its weights file's metadata says otherwise), and its history clamped to the range of this
+    frame's values over the pixel's 3x3 neighbourhood. Taps of another object would spread a
+    light's edge onto the ceiling beside it under motion (with them, averaging the emission
+    doubled the relMSE on `classroom`, training/README.md); a light switched off leaves no trail.
+    Elsewhere both are this frame's. Returns (albedo, log emission), [B,3,H,W] each."""
     ok = mask > 0.0
     alpha = torch.clamp(1.0 / n, min=SURFACE_ALPHA)
     albedo = torch.where(ok, warped_albedo + (rec["albedo"] - warped_albedo) * alpha, rec["albedo"])
@@ -264,26 +281,34 @@ class RecurrentDenoiser(nn.Module):
         # file's `emission_motion` metadata).
         self.emission_motion = EMISSION_MOTION
 
-    def step(self, record, state, fp16_storage=False):
-        """One frame. `record` [B,RECORD_SIZE,H,W]; `state` None (no history) or the dict returned
-        by the previous step (`output`: log radiance [B,3], `surface`: depth and normal [B,4],
+    def step(self, record, state, fp16_storage=False, objects=None):
+        """One frame. `record` [B,RECORD_SIZE,H,W]; `objects` [B,1,H,W] the object id of each
+        pixel's first hit (masked by OBJECT_BITS; None: all one object, as in the dataset, whose
+        records have no ids); `state` None (no history) or the dict returned by the previous step
+        (`output`: log radiance [B,3], `surface`: depth, normal and object [B,5],
         `accum`: running mean and its length [B,4], `moment`: second moment of luminance [B,1],
         `robust`: the compressed running mean and its second moment [B,4], `albedo` and
         `emission`: the first hits' albedo and log(1 + emission) averaged over time [B,3] each).
         Returns (radiance [B,3,H,W], new state)."""
         rec = split_record(record)
+        if objects is None:
+            objects = torch.zeros_like(rec["depth"])
         if state is None:
             zero = torch.zeros_like(rec["depth"])
             warped, mask = torch.zeros_like(rec["demodulated"]), zero
             warped_accum, warped_moment = torch.zeros_like(record[:, 0:4]), zero
             warped_robust = torch.zeros_like(record[:, 0:4])
+            surface_mask = zero
             warped_albedo = torch.zeros_like(rec["albedo"])
             warped_emission = torch.zeros_like(rec["emission"])
         else:
-            # One warp (the same taps and mask) for the output, the running means and the albedo.
+            # One warp (the same taps and mask) for the output, the running means and, from the taps
+            # of the same object, the albedo and emission.
             names = ("output", "accum", "moment", "robust", "albedo", "emission")
             history = torch.cat([state[k] for k in names], 1)
-            history, mask = warp_history(history, state["surface"], rec["motion"], rec["normal"], rec["depth"])
+            history, mask, surface_mask = warp_history(
+                history, state["surface"], rec["motion"], rec["normal"], rec["depth"], objects, 6
+            )
             warped, warped_accum = history[:, 0:3], history[:, 3:7]
             warped_moment, warped_robust = history[:, 7:8], history[:, 8:12]
             warped_albedo, warped_emission = history[:, 12:15], history[:, 15:18]
@@ -292,7 +317,7 @@ class RecurrentDenoiser(nn.Module):
             rec["demodulated"], warped_accum.detach(), warped_moment.detach(), warped_robust.detach(), mask
         )
         albedo, emission = antialias_surface(
-            rec, warped_albedo.detach(), warped_emission.detach(), accum[:, 3:4], mask, self.emission_motion
+            rec, warped_albedo.detach(), warped_emission.detach(), accum[:, 3:4], surface_mask, self.emission_motion
         )
         x = half(features(rec, warped, mask, accum, moment, robust), fp16_storage)
         warped, mask = x[:, 11:14], x[:, 14:15]  # as the output pass reads them: stored
@@ -309,7 +334,7 @@ class RecurrentDenoiser(nn.Module):
         log_out = (o[:, 0:3] * (1.0 - blend) + warped * blend).clamp_min(0.0)
         log_out = half(log_out, fp16_storage)
         radiance = torch.expm1(log_out) * albedo + torch.expm1(emission)
-        surface = torch.cat([rec["depth"], rec["normal"]], 1)
+        surface = torch.cat([rec["depth"], rec["normal"], objects], 1)
         state = {
             "output": log_out,
             "surface": surface,
@@ -328,7 +353,7 @@ class RecurrentDenoiser(nn.Module):
         return self.convs["out"](d0)
 
     def forward(self, records, fp16_storage=False):
-        """A sequence [B,T,RECORD_SIZE,H,W] from no history; returns [B,T,3,H,W]."""
+        """A sequence [B,T,RECORD_SIZE,H,W] from no history, all one object; returns [B,T,3,H,W]."""
         state, outs = None, []
         for t in range(records.shape[1]):
             y, state = self.step(records[:, t], state, fp16_storage)

@@ -36,7 +36,7 @@ def averaged(rec, warped, n, mask):
 def emission_way(space, clamped):
     """A way that averages the emission in `space` ("linear" or "log"), optionally clamped."""
 
-    def way(rec, warped_albedo, warped_emission, n, mask):
+    def way(rec, warped_albedo, warped_emission, n, mask, _emission_motion=None):
         alpha = torch.clamp(1.0 / n, min=model.SURFACE_ALPHA)
         value = torch.log1p(rec["emission"])
         prev = warped_emission
@@ -54,8 +54,8 @@ def emission_way(space, clamped):
 
 
 WAYS = {
-    "per-frame": lambda rec, wa, we, n, mask: (rec["albedo"], torch.log1p(rec["emission"])),
-    "albedo": lambda rec, wa, we, n, mask: (averaged(rec, wa, n, mask), torch.log1p(rec["emission"])),
+    "per-frame": lambda rec, wa, we, n, mask, _=None: (rec["albedo"], torch.log1p(rec["emission"])),
+    "albedo": lambda rec, wa, we, n, mask, _=None: (averaged(rec, wa, n, mask), torch.log1p(rec["emission"])),
     "linear": emission_way("linear", False),
     "linear-clamped": emission_way("linear", True),
     "log": emission_way("log", False),

@@ -1,12 +1,13 @@
 """Trains the recurrent denoiser on `lucid dataset` output and exports its weights.
 
     python3 train.py --data DIR --minutes 6 --out weights.safetensors --log train.json [--init W]
-        [--model direct|kernel] [--loss l1grad|l1msssim] [--burn-in K]
+        [--model direct|kernel] [--loss l1grad|l1msssim] [--burn-in K [--burn-in-min J]]
 
 `--model kernel` trains `kernel_model.KernelDenoiser` (both export as `lucid-rae-v3`, the decoder
 named in the file's `decoder` metadata; the renderer runs either); `--loss` picks a loss of `losses.py`; `--burn-in K` runs the first K
 frames of each window without gradients and without loss, so that the recurrent state has warmed
-up when the loss starts.
+up when the loss starts; with `--burn-in-min J`, each step draws its burn-in from J to K, so that
+the loss also sees the first frames after a cut (the renderer's first frames have no history).
 """
 
 import argparse
@@ -136,6 +137,9 @@ def main():
     ap.add_argument("--batch", type=int, default=8)
     ap.add_argument("--frames", type=int, default=8, help="frames per window with a loss")
     ap.add_argument("--burn-in", type=int, default=0, help="frames before them, no gradients, no loss")
+    ap.add_argument(
+        "--burn-in-min", type=int, help="draw each step's burn-in from this up to --burn-in (default: fixed)"
+    )
     ap.add_argument("--crop", type=int, default=128)
     ap.add_argument("--lr", type=float, default=2e-3)
     ap.add_argument("--model", choices=MODELS, default="direct")
@@ -155,6 +159,9 @@ def main():
     dev = "cuda" if torch.cuda.is_available() else "cpu"
     train = load_split(args.data, "train", dev)
     val = load_split(args.data, "validation", dev)
+    burn_in_min = args.burn_in if args.burn_in_min is None else args.burn_in_min
+    if not 0 <= burn_in_min <= args.burn_in:
+        raise SystemExit(f"--burn-in-min {burn_in_min} is not between 0 and --burn-in {args.burn_in}")
     window = args.burn_in + args.frames
     shortest = min(s["record"].shape[0] for s in train)
     if window > shortest:
@@ -178,10 +185,11 @@ def main():
         frac = (time.time() - start) / budget
         for group in opt.param_groups:
             group["lr"] = args.lr * 0.5 * (1.0 + math.cos(math.pi * min(frac, 1.0)))
-        rec, ref = sample_batch(train, args.batch, window, args.crop, gen)
-        rec, ref = rec.to(dev), ref[:, args.burn_in :].to(dev)
+        burn_in = int(torch.randint(burn_in_min, args.burn_in + 1, (1,), generator=gen))
+        rec, ref = sample_batch(train, args.batch, burn_in + args.frames, args.crop, gen)
+        rec, ref = rec.to(dev), ref[:, burn_in:].to(dev)
         with autocast():
-            out = run_window(model, rec, args.burn_in)
+            out = run_window(model, rec, burn_in)
         loss, terms = compute_loss(out.float(), ref, ws)
         opt.zero_grad(set_to_none=True)
         loss.backward()
@@ -209,7 +217,7 @@ def main():
         "loss": args.loss,
         "loss_weights": ",".join(str(w) for w in ws),
         "emission_motion": str(model.emission_motion),
-        "burn_in": str(args.burn_in),
+        "burn_in": str(args.burn_in) if burn_in_min == args.burn_in else f"{burn_in_min}-{args.burn_in}",
         "steps": str(step),
         "data": args.data,
         "init": args.init or "",

@@ -7,7 +7,8 @@
 // range-compressed against fireflies (`compress`): log(1 + its mean expanded back) and the
 // standard deviation of its luminance. Also writes this frame's surface (depth, normal), running
 // means and second moments for the next frame, and the first hits' albedo and log(1 + emission)
-// averaged over time with the same taps (`antialias_surface`), which output.comp re-modulates by.
+// averaged over time with those of the same taps that saw the same object (`antialias_surface`;
+// the object id kept in the emission's alpha), which output.comp re-modulates by.
 // Reads the frame's inputs from the light transport's and the G-buffer's images (inputs.glsl).
 // With POOLED_RADIANCE (the kernel-predicting decoder, training/kernel_model.py, `KernelOutput`),
 // also the demodulated radiance (negative values clamped) 2x2 average-pooled once and twice, in
@@ -44,6 +45,8 @@ layout(set = 0, binding = 14, std430) writeonly buffer RadianceHalf { vec4 v[]; 
 layout(set = 0, binding = 15, std430) writeonly buffer RadianceQuarter {
     vec4 v[];
 } b_radiance_quarter;
+// The G-buffer's ids: object (x), material, primitive, hit flag.
+layout(set = 0, binding = 22, rgba32ui) uniform readonly uimage2D u_ids;
 
 layout(push_constant) uniform Params {
     uint width;
@@ -61,6 +64,8 @@ const float MIN_WEIGHT = 0.01;
 const float N_MAX = 32.0;
 // The least weight of this frame's albedo and emission in their averages over time.
 const float SURFACE_ALPHA = 0.1;
+// The bits of an object id the emission's history keeps (exact in a float; the sky's is all ones).
+const uint OBJECT_BITS = 0xffffffu;
 // The smallest 1 - luminance that `expand` divides by.
 const float EXPAND_MIN = 1e-3;
 
@@ -72,6 +77,11 @@ vec3 compress(vec3 rgb) {
 // The inverse of `compress` (`expand`).
 vec3 expand(vec3 rgb) {
     return rgb / max(1.0 - luminance(rgb), EXPAND_MIN);
+}
+
+// The object the pixel's first hit belongs to, as the emission's history keeps it (alpha).
+float surface_object(ivec2 pixel) {
+    return float(imageLoad(u_ids, pixel).x & OBJECT_BITS);
 }
 
 uvec2 size() {
@@ -143,6 +153,8 @@ void main() {
     vec3 warped_albedo = vec3(0.0);
     vec3 warped_emission = vec3(0.0);
     float weight_sum = 0.0;
+    float surface_weight = 0.0;
+    float object_id = surface_object(pixel);
     if (params.history_valid != 0u) {
         vec2 prev_pos = vec2(pixel) + motion.xy;
         vec2 base = floor(prev_pos);
@@ -164,9 +176,15 @@ void main() {
                 warped_accum += w * imageLoad(u_prev_accum, ivec2(q));
                 warped_moment += w * imageLoad(u_prev_moment, ivec2(q)).r;
                 warped_robust += w * imageLoad(u_prev_robust, ivec2(q));
-                warped_albedo += w * imageLoad(u_prev_albedo_mean, ivec2(q)).rgb;
-                warped_emission += w * imageLoad(u_prev_emission_mean, ivec2(q)).rgb;
                 weight_sum += w;
+                // The albedo and emission only from taps of the same object, as SVGF's: a light's
+                // edge is never mixed with the ceiling beside it.
+                vec4 e = imageLoad(u_prev_emission_mean, ivec2(q));
+                if (e.a == object_id) {
+                    warped_albedo += w * imageLoad(u_prev_albedo_mean, ivec2(q)).rgb;
+                    warped_emission += w * e.rgb;
+                    surface_weight += w;
+                }
             }
         }
     }
@@ -177,8 +195,6 @@ void main() {
         warped_accum /= norm;
         warped_moment /= norm;
         warped_robust /= norm;
-        warped_albedo /= norm;
-        warped_emission /= norm;
         mask = 1.0;
     } else {
         warped = vec3(0.0);
@@ -202,14 +218,17 @@ void main() {
     imageStore(u_moment, pixel, vec4(moment, 0.0, 0.0, 0.0));
     imageStore(u_robust, pixel, robust);
 
-    // The first hits' albedo and log(1 + emission) averaged over time (`antialias_surface`): the
-    // emission's weight at least the motion in pixels, its history clamped to the range of this
-    // frame's over the 3x3 neighbourhood.
+    // The first hits' albedo and log(1 + emission) averaged over time (`antialias_surface`) where
+    // taps of the same object were reprojected: the emission's weight at least the motion in
+    // pixels times emission_motion (0 unless the weights file says otherwise), its history
+    // clamped to the range of this frame's over the 3x3 neighbourhood.
     vec3 albedo = input_albedo(pixel);
     vec3 albedo_mean = albedo;
     vec3 emission = log(vec3(1.0) + input_emission(pixel));
     vec3 emission_mean = emission;
-    if (mask > 0.0) {
+    if (surface_weight >= MIN_WEIGHT) {
+        warped_albedo /= surface_weight;
+        warped_emission /= surface_weight;
         float alpha = max(1.0 / n, SURFACE_ALPHA);
         albedo_mean = warped_albedo + (albedo - warped_albedo) * alpha;
         float alpha_emission = max(alpha, min(length(motion.xy) * params.emission_motion, 1.0));
@@ -231,7 +250,7 @@ void main() {
             emission_mean = prev + (emission - prev) * alpha_emission;
         }
     }
-    imageStore(u_emission_mean, pixel, vec4(emission_mean, 0.0));
+    imageStore(u_emission_mean, pixel, vec4(emission_mean, object_id));
     imageStore(u_albedo_mean, pixel, vec4(albedo_mean, 1.0));
 
     float mean_lum = luminance(mean);

@@ -34,14 +34,16 @@ fn floats(tensors: &SafeTensors<'_>, name: &str) -> (Vec<usize>, Vec<f32>) {
     (view.shape().to_vec(), values)
 }
 
-/// A fixture: its records (frames x channels x height x width) and PyTorch's outputs: radiance
-/// (frames x 3 x height x width), running mean and length (frames x 4 x ...), second moment
-/// (frames x 1 x ...) and compressed running mean with its second moment (frames x 4 x ...); and
-/// the weights that produced them.
+/// A fixture: its records (frames x channels x height x width), each pixel's object id (frames x
+/// height x width; all zero where the fixture has none, as records from a dataset) and PyTorch's
+/// outputs: radiance (frames x 3 x height x width), running mean and length (frames x 4 x ...),
+/// second moment (frames x 1 x ...) and compressed running mean with its second moment (frames x
+/// 4 x ...); and the weights that produced them.
 struct Fixture {
     name: &'static str,
     weights: NetworkWeights,
     record: Vec<f32>,
+    objects: Vec<f32>,
     expected: Vec<f32>,
     accum: Vec<f32>,
     moment: Vec<f32>,
@@ -63,10 +65,16 @@ fn fixture(name: &'static str, weights: NetworkWeights) -> Fixture {
     let (_, moment) = floats(&tensors, "moment");
     let (_, robust) = floats(&tensors, "robust");
     assert_eq!(shape[1], RECORD_CHANNELS as usize);
+    let objects = if tensors.names().contains(&&"objects".to_string()) {
+        floats(&tensors, "objects").1
+    } else {
+        vec![0.0; shape[0] * shape[2] * shape[3]]
+    };
     Fixture {
         name,
         weights,
         record,
+        objects,
         expected,
         accum,
         moment,
@@ -110,17 +118,20 @@ struct Frame {
 
 /// The images of a record's channels: the first channel, how many, and the format of the image the
 /// light transport or the G-buffer writes them in (`FrameInputs`, in its order).
-const INPUT_IMAGES: [(usize, usize, vk::Format); 6] = [
+const INPUT_IMAGES: [(usize, usize, vk::Format); 7] = [
     (0, 3, vk::Format::R32G32B32A32_SFLOAT),
     (3, 3, vk::Format::R32G32B32A32_SFLOAT),
     (6, 3, vk::Format::R32G32B32A32_SFLOAT),
     (9, 4, vk::Format::R16G16B16A16_SFLOAT),
     (13, 1, vk::Format::R32_SFLOAT),
     (14, 3, vk::Format::R16G16B16A16_SFLOAT),
+    // The object ids, a plane after the record's channels (`records`).
+    (RECORD_CHANNELS as usize, 1, vk::Format::R32G32B32A32_UINT),
 ];
 
-/// Adds the passes uploading the channels of a planar `record` of `size` into the images of
-/// [`INPUT_IMAGES`] (the channels past a group's, and alpha, 0); panics where a half-precision
+/// Adds the passes uploading the channels of a planar `record` of `size` (its object ids in a
+/// plane after them) into the images of [`INPUT_IMAGES`] (the channels past a group's, and alpha,
+/// 0); panics where a half-precision
 /// image would not hold a value exactly (the fixtures' records are half floats, as `lucid dataset`
 /// stores them).
 fn upload_inputs(g: &mut RenderGraph, record: &[f32], (w, h): (usize, usize)) -> FrameInputs {
@@ -144,7 +155,9 @@ fn upload_inputs(g: &mut RenderGraph, record: &[f32], (w, h): (usize, usize)) ->
                 } else {
                     0.0
                 };
-                if format == vk::Format::R16G16B16A16_SFLOAT {
+                if format == vk::Format::R32G32B32A32_UINT {
+                    bytes.extend_from_slice(&(value as u32).to_le_bytes());
+                } else if format == vk::Format::R16G16B16A16_SFLOAT {
                     let half = f16::from_f32(value);
                     assert_eq!(
                         half.to_f32(),
@@ -202,7 +215,7 @@ fn upload_inputs(g: &mut RenderGraph, record: &[f32], (w, h): (usize, usize)) ->
         }
         Ok(())
     });
-    let [demodulated, albedo, emission, normal_roughness, depth, motion] = images;
+    let [demodulated, albedo, emission, normal_roughness, depth, motion, ids] = images;
     FrameInputs {
         demodulated,
         albedo,
@@ -210,6 +223,7 @@ fn upload_inputs(g: &mut RenderGraph, record: &[f32], (w, h): (usize, usize)) ->
         normal_roughness,
         depth,
         motion,
+        ids,
     }
 }
 
@@ -251,18 +265,23 @@ fn denoise(
     images
 }
 
-/// The records of `fixture`'s frames, cropped to `(cw, ch)`.
+/// The records of `fixture`'s frames, cropped to `(cw, ch)`, each followed by the plane of its
+/// object ids.
 fn records(fixture: &Fixture, (cw, ch): (usize, usize)) -> Vec<Vec<f32>> {
     let (w, h) = fixture.size;
     let channels = RECORD_CHANNELS as usize;
     (0..fixture.frames)
         .map(|t| {
-            let mut crop = Vec::with_capacity(channels * cw * ch);
+            let mut crop = Vec::with_capacity((channels + 1) * cw * ch);
             for c in 0..channels {
                 for y in 0..ch {
                     let row = ((t * channels + c) * h + y) * w;
                     crop.extend_from_slice(&fixture.record[row..row + cw]);
                 }
+            }
+            for y in 0..ch {
+                let row = (t * h + y) * w;
+                crop.extend_from_slice(&fixture.objects[row..row + cw]);
             }
             crop
         })

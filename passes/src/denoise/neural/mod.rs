@@ -22,10 +22,10 @@
 //!    filtered and composited in the output pass, `output.comp`).
 //! 5. **Output**: the predicted log radiance blended with the reprojected history by a learned
 //!    per-pixel weight (only where the mask allows), kept as the next frame's history, and
-//!    re-modulated by the first hits' albedo plus emission averaged over time (reprojected with the
-//!    same taps as the running means; each frame's samples are jittered over the pixel, so one
-//!    frame's would make texture, emitter and object edges flicker), the emission only as far as
-//!    the pixel moves less than a pixel a frame (`training/model.py`, `antialias_surface`).
+//!    re-modulated by the first hits' albedo plus emission averaged over time (reprojected with
+//!    those of the running means' taps that saw the same object, the G-buffer's object id; each
+//!    frame's samples are jittered over the pixel, so one frame's would make texture, emitter and
+//!    object edges flicker; `training/model.py`, `antialias_surface`).
 //!
 //! The history (last output, surface, running means and second moments, averaged albedo and
 //! emission) is the render graph's
@@ -138,8 +138,8 @@ impl FrameDenoiser for NeuralDenoiser {
 }
 
 /// The images the learned denoiser reads of a frame, each channel of a record
-/// (`shaders/neural/inputs.glsl`): the light transport's surface images and the G-buffer's, or a
-/// test's uploads of a record's channels.
+/// (`shaders/neural/inputs.glsl`) and the object ids (which records lack): the light transport's
+/// surface images and the G-buffer's, or a test's uploads.
 #[derive(Clone, Copy, Debug)]
 pub struct FrameInputs {
     /// The demodulated radiance (rgb), `rgba32f`.
@@ -154,6 +154,8 @@ pub struct FrameInputs {
     pub depth: ImageHandle,
     /// The offset to last frame's pixel (xy) and last frame's depth of the point (z), `rgba16f`.
     pub motion: ImageHandle,
+    /// The G-buffer's ids (object, material, primitive, hit flag), `rgba32ui`.
+    pub ids: ImageHandle,
 }
 
 impl FrameInputs {
@@ -166,6 +168,7 @@ impl FrameInputs {
             normal_roughness: gbuffer.normal_roughness,
             depth: gbuffer.depth,
             motion: gbuffer.motion,
+            ids: gbuffer.ids,
         }
     }
 
@@ -319,6 +322,7 @@ pub fn add_neural(
     let emission_motion = network.emission_motion;
     inputs.read(&mut p);
     p.read("u_prev_output", prev[0])
+        .read("u_ids", inputs.ids)
         .specialize("POOLED_RADIANCE", kernel)
         .push_with(move |ctx| FeaturesParams {
             width,

@@ -187,8 +187,9 @@ pub enum WeightsError {
 
 /// The least weight of this frame's emission, per pixel of motion, in its average over time that
 /// re-modulates the output (`EMISSION_MOTION` in training/model.py, `antialias_surface`), where
-/// the weights file's `emission_motion` metadata does not set it.
-pub const EMISSION_MOTION: f32 = 0.5;
+/// the weights file's `emission_motion` metadata does not set it: none, since the average takes
+/// only taps of the same object (measured in training/README.md).
+pub const EMISSION_MOTION: f32 = 0.0;
 
 /// Weights ready for upload: every layer's weights and bias, packed.
 #[derive(Clone, Debug, PartialEq)]
