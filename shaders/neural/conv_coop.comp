@@ -267,9 +267,10 @@ void column_products(uint dx, uint first_row, inout Float16x16 acc[MAX_ROWS][MAX
         uint halo_pixel = (first_row + r) * HALO_W + dx;
         coopMatLoadNV(a[r], s_input, halo_pixel * PIXEL_UVEC2S, PIXEL_UVEC2S, false);
     }
-    for (uint dy = 0u; dy < 3u; ++dy) {
-        tap_products(dx, dy, a, acc);
-    }
+    // Written out: as a loop the driver does not unroll it (2.42 ms against 2.30 at 1080p).
+    tap_products(dx, 0u, a, acc);
+    tap_products(dx, 1u, a, acc);
+    tap_products(dx, 2u, a, acc);
 }
 
 void main() {
@@ -289,9 +290,9 @@ void main() {
         if (chunk + 1u < CHUNKS) {
             fetch(chunk + 1u, tile_origin);
         }
-        for (uint dx = 0u; dx < 3u; ++dx) {
-            column_products(dx, first_row, sums);
-        }
+        column_products(0u, first_row, sums);
+        column_products(1u, first_row, sums);
+        column_products(2u, first_row, sums);
         barrier();
     }
     for (uint m = 0u; m < ROWS; ++m) {
