@@ -24,36 +24,45 @@ uint octant_inverse(vec3 d) {
     return (d.x < 0.0 ? 0u : 1u) | (d.y < 0.0 ? 0u : 2u) | (d.z < 0.0 ? 0u : 4u);
 }
 
+// The hit bit of one child: its quantized near and far planes per axis are the bytes at `shift` of
+// near_q and far_q, its meta byte that of `meta`, bit `lane` of `inner` says whether it is an
+// inner child. Tested on its own (entry, then exit, then the bit) rather than four children per
+// step, so that fewer decoded values are live at once.
+uint wide_hit(uvec3 near_q, uvec3 far_q, uint meta, uint inner, uint lane, vec3 adjusted_inv,
+              vec3 adjusted_origin, uint oct_inv, float t_max) {
+    uint shift = 8u * lane;
+    uvec3 near_b = (near_q >> shift) & 0xffu;
+    float enter = max(max(fma(float(near_b.x), adjusted_inv.x, adjusted_origin.x),
+                          fma(float(near_b.y), adjusted_inv.y, adjusted_origin.y)),
+                      max(fma(float(near_b.z), adjusted_inv.z, adjusted_origin.z), 0.0));
+    uvec3 far_b = (far_q >> shift) & 0xffu;
+    float leave = min(min(fma(float(far_b.x), adjusted_inv.x, adjusted_origin.x),
+                          fma(float(far_b.y), adjusted_inv.y, adjusted_origin.y)),
+                      min(fma(float(far_b.z), adjusted_inv.z, adjusted_origin.z), t_max));
+    uint m = (meta >> shift) & 0xffu;
+    uint is_inner = (inner >> lane) & 1u;
+    uint bit = (m >> 5u) << ((m & 31u) ^ (is_inner * oct_inv));
+    return enter <= leave ? bit : 0u;
+}
+
 // The hit bits of four children (meta bytes `meta`, inner flags in the low 4 bits of `inner`)
 // whose quantized near and far planes per axis are the bytes of near_q and far_q.
 uint wide_hits4(uvec3 near_q, uvec3 far_q, uint meta, uint inner, vec3 adjusted_inv,
                 vec3 adjusted_origin, uint oct_inv, float t_max) {
-    const uvec4 shifts = uvec4(0u, 8u, 16u, 24u);
-    vec4 enter = max(fma(vec4((uvec4(near_q.x) >> shifts) & 0xffu), vec4(adjusted_inv.x), vec4(adjusted_origin.x)),
-                     fma(vec4((uvec4(near_q.y) >> shifts) & 0xffu), vec4(adjusted_inv.y), vec4(adjusted_origin.y)));
-    enter = max(enter, max(fma(vec4((uvec4(near_q.z) >> shifts) & 0xffu), vec4(adjusted_inv.z), vec4(adjusted_origin.z)),
-                           vec4(0.0)));
-    vec4 leave = min(fma(vec4((uvec4(far_q.x) >> shifts) & 0xffu), vec4(adjusted_inv.x), vec4(adjusted_origin.x)),
-                     fma(vec4((uvec4(far_q.y) >> shifts) & 0xffu), vec4(adjusted_inv.y), vec4(adjusted_origin.y)));
-    leave = min(leave, min(fma(vec4((uvec4(far_q.z) >> shifts) & 0xffu), vec4(adjusted_inv.z), vec4(adjusted_origin.z)),
-                           vec4(t_max)));
-    uvec4 m = (uvec4(meta) >> shifts) & 0xffu;
-    uvec4 is_inner = (uvec4(inner) >> uvec4(0u, 1u, 2u, 3u)) & 1u;
-    uvec4 bits = (m >> 5u) << ((m & 31u) ^ (is_inner * oct_inv));
-    uvec4 hits = mix(uvec4(0u), bits, lessThanEqual(enter, leave));
-    return hits.x | hits.y | hits.z | hits.w;
+    return wide_hit(near_q, far_q, meta, inner, 0u, adjusted_inv, adjusted_origin, oct_inv, t_max)
+         | wide_hit(near_q, far_q, meta, inner, 1u, adjusted_inv, adjusted_origin, oct_inv, t_max)
+         | wide_hit(near_q, far_q, meta, inner, 2u, adjusted_inv, adjusted_origin, oct_inv, t_max)
+         | wide_hit(near_q, far_q, meta, inner, 3u, adjusted_inv, adjusted_origin, oct_inv, t_max);
 }
 
-// The hit mask of the wide node n0..n4 for the ray (scaled_origin = origin * inv_dir) within
+// The hit mask of the wide node n0..n4 for the ray from o with reciprocal direction inv_dir within
 // (0, t_max).
-uint wide_hits(uvec4 n0, uvec4 n1, uvec4 n2, uvec4 n3, uvec4 n4, vec3 scaled_origin, vec3 inv_dir,
+uint wide_hits(uvec4 n0, uvec4 n1, uvec4 n2, uvec4 n3, uvec4 n4, vec3 o, vec3 inv_dir,
                uint oct_inv, float t_max) {
     uvec3 exponents = (uvec3(n0.w) >> uvec3(0u, 8u, 16u)) & 0xffu;
     vec3 adjusted_inv = uintBitsToFloat(exponents << 23u) * inv_dir;
-    vec3 adjusted_origin = fma(uintBitsToFloat(n0.xyz), inv_dir, -scaled_origin);
+    vec3 adjusted_origin = fma(uintBitsToFloat(n0.xyz), inv_dir, -(o * inv_dir));
     uint inner = n0.w >> 24u;
-    // Per axis, both words of the lows and of the highs; the near plane is the low one where the
-    // direction is positive.
     bvec3 positive = greaterThanEqual(inv_dir, vec3(0.0));
     uvec2 near_x = positive.x ? n2.xy : n3.zw;
     uvec2 far_x = positive.x ? n3.zw : n2.xy;
@@ -128,7 +137,6 @@ bool trace_wide(uint root, vec3 origin, vec3 dir, bool any_hit, inout Hit hit) {
         blas_sp = 0u;
     }
     vec3 inv_dir = safe_inverse(d);
-    vec3 scaled_origin = o * inv_dir;
     uint oct_inv = octant_inverse(d);
     uvec2 stack[WIDE_STACK];
     uint sp = 0u;
@@ -159,7 +167,6 @@ bool trace_wide(uint root, vec3 origin, vec3 dir, bool any_hit, inout Hit hit) {
             o = transform_point(b_instances.i[leaf].world_to_object, origin);
             d = transform_vector(b_instances.i[leaf].world_to_object, dir);
             inv_dir = safe_inverse(d);
-            scaled_origin = o * inv_dir;
             oct_inv = octant_inverse(d);
             group = wide_root_group(blas_root, oct_inv);
             leaves.y = 0u;
@@ -174,7 +181,6 @@ bool trace_wide(uint root, vec3 origin, vec3 dir, bool any_hit, inout Hit hit) {
                 o = origin;
                 d = dir;
                 inv_dir = safe_inverse(d);
-                scaled_origin = o * inv_dir;
                 oct_inv = octant_inverse(d);
             }
             group = stack[--sp];
@@ -190,7 +196,7 @@ bool trace_wide(uint root, vec3 origin, vec3 dir, bool any_hit, inout Hit hit) {
         }
         uvec4 n0, n1, n2, n3, n4;
         wide_node(SINGLE_INSTANCE || blas_sp != WIDE_TOP_LEVEL, child, n0, n1, n2, n3, n4);
-        uint hits = wide_hits(n0, n1, n2, n3, n4, scaled_origin, inv_dir, oct_inv, hit.t);
+        uint hits = wide_hits(n0, n1, n2, n3, n4, o, inv_dir, oct_inv, hit.t);
         group = uvec2(n1.x, (hits & 0xff000000u) | (n0.w >> 24u));
         leaves = uvec2(n1.y, hits & 0x00ffffffu);
     }
