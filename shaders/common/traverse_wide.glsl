@@ -1,6 +1,6 @@
 // The compressed wide BVH layout's walk (lucid_engine::scene::gpu::wide, after Ylitie, Karras and
 // Laine 2017): 80-byte nodes of up to 8 children with byte-quantized boxes. A step tests all
-// children of a node at once into a hit mask: inner children at bits 24 + (slot ^ octant_inverse),
+// children of a node into a hit mask: inner children at bits 24 + (slot ^ octant_inverse),
 // so that popping the highest bit first visits them near to far (the packer put each child in the
 // slot of the octant whose rays reach it first), and leaf primitives at bits 0-23 (their offsets
 // from the node's primitive base), tested before the next node. The TLAS and the BLAS of the
@@ -24,10 +24,10 @@ uint octant_inverse(vec3 d) {
     return (d.x < 0.0 ? 0u : 1u) | (d.y < 0.0 ? 0u : 2u) | (d.z < 0.0 ? 0u : 4u);
 }
 
-// The hit bit of one child: its quantized near and far planes per axis are the bytes at `shift` of
-// near_q and far_q, its meta byte that of `meta`, bit `lane` of `inner` says whether it is an
-// inner child. Tested on its own (entry, then exit, then the bit) rather than four children per
-// step, so that fewer decoded values are live at once.
+// The hit bit of one child: its quantized near and far planes per axis are byte `lane` of near_q
+// and far_q, its meta byte that of `meta`, bit `lane` of `inner` says whether it is an inner
+// child. Tested on its own (entry, then exit, then the bit) rather than four children per step, so
+// that fewer decoded values are live at once.
 uint wide_hit(uvec3 near_q, uvec3 far_q, uint meta, uint inner, uint lane, vec3 adjusted_inv,
               vec3 adjusted_origin, uint oct_inv, float t_max) {
     uint shift = 8u * lane;
@@ -63,6 +63,8 @@ uint wide_hits(uvec4 n0, uvec4 n1, uvec4 n2, uvec4 n3, uvec4 n4, vec3 o, vec3 in
     vec3 adjusted_inv = uintBitsToFloat(exponents << 23u) * inv_dir;
     vec3 adjusted_origin = fma(uintBitsToFloat(n0.xyz), inv_dir, -(o * inv_dir));
     uint inner = n0.w >> 24u;
+    // Per axis, both words of the lows and of the highs; the near plane is the low one where the
+    // direction is positive.
     bvec3 positive = greaterThanEqual(inv_dir, vec3(0.0));
     uvec2 near_x = positive.x ? n2.xy : n3.zw;
     uvec2 far_x = positive.x ? n3.zw : n2.xy;
