@@ -93,16 +93,17 @@ float intersect_sphere(uint s, vec3 o, vec3 d, float t_max) {
 }
 
 // Intersects primitive `prim` (a triangle, or a sphere of the sphere instance) of instance
-// `inst_index` in object space; updates hit and returns true when it is closer.
-bool intersect_primitive(uint inst_index, Instance inst, uint prim, vec3 o, vec3 d, inout Hit hit) {
+// `inst_index` (of kind `kind`) in object space; updates hit and returns true when it is closer.
+bool intersect_primitive(uint inst_index, uint kind, uint prim, vec3 o, vec3 d, inout Hit hit) {
     vec2 bary = vec2(0.0);
     float t;
-    if (HAS_SPHERES && inst.kind == INSTANCE_SPHERES) {
+    if (HAS_SPHERES && kind == INSTANCE_SPHERES) {
         t = intersect_sphere(prim, o, d, hit.t);
     } else {
         t = intersect_triangle(prim, o, d, hit.t, bary);
         if (HAS_ALPHA_TEST && t < hit.t) {
-            uint material = inst.kind == INSTANCE_FLATTENED ? b_triangle_ids.t[prim].x : inst.material;
+            uint material = kind == INSTANCE_FLATTENED ? b_triangle_ids.t[prim].x
+                                                       : b_instances.i[inst_index].material;
             if (!hit_counts(material, prim, bary, o, d)) {
                 t = T_INFINITY;
             }

@@ -124,6 +124,7 @@ bool trace_wide(uint root, vec3 origin, vec3 dir, bool any_hit, inout Hit hit) {
     vec3 o = origin;
     vec3 d = dir;
     uint inst_index = 0u;
+    uint inst_kind = INSTANCE_FLATTENED;
     uint blas_sp = WIDE_TOP_LEVEL;
     if (SINGLE_INSTANCE) {
         // A flattened instance is in world space; any other keeps its transform (a dynamic one).
@@ -132,6 +133,7 @@ bool trace_wide(uint root, vec3 origin, vec3 dir, bool any_hit, inout Hit hit) {
             return false;
         }
         root = inst.blas_root;
+        inst_kind = inst.kind;
         if (inst.kind != INSTANCE_FLATTENED) {
             o = transform_point(inst.world_to_object, origin);
             d = transform_vector(inst.world_to_object, dir);
@@ -149,7 +151,7 @@ bool trace_wide(uint root, vec3 origin, vec3 dir, bool any_hit, inout Hit hit) {
             uint leaf = leaves.x + findLSB(leaves.y);
             leaves.y &= leaves.y - 1u;
             if (SINGLE_INSTANCE || blas_sp != WIDE_TOP_LEVEL) {
-                if (intersect_primitive(inst_index, b_instances.i[inst_index], leaf, o, d, hit) && any_hit) {
+                if (intersect_primitive(inst_index, inst_kind, leaf, o, d, hit) && any_hit) {
                     return true;
                 }
                 continue;
@@ -166,6 +168,7 @@ bool trace_wide(uint root, vec3 origin, vec3 dir, bool any_hit, inout Hit hit) {
             }
             blas_sp = sp;
             inst_index = leaf;
+            inst_kind = b_instances.i[leaf].kind;
             o = transform_point(b_instances.i[leaf].world_to_object, origin);
             d = transform_vector(b_instances.i[leaf].world_to_object, dir);
             inv_dir = safe_inverse(d);
