@@ -93,17 +93,16 @@ float intersect_sphere(uint s, vec3 o, vec3 d, float t_max) {
 }
 
 // Intersects primitive `prim` (a triangle, or a sphere of the sphere instance) of instance
-// `inst_index` (of kind `kind`) in object space; updates hit and returns true when it is closer.
-bool intersect_primitive(uint inst_index, uint kind, uint prim, vec3 o, vec3 d, inout Hit hit) {
+// `inst_index` in object space; updates hit and returns true when it is closer.
+bool intersect_primitive(uint inst_index, Instance inst, uint prim, vec3 o, vec3 d, inout Hit hit) {
     vec2 bary = vec2(0.0);
     float t;
-    if (HAS_SPHERES && kind == INSTANCE_SPHERES) {
+    if (HAS_SPHERES && inst.kind == INSTANCE_SPHERES) {
         t = intersect_sphere(prim, o, d, hit.t);
     } else {
         t = intersect_triangle(prim, o, d, hit.t, bary);
         if (HAS_ALPHA_TEST && t < hit.t) {
-            uint material = kind == INSTANCE_FLATTENED ? b_triangle_ids.t[prim].x
-                                                       : b_instances.i[inst_index].material;
+            uint material = inst.kind == INSTANCE_FLATTENED ? b_triangle_ids.t[prim].x : inst.material;
             if (!hit_counts(material, prim, bary, o, d)) {
                 t = T_INFINITY;
             }
@@ -120,17 +119,26 @@ bool intersect_primitive(uint inst_index, uint kind, uint prim, vec3 o, vec3 d, 
 }
 
 // Intersects instance `inst_index` (its BLAS, through its transform) with the world-space ray;
-// defined below, used by the binary top-level walk.
+// defined below, used by the top-level walks.
 bool intersect_instance(uint inst_index, vec3 origin, vec3 dir, bool any_hit, inout Hit hit);
 
 #include "common/traverse_binary.glsl"
 #include "common/traverse_wide.glsl"
 
+// Traverses one instance's BLAS in object space. Updates hit when closer; with any_hit, stops at
+// the first hit and returns true.
+bool traverse_blas(uint inst_index, Instance inst, vec3 o, vec3 d, bool any_hit, inout Hit hit) {
+    if (WIDE_BVH) {
+        return traverse_blas_wide(inst_index, inst, o, d, any_hit, hit);
+    }
+    return traverse_blas_binary(inst_index, inst, o, d, any_hit, hit);
+}
+
 bool intersect_instance(uint inst_index, vec3 origin, vec3 dir, bool any_hit, inout Hit hit) {
     Instance inst = b_instances.i[inst_index];
     vec3 o = transform_point(inst.world_to_object, origin);
     vec3 d = transform_vector(inst.world_to_object, dir);
-    return traverse_blas_binary(inst_index, inst, o, d, any_hit, hit);
+    return traverse_blas(inst_index, inst, o, d, any_hit, hit);
 }
 
 // Closest hit along origin + t * dir for t in (0, t_max). Returns false on a miss.
@@ -143,18 +151,18 @@ bool trace_ray(vec3 origin, vec3 dir, float t_max, bool any_hit, out Hit hit) {
     if (word == BVH_EMPTY) {
         return false;
     }
-    if (WIDE_BVH) {
-        return trace_wide(word, origin, dir, any_hit, hit);
-    }
     if (SINGLE_INSTANCE) {
         // A flattened instance is in world space; any other keeps its transform (a dynamic one).
         Instance inst = b_instances.i[0];
         if (inst.kind == INSTANCE_FLATTENED) {
-            return traverse_blas_binary(0u, inst, origin, dir, any_hit, hit);
+            return traverse_blas(0u, inst, origin, dir, any_hit, hit);
         }
         vec3 o = transform_point(inst.world_to_object, origin);
         vec3 d = transform_vector(inst.world_to_object, dir);
-        return traverse_blas_binary(0u, inst, o, d, any_hit, hit);
+        return traverse_blas(0u, inst, o, d, any_hit, hit);
+    }
+    if (WIDE_BVH) {
+        return trace_wide_tlas(word, origin, dir, any_hit, hit);
     }
     return trace_binary_tlas(word, origin, dir, any_hit, hit);
 }

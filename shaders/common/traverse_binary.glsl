@@ -78,7 +78,7 @@ bool traverse_blas_binary(uint inst_index, Instance inst, vec3 o, vec3 d, bool a
             uint first = leaf_first(word);
             uint count = leaf_count(word);
             for (uint k = 0u; k < count; ++k) {
-                if (intersect_primitive(inst_index, inst.kind, first + k, o, d, hit)) {
+                if (intersect_primitive(inst_index, inst, first + k, o, d, hit)) {
                     found = true;
                     if (any_hit) {
                         return true;

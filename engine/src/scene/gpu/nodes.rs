@@ -26,12 +26,12 @@ impl BvhLayout {
 
     /// The deepest trees (nodes on the longest root-to-leaf path) the GPU walks of this layout can
     /// stack for (`shaders/common/traverse_binary.glsl`'s `BLAS_STACK` and `TLAS_STACK`: one entry
-    /// per interior node of a path; `traverse_wide.glsl`'s `WIDE_STACK`, one stack for both
-    /// levels: the two depths together).
+    /// per interior node of a path; `traverse_wide.glsl`'s `WIDE_STACK`: one per node below the
+    /// root).
     pub fn max_depths(self) -> BvhDepths {
         match self {
             BvhLayout::Binary => BvhDepths { blas: 40, tlas: 24 },
-            BvhLayout::Wide => BvhDepths { blas: 28, tlas: 12 },
+            BvhLayout::Wide => BvhDepths { blas: 33, tlas: 33 },
         }
     }
 

@@ -5,8 +5,7 @@
 //! trees of [`crate::bvh`] by a greedy largest-surface-area collapse ([`collapse`]); the children
 //! take slots by octant ([`slots`]) so that a ray visits them near to far. The primitives are
 //! reordered so that each node's leaf children name contiguous primitives from one base index.
-//! [`walk`] traverses one packed tree on the CPU exactly as `shaders/common/traverse_wide.glsl`
-//! does.
+//! [`walk`] traverses the packed nodes on the CPU exactly as `shaders/common/traverse.glsl` does.
 
 pub mod collapse;
 mod node;

@@ -1,7 +1,6 @@
-//! The GPU traversal of a wide tree, on the CPU: `shaders/common/traverse_wide.glsl` step for step
-//! within one tree (the same slab test, near-to-far order and stack of node groups; the shader
-//! walks the TLAS and the BLAS of the instances it reaches in one loop, each instance's walk on top
-//! of the top level's stack), for tests and for checking the stack depth a tree needs.
+//! The GPU traversal of a wide tree, on the CPU: `shaders/common/traverse.glsl` step for step (the
+//! same slab test, near-to-far order and stack of node groups), for tests and for checking the
+//! stack depth a tree needs.
 
 use glam::Vec3;
 
