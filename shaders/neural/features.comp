@@ -90,6 +90,28 @@ uvec2 size() {
 
 shared vec3 s_radiance[8][8];
 shared vec3 s_radiance_half[4][4];
+// log(1 + emission) over the workgroup's tile and a one-pixel margin (the 3x3 neighbourhoods that
+// clamp the emission's history), each pixel's computed once (unset outside the image).
+shared vec3 s_log_emission[10][10];
+
+// Fills s_log_emission. Every invocation of the workgroup calls it (barrier).
+void load_log_emission() {
+    ivec2 origin = ivec2(gl_WorkGroupID.xy) * 8 - 1;
+    for (uint i = gl_LocalInvocationIndex; i < 100u; i += 64u) {
+        ivec2 r = ivec2(i % 10u, i / 10u);
+        ivec2 q = origin + r;
+        if (inside_image(q, ivec2(size()))) {
+            s_log_emission[r.y][r.x] = log(vec3(1.0) + input_emission(q));
+        }
+    }
+    barrier();
+}
+
+// log(1 + emission) of `q`, within one pixel of the invocation's pixel and inside the image.
+vec3 log_emission(ivec2 q) {
+    ivec2 r = q - (ivec2(gl_WorkGroupID.xy) * 8 - 1);
+    return s_log_emission[r.y][r.x];
+}
 
 // The log of `mean` rounded to half precision, as the filter reads it (`pack_channels`).
 vec4 log_pooled(vec3 mean) {
@@ -136,6 +158,7 @@ void main() {
     if (POOLED_RADIANCE) {
         pool_radiance(demodulated);
     }
+    load_log_emission();
     if (!inside) {
         return;
     }
@@ -224,7 +247,7 @@ void main() {
     // clamped to the range of this frame's over the 3x3 neighbourhood.
     vec3 albedo = input_albedo(pixel);
     vec3 albedo_mean = albedo;
-    vec3 emission = log(vec3(1.0) + input_emission(pixel));
+    vec3 emission = log_emission(pixel);
     vec3 emission_mean = emission;
     if (surface_weight >= MIN_WEIGHT) {
         warped_albedo /= surface_weight;
@@ -240,7 +263,7 @@ void main() {
                 for (int dx = -1; dx <= 1; ++dx) {
                     ivec2 q = pixel + ivec2(dx, dy);
                     if (inside_image(q, ivec2(size()))) {
-                        vec3 e = log(vec3(1.0) + input_emission(q));
+                        vec3 e = log_emission(q);
                         low = min(low, e);
                         high = max(high, e);
                     }
