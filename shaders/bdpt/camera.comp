@@ -12,7 +12,6 @@
 // cut short. The samples come in batches (common/sample_batch.glsl): the images hold the running
 // sums until the last batch writes the averages, and b_rng_state each pixel's generator between
 // batches.
-layout(local_size_x = 8, local_size_y = 8) in;  // before the includes: traverse.glsl sizes its stacks by it
 #include "common/math.glsl"
 #include "common/rng.glsl"
 #include "common/scene.glsl"
@@ -25,6 +24,8 @@ layout(local_size_x = 8, local_size_y = 8) in;  // before the includes: traverse
 #include "common/light_emit.glsl"
 #include "bdpt/bdpt.glsl"
 #include "common/transport_outputs.glsl"
+
+layout(local_size_x = 8, local_size_y = 8) in;
 
 layout(set = 0, binding = 16, rgba32f) uniform image2D u_radiance;
 layout(set = 0, binding = 17, rgba32f) uniform writeonly image2D u_demodulated;

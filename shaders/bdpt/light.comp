@@ -11,7 +11,6 @@
 // connected to the pinhole camera (light tracing, t = 1) and splatted into b_splat in fixed point
 // (integer sums do not depend on the order either); the camera pass scales the splats by pixels /
 // light subpaths.
-layout(local_size_x = 64) in;  // before the includes: traverse.glsl sizes its stacks by it
 #include "common/math.glsl"
 #include "common/rng.glsl"
 #include "common/scene.glsl"
@@ -23,6 +22,8 @@ layout(local_size_x = 64) in;  // before the includes: traverse.glsl sizes its s
 #include "common/camera.glsl"
 #include "common/light_emit.glsl"
 #include "bdpt/bdpt.glsl"
+
+layout(local_size_x = 64) in;
 
 layout(set = 0, binding = 18, std430) buffer Stats { uint non_finite; uint rays; uint pad0; uint pad1; } b_stats;
 layout(set = 0, binding = 20, std430) writeonly buffer Lvc { LightVertex v[]; } b_lvc;

@@ -9,14 +9,6 @@
 const uint TLAS_STACK = 24u;
 const uint BLAS_STACK = 40u;
 
-// The walks' stacks live in shared memory rather than in an array per invocation (which the
-// compiler puts in local memory): entry i of an invocation at i * STACK_STRIDE + its index in the
-// workgroup, so a subgroup's invocations touch consecutive banks. The including shader declares
-// its workgroup size before including this file.
-const uint STACK_STRIDE = gl_WorkGroupSize.x * gl_WorkGroupSize.y * gl_WorkGroupSize.z;
-shared uint s_blas_stack[BLAS_STACK * STACK_STRIDE];
-shared uint s_tlas_stack[TLAS_STACK * STACK_STRIDE];
-
 // Child words: an interior node's index, or with BVH_LEAF set a leaf's first primitive (27 bits)
 // and count - 1 (4 bits); BVH_EMPTY is an empty tree's root.
 const uint BVH_LEAF = 0x80000000u;
@@ -74,6 +66,7 @@ uint order_children(BvhNode node, vec3 scaled_origin, vec3 inv_dir, float t_max,
 bool traverse_blas_binary(uint inst_index, Instance inst, vec3 o, vec3 d, bool any_hit, inout Hit hit) {
     vec3 inv_dir = safe_inverse(d);
     vec3 scaled_origin = o * inv_dir;
+    uint stack[BLAS_STACK];
     uint sp = 0u;
     uint word = inst.blas_root;
     bool found = false;
@@ -97,7 +90,7 @@ bool traverse_blas_binary(uint inst_index, Instance inst, vec3 o, vec3 d, bool a
             uint near_child = order_children(blas_binary_node(word), scaled_origin, inv_dir, hit.t, far_child);
             if (near_child != BVH_EMPTY) {
                 if (far_child != BVH_EMPTY && sp < BLAS_STACK) {
-                    s_blas_stack[sp++ * STACK_STRIDE + gl_LocalInvocationIndex] = far_child;
+                    stack[sp++] = far_child;
                 }
                 word = near_child;
                 continue;
@@ -106,7 +99,7 @@ bool traverse_blas_binary(uint inst_index, Instance inst, vec3 o, vec3 d, bool a
         if (sp == 0u) {
             break;
         }
-        word = s_blas_stack[--sp * STACK_STRIDE + gl_LocalInvocationIndex];
+        word = stack[--sp];
     }
     return found;
 }
@@ -115,6 +108,7 @@ bool traverse_blas_binary(uint inst_index, Instance inst, vec3 o, vec3 d, bool a
 bool trace_binary_tlas(uint word, vec3 origin, vec3 dir, bool any_hit, inout Hit hit) {
     vec3 inv_dir = safe_inverse(dir);
     vec3 scaled_origin = origin * inv_dir;
+    uint stack[TLAS_STACK];
     uint sp = 0u;
     bool found = false;
     while (true) {
@@ -134,7 +128,7 @@ bool trace_binary_tlas(uint word, vec3 origin, vec3 dir, bool any_hit, inout Hit
             uint near_child = order_children(tlas_binary_node(word), scaled_origin, inv_dir, hit.t, far_child);
             if (near_child != BVH_EMPTY) {
                 if (far_child != BVH_EMPTY && sp < TLAS_STACK) {
-                    s_tlas_stack[sp++ * STACK_STRIDE + gl_LocalInvocationIndex] = far_child;
+                    stack[sp++] = far_child;
                 }
                 word = near_child;
                 continue;
@@ -143,7 +137,7 @@ bool trace_binary_tlas(uint word, vec3 origin, vec3 dir, bool any_hit, inout Hit
         if (sp == 0u) {
             break;
         }
-        word = s_tlas_stack[--sp * STACK_STRIDE + gl_LocalInvocationIndex];
+        word = stack[--sp];
     }
     return found;
 }

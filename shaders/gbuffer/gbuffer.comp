@@ -2,7 +2,6 @@
 // Primary visibility at pixel centres: linear depth, world normal and roughness, demodulation
 // albedo, directly seen emission, ids, and motion vectors from the previous frame's camera and
 // instance transforms.
-layout(local_size_x = 8, local_size_y = 8) in;  // before the includes: traverse.glsl sizes its stacks by it
 #include "common/math.glsl"
 #include "common/scene.glsl"
 #include "common/frame.glsl"
@@ -11,6 +10,8 @@ layout(local_size_x = 8, local_size_y = 8) in;  // before the includes: traverse
 #include "common/lights.glsl"
 #include "common/surface.glsl"
 #include "common/camera.glsl"
+
+layout(local_size_x = 8, local_size_y = 8) in;
 
 // Last frame's object-to-world rows, indexed by scene instance.
 struct PrevTransform { vec4 rows[3]; };

@@ -10,7 +10,6 @@
 // by albedo) and that hit's albedo and emission. Non-finite samples are dropped and counted in
 // b_stats, as are the rays traced (for rays/s figures) and the pixels whose loops the device cut
 // short.
-layout(local_size_x = 8, local_size_y = 8) in;  // before the includes: traverse.glsl sizes its stacks by it
 #include "common/math.glsl"
 #include "common/rng.glsl"
 #include "common/scene.glsl"
@@ -24,6 +23,8 @@ layout(local_size_x = 8, local_size_y = 8) in;  // before the includes: traverse
 #include "common/replay.glsl"
 #include "common/transport_outputs.glsl"
 #include "common/sample_batch.glsl"
+
+layout(local_size_x = 8, local_size_y = 8) in;
 
 layout(set = 0, binding = 16, rgba32f) uniform image2D u_radiance;
 layout(set = 0, binding = 17, rgba32f) uniform image2D u_demodulated;

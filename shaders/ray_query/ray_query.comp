@@ -1,10 +1,11 @@
 #version 460
 // Batch ray queries against the scene BVH: closest hit (distance, object id) and occlusion, one
 // invocation per ray. Used to check the GPU traversal against the CPU one, and for picking.
-layout(local_size_x = 64) in;  // before the includes: traverse.glsl sizes its stacks by it
 #include "common/math.glsl"
 #include "common/scene.glsl"
 #include "common/traverse.glsl"
+
+layout(local_size_x = 64) in;
 
 struct RayIn {
     vec4 origin_tmax;
