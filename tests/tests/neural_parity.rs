@@ -5,9 +5,10 @@
 //! warp and the recurrent blend are all covered. One fixture is of the committed weights, another
 //! of weights with the other decoder (`references/neural_alternative_weights.safetensors`), so both
 //! decoders are checked whichever one ships; the third (`make_parity.py`'s synthetic frames, the
-//! committed weights) has a visible emitter and sub-pixel motion, so the emission's average over
-//! time that re-modulates the output (its history clamp and its weight per pixel of motion) is
-//! checked too. The running means of the noisy radiance and their
+//! committed weights) has a visible emitter, objects of their own and sub-pixel motion, so the
+//! emission's average over time that re-modulates the output (from taps of the same object, its
+//! history clamp) is checked too; `the_emission_stays_on_its_object` checks what that average is
+//! for over more frames. The running means of the noisy radiance and their
 //! second moments (reprojected in the second frame) are also compared directly, so they are checked
 //! whatever weight the network gives them. Every inference path the device runs is checked
 //! (lavapipe: the portable one; NVIDIA: the tensor-core one too), so where both run they agree
@@ -415,6 +416,68 @@ fn inference_paths_agree_at_odd_sizes() {
             fixture.name,
             fixture.weights.decoder()
         );
+    }
+    lucid_tests::assert_no_validation_messages(&ctx);
+}
+
+/// A frame of `size` where the pixels from `edge` to the right (in pixel units, moving left by
+/// half a pixel a frame) are an emitter, object 1, emitting 4, and the rest is object 0 emitting
+/// nothing; the albedo is 0 everywhere, so the denoised radiance is the averaged emission alone.
+fn emitter_record(t: usize, (w, h): (usize, usize)) -> Vec<f32> {
+    let plane = w * h;
+    let channels = RECORD_CHANNELS as usize;
+    let mut record = vec![0.0; (channels + 1) * plane];
+    let edge = 16.0 - 0.5 * t as f32;
+    for y in 0..h {
+        for x in 0..w {
+            let i = y * w + x;
+            let emitter = x as f32 >= edge;
+            let mut set = |channel: usize, value: f32| record[channel * plane + i] = value;
+            for c in 0..3 {
+                set(c, 0.5); // demodulated radiance
+                set(6 + c, if emitter { 4.0 } else { 0.0 });
+            }
+            set(10, 1.0); // normal (0, 1, 0)
+            set(12, 0.5); // roughness
+            set(13, 3.0); // depth
+            set(14, 0.5); // last frame's pixel is half a pixel to the right, at the same depth
+            set(16, 3.0);
+            set(channels, if emitter { 1.0 } else { 0.0 });
+        }
+    }
+    record
+}
+
+/// Under sub-pixel camera motion the emission's history is reprojected with bilinear taps, which
+/// straddle an emitter's edge: averaged from taps of any object, the emitter's emission would
+/// spread onto the dark object beside it, and the dark object's darken the emitter's edge. From
+/// taps of the same object only (as SVGF does), every pixel keeps its own object's emission: the
+/// dark object stays black and the emitter emits exactly 4, frame after frame, on every path.
+#[test]
+fn the_emission_stays_on_its_object() {
+    let (ctx, mut executor) = lucid_tests::executor(false);
+    let size = (32, 8);
+    let records: Vec<Vec<f32>> = (0..6).map(|t| emitter_record(t, size)).collect();
+    for path in InferencePath::available(&ctx) {
+        let network =
+            Network::with_path(&ctx, &NetworkWeights::builtin(), path).expect("upload weights");
+        let frames = denoise(&mut executor, &network, &records, size);
+        for (t, frame) in frames.iter().enumerate() {
+            let edge = 16.0 - 0.5 * t as f32;
+            for (i, pixel) in frame.radiance.iter().enumerate() {
+                let x = i % size.0;
+                let want = if x as f32 >= edge { 4.0 } else { 0.0 };
+                for &got in &pixel[..3] {
+                    assert!(
+                        (got - want).abs() <= 1e-4 * (1.0 + want),
+                        "{} path, frame {t} pixel ({x}, {}): radiance {got}, the object's \
+                         emission {want}",
+                        path.short_name(),
+                        i / size.0
+                    );
+                }
+            }
+        }
     }
     lucid_tests::assert_no_validation_messages(&ctx);
 }
