@@ -15,10 +15,9 @@
 // by the tap's offset. Each subgroup owns ROWS rows of the tile and walks the taps column by
 // column: the ROWS + 2 staged rows a column's taps read are loaded once for all of them, and each
 // tap's weights once for all its rows (ROWS = 2: 30 matrix loads for 36 products, against 27 for
-// 18 with one row a subgroup). The sums go through
-// shared memory once more (in the weights' place) for the bias, the ReLU and the pooling, and out
-// as packed halves. Rows in shared memory are padded by 16 bytes so that a matrix's rows fall in
-// different banks.
+// 18 with one row a subgroup). The sums go through shared memory once more (in the weights' place)
+// for the bias, the ReLU and the pooling, and out as packed halves. Rows in shared memory are
+// padded by 16 bytes so that a matrix's rows fall in different banks.
 #extension GL_NV_cooperative_matrix : require
 #extension GL_KHR_memory_scope_semantics : require
 #extension GL_KHR_shader_subgroup_basic : require
