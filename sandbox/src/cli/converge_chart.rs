@@ -201,13 +201,51 @@ fn log_ticks(range: &std::ops::Range<f64>) -> (Vec<f64>, Vec<f64>) {
     (bold, light)
 }
 
-/// `root` filled white and split into `panels` areas side by side (at least one).
-fn side_by_side<DB: DrawingBackend>(
+/// Fills `root` white, splits it into one area per panel side by side (at least one) and draws
+/// each panel into its area with `draw`.
+fn side_by_side<DB: DrawingBackend, P>(
     root: &DrawingArea<DB, Shift>,
-    panels: usize,
-) -> Result<Vec<DrawingArea<DB, Shift>>, DrawingAreaErrorKind<DB::ErrorType>> {
+    panels: &[P],
+    mut draw: impl FnMut(&P, &DrawingArea<DB, Shift>) -> Result<(), DrawingAreaErrorKind<DB::ErrorType>>,
+) -> Result<(), DrawingAreaErrorKind<DB::ErrorType>> {
     root.fill(&WHITE)?;
-    Ok(root.split_evenly((1, panels.max(1))))
+    for (panel, area) in panels
+        .iter()
+        .zip(&root.split_evenly((1, panels.len().max(1))))
+    {
+        draw(panel, area)?;
+    }
+    Ok(())
+}
+
+/// Log-log axes over `x` and `y`.
+type LogLog = Cartesian2d<WithKeyPoints<LogCoord<f64>>, WithKeyPoints<LogCoord<f64>>>;
+
+/// A chart on `area` with log axes over `x` and `y`, its caption (text and font size) and its
+/// mesh drawn: tick labels of font size `text`, the axes' descriptions one size larger.
+fn log_log_chart<'a, DB: DrawingBackend>(
+    area: &'a DrawingArea<DB, Shift>,
+    (caption, caption_size): (&str, u32),
+    (x_label, y_label): (&str, &str),
+    (x, y): (std::ops::Range<f64>, std::ops::Range<f64>),
+    text: u32,
+) -> Result<ChartContext<'a, DB, LogLog>, DrawingAreaErrorKind<DB::ErrorType>> {
+    let mut chart = ChartBuilder::on(area)
+        .caption(caption, (FONT, caption_size))
+        .margin(16)
+        .x_label_area_size(44)
+        .y_label_area_size(64)
+        .build_cartesian_2d(log_axis(x), log_axis(y))?;
+    chart
+        .configure_mesh()
+        .x_desc(x_label)
+        .y_desc(y_label)
+        .x_label_formatter(&tick)
+        .y_label_formatter(&tick)
+        .label_style((FONT, text))
+        .axis_desc_style((FONT, text + 1))
+        .draw()?;
+    Ok(chart)
 }
 
 /// Whether a point can be drawn on log-log axes.
@@ -252,21 +290,13 @@ impl Figure for ErrorVsTime<'_> {
         let x = log_range(all().map(|p| p.0), 1.2);
         let axis_x = x.clone();
         let y = log_range(all().map(|p| p.1).chain([self.target]), 1.2);
-        let mut chart = ChartBuilder::on(root)
-            .caption(self.title, (FONT, 22))
-            .margin(16)
-            .x_label_area_size(44)
-            .y_label_area_size(64)
-            .build_cartesian_2d(log_axis(axis_x), log_axis(y))?;
-        chart
-            .configure_mesh()
-            .x_desc(self.x_label)
-            .y_desc(self.y_label)
-            .x_label_formatter(&tick)
-            .y_label_formatter(&tick)
-            .label_style((FONT, 14))
-            .axis_desc_style((FONT, 15))
-            .draw()?;
+        let mut chart = log_log_chart(
+            root,
+            (self.title, 22),
+            (self.x_label, self.y_label),
+            (axis_x, y),
+            14,
+        )?;
         if drawable(&(x.start, self.target)) {
             let grey = RGBColor(110, 110, 110);
             chart
@@ -311,59 +341,56 @@ impl Figure for SpeedVsAccuracy<'_> {
         &self,
         root: &DrawingArea<DB, Shift>,
     ) -> Result<(), DrawingAreaErrorKind<DB::ErrorType>> {
-        for (panel, area) in self
-            .panels
-            .iter()
-            .zip(&side_by_side(root, self.panels.len())?)
-        {
-            // Room on the right and above for the points' names.
-            let x = log_range(panel.points.iter().map(|(_, p)| p.0), 2.0);
-            let y = log_range(panel.points.iter().map(|(_, p)| p.1), 1.3);
-            let mut chart = ChartBuilder::on(area)
-                .caption(&panel.title, (FONT, 20))
-                .margin(16)
-                .x_label_area_size(44)
-                .y_label_area_size(64)
-                .build_cartesian_2d(log_axis(x), log_axis(y))?;
-            chart
-                .configure_mesh()
-                .x_desc(self.x_label)
-                .y_desc(panel.y_label.as_str())
-                .x_label_formatter(&tick)
-                .y_label_formatter(&tick)
-                .label_style((FONT, 13))
-                .axis_desc_style((FONT, 14))
-                .draw()?;
-            let front: Vec<(f64, f64)> = panel
-                .front
-                .iter()
-                .filter_map(|&i| panel.points.get(i).map(|(_, p)| *p))
-                .filter(drawable)
-                .collect();
-            chart.draw_series(LineSeries::new(front, RED.stroke_width(2)))?;
-            let others = panel
-                .points
-                .iter()
-                .enumerate()
-                .filter(|(i, (_, p))| !panel.front.contains(i) && drawable(p));
-            chart.draw_series(others.map(|(_, (name, p))| {
-                EmptyElement::at(*p)
-                    + Circle::new((0, 0), 4, BLUE.mix(0.7).filled())
-                    + Text::new(name.clone(), (6, -14), (FONT, 12).into_font())
-            }))?;
-            let on_front = panel
-                .front
-                .iter()
-                .filter_map(|&i| panel.points.get(i))
-                .filter(|(_, p)| drawable(p));
-            chart.draw_series(on_front.map(|(name, p)| {
-                EmptyElement::at(*p)
-                    + Circle::new((0, 0), 6, RED.filled())
-                    + Text::new(name.clone(), (7, -16), (FONT, 13).into_font())
-            }))?;
-        }
-        Ok(())
+        side_by_side(root, self.panels, |panel, area| {
+            draw_speed_vs_accuracy(panel, self.x_label, area)
+        })
     }
+}
+
+/// One panel of [`speed_vs_accuracy`]: the points, the Pareto front connected and named larger.
+fn draw_speed_vs_accuracy<DB: DrawingBackend>(
+    panel: &Panel,
+    x_label: &str,
+    area: &DrawingArea<DB, Shift>,
+) -> Result<(), DrawingAreaErrorKind<DB::ErrorType>> {
+    // Room on the right and above for the points' names.
+    let x = log_range(panel.points.iter().map(|(_, p)| p.0), 2.0);
+    let y = log_range(panel.points.iter().map(|(_, p)| p.1), 1.3);
+    let mut chart = log_log_chart(
+        area,
+        (&panel.title, 20),
+        (x_label, &panel.y_label),
+        (x, y),
+        13,
+    )?;
+    let front: Vec<(f64, f64)> = panel
+        .front
+        .iter()
+        .filter_map(|&i| panel.points.get(i).map(|(_, p)| *p))
+        .filter(drawable)
+        .collect();
+    chart.draw_series(LineSeries::new(front, RED.stroke_width(2)))?;
+    let others = panel
+        .points
+        .iter()
+        .enumerate()
+        .filter(|(i, (_, p))| !panel.front.contains(i) && drawable(p));
+    chart.draw_series(others.map(|(_, (name, p))| {
+        EmptyElement::at(*p)
+            + Circle::new((0, 0), 4, BLUE.mix(0.7).filled())
+            + Text::new(name.clone(), (6, -14), (FONT, 12).into_font())
+    }))?;
+    let on_front = panel
+        .front
+        .iter()
+        .filter_map(|&i| panel.points.get(i))
+        .filter(|(_, p)| drawable(p));
+    chart.draw_series(on_front.map(|(name, p)| {
+        EmptyElement::at(*p)
+            + Circle::new((0, 0), 6, RED.filled())
+            + Text::new(name.clone(), (7, -16), (FONT, 13).into_font())
+    }))?;
+    Ok(())
 }
 
 struct TimeToConverge<'a> {
@@ -376,14 +403,9 @@ impl Figure for TimeToConverge<'_> {
         &self,
         root: &DrawingArea<DB, Shift>,
     ) -> Result<(), DrawingAreaErrorKind<DB::ErrorType>> {
-        for (panel, area) in self
-            .panels
-            .iter()
-            .zip(&side_by_side(root, self.panels.len())?)
-        {
-            draw_time_to_converge(panel, self.x_label, area)?;
-        }
-        Ok(())
+        side_by_side(root, self.panels, |panel, area| {
+            draw_time_to_converge(panel, self.x_label, area)
+        })
     }
 }
 
