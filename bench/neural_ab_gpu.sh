@@ -1,8 +1,10 @@
 #!/usr/bin/env bash
 # On the NVIDIA machine: the learned denoiser's parity test under the Khronos validation layer,
 # then an A/B of lucid binaries' denoiser time, back to back:
-#   bench/neural_ab_gpu.sh OUT_DIR BIN...
-# Each BIN is an xz-compressed lucid binary in .gpu/ (`.gpu/BIN.xz`); `.gpu/neural_parity.xz` is
+#   bench/neural_ab_gpu.sh OUT_DIR BIN[:WEIGHTS]...
+# Each BIN is an xz-compressed lucid binary in .gpu/ (`.gpu/BIN.xz`), run with the committed
+# weights or, given WEIGHTS, with that weights file (`--neural-weights`; its file name then tags
+# the runs: BIN-<stem>); `.gpu/neural_parity.xz` is
 # the parity test's binary (`cargo test --release -p lucid-tests --test neural_parity --no-run`,
 # stripped) and `.gpu/layers.tar.xz` holds `layers/` with the validation layer's library and its
 # manifest (library_path "./libVkLayer_khronos_validation.so"). For ROUNDS rounds (2) and each
@@ -15,7 +17,8 @@ out=$(realpath "${1:?usage: bench/neural_ab_gpu.sh OUT_DIR BIN...}")
 shift
 bin=/tmp/neural-ab
 mkdir -p "$out" "$bin"
-for b in "$@" neural_parity; do
+for spec in "$@" neural_parity; do
+  b=${spec%%:*}
   xz -dc ".gpu/$b.xz" > "$bin/$b"
   chmod +x "$bin/$b"
 done
@@ -27,10 +30,17 @@ built_in=/work/main
 LUCID_VALIDATION=1 "$bin/neural_parity" --test-threads 1 2>&1 | tee "$out/parity.log" | tail -n 8
 for round in $(seq "${ROUNDS:-2}"); do
   for size in ${SIZES:-1920x1080 854x480}; do
-    for b in "$@"; do
+    for spec in "$@"; do
+      b=${spec%%:*}
+      weights=()
+      tag=$b
+      if [ "$spec" != "$b" ]; then
+        weights=(--neural-weights "$(realpath "${spec#*:}")")
+        tag=$b-$(basename "${spec#*:}" .safetensors)
+      fi
       "$bin/$b" bench --scene classroom --algo pt --denoise neural --neural-path "${NEURAL_PATH:-tensor-cores}" \
-        --size "$size" --spp 1 --max-depth 8 --frames 50 --warmup 5 \
-        --json "$out/bench_${b}_${size}_$round.json" > /dev/null
+        --size "$size" --spp 1 --max-depth 8 --frames 50 --warmup 5 "${weights[@]}" \
+        --json "$out/bench_${tag}_${size}_$round.json" > /dev/null
     done
   done
 done
