@@ -11,8 +11,7 @@ the recurrent state. The output layer `out` is replaced by `KernelOutput`:
   (quarter), each as log(1 + radiance) (pooled in linear space, then the log), so that the
   coarser scales gather 4 and 16 samples per pixel of a 1-sample frame.
 - **Kernels from pooled decoder features**: the last decoder features (`dec0`, full resolution)
-  go through three convolution heads, 3x3 or 1x1 (`head_kernel`; 1x1 heads need a ninth of the
-  products, and the tensor-core path computes them inside `dec0`'s workgroups): `out` on them at full resolution, `out_half` on them
+  go through three 3x3 convolution heads: `out` on them at full resolution, `out_half` on them
   average-pooled to half resolution, `out_quarter` on them pooled again to quarter resolution. Each
   head predicts the 25 weights of a 5x5 kernel per pixel (softmax, so the filter is a weighted
   mean; borders replicate), applied to the log radiance of its scale.
@@ -28,8 +27,7 @@ the recurrent state. The output layer `out` is replaced by `KernelOutput`:
   defines them.
 
 Export (`export_tensors`): the layers of `model.LAYERS` under their names (`out` with its
-25 + 1 + (outputs - 3) channels) plus `out_half` and `out_quarter`, float32; the heads' weights
-[out, in, k, k] say their kernel size k.
+25 + 1 + (outputs - 3) channels) plus `out_half` and `out_quarter`, float32.
 
 With `fp16_storage` the heads' outputs are rounded to half precision, as the shaders store them;
 the filtered scales stay float32, as the shaders keep them.
@@ -82,11 +80,9 @@ class KernelOutput(nn.Module):
     radiance in channels 0-2, then the other output channels), the radiance here being the
     multi-scale kernel-filtered input."""
 
-    def __init__(self, head_kernel=3):
+    def __init__(self):
         super().__init__()
-        self.heads = nn.ModuleDict(
-            {name: nn.Conv2d(cin, cout, head_kernel, padding=head_kernel // 2) for name, cin, cout, _ in HEADS}
-        )
+        self.heads = nn.ModuleDict({name: nn.Conv2d(cin, cout, 3, padding=1) for name, cin, cout, _ in HEADS})
 
     def forward(self, d0, radiance, fp16):
         radiance = radiance.float().clamp_min(0.0)
@@ -106,12 +102,11 @@ class KernelOutput(nn.Module):
 
 
 class KernelDenoiser(RecurrentDenoiser):
-    """`RecurrentDenoiser` with the kernel-predicting output layer, its heads `head_kernel` x
-    `head_kernel` convolutions; same `step`, `forward`, state."""
+    """`RecurrentDenoiser` with the kernel-predicting output layer; same `step`, `forward`, state."""
 
-    def __init__(self, head_kernel=3):
+    def __init__(self):
         super().__init__()
-        self.convs["out"] = KernelOutput(head_kernel)
+        self.convs["out"] = KernelOutput()
 
     def predict(self, d0, rec, accum, fp16_storage):
         return self.convs["out"](d0, rec["demodulated"], fp16_storage)
@@ -134,8 +129,8 @@ def kernel_layers():
 
 
 def export_tensors(model):
-    """`<layer>.weight` [out,in,k,k] (k = 3, or the heads' kernel size) and `<layer>.bias` [out],
-    float32, for every layer of `kernel_layers()`."""
+    """`<layer>.weight` [out,in,3,3] and `<layer>.bias` [out], float32, for every layer of
+    `kernel_layers()`."""
     return {
         f"{name}.{kind}": getattr(conv, kind).detach().float().cpu().contiguous()
         for name, conv in model.named_convs().items()

@@ -26,7 +26,7 @@ from safetensors.torch import load_file, save_file
 
 from data import dataset_folders
 from model import OBJECT_BITS, RECORD_SIZE
-from train import build_model, load_weights, model_name_of
+from train import build_model, load_weights
 
 W, H = 32, 24
 
@@ -84,7 +84,7 @@ def main():
     ap.add_argument("--out", required=True)
     args = ap.parse_args()
     decoder = safe_open_metadata(args.weights).get("decoder", "direct")
-    model = build_model(model_name_of(args.weights))
+    model = build_model(decoder)
     load_weights(model, args.weights)
     objects = None
     if args.data:

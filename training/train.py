@@ -1,11 +1,10 @@
 """Trains the recurrent denoiser on `lucid dataset` output and exports its weights.
 
     python3 train.py --data DIR --minutes 6 --out weights.safetensors --log train.json [--init W]
-        [--model direct|kernel|kernel1] [--loss l1grad|l1msssim] [--burn-in K [--burn-in-min J]]
+        [--model direct|kernel] [--loss l1grad|l1msssim] [--burn-in K [--burn-in-min J]]
 
-`--model kernel` trains `kernel_model.KernelDenoiser`, `kernel1` the same with 1x1 heads (all export
-as `lucid-rae-v3`, the decoder named in the file's `decoder` metadata, the heads' kernel size in
-their weights' shape; the renderer runs each); `--loss` picks a loss of `losses.py`; `--burn-in K` runs the first K
+`--model kernel` trains `kernel_model.KernelDenoiser` (both export as `lucid-rae-v3`, the decoder
+named in the file's `decoder` metadata; the renderer runs either); `--loss` picks a loss of `losses.py`; `--burn-in K` runs the first K
 frames of each window without gradients and without loss, so that the recurrent state has warmed
 up when the loss starts; with `--burn-in-min J`, each step draws its burn-in from J to K, so that
 the loss also sees the first frames after a cut (the renderer's first frames have no history).
@@ -28,24 +27,11 @@ from kernel_model import export_tensors as kernel_export_tensors
 from losses import DEFAULT_WEIGHTS, LOSSES, TERM_NAMES, display_ssim, log_tonemap, loss_fn, relmse, temporal_l1
 from model import DECODERS, FORMAT, LAYERS, RECORD_SIZE, RecurrentDenoiser, export_tensors
 
-# The models `--model` names: the decoders, and `kernel1`, the kernel decoder with 1x1 heads.
-MODELS = DECODERS + ("kernel1",)
+MODELS = DECODERS
 
 
 def build_model(name):
-    if name == "kernel1":
-        return KernelDenoiser(head_kernel=1)
     return KernelDenoiser() if name == "kernel" else RecurrentDenoiser()
-
-
-def model_name_of(path):
-    """The `--model` that trains what the weights file `path` holds (its `decoder` metadata, and
-    for the kernel decoder the heads' kernel size)."""
-    with safe_open(path, "pt") as f:
-        decoder = (f.metadata() or {}).get("decoder", "direct")
-        if decoder == "kernel" and f.get_slice("out.weight").get_shape()[-1] == 1:
-            return "kernel1"
-    return decoder
 
 
 def named_convs(model):
@@ -59,9 +45,8 @@ def load_weights(model, path):
     """Copies the tensors of a file train.py wrote into `model`. The direct model needs all of its
     layers; the kernel model takes every layer whose shapes match (so direct weights start its
     shared layers) and starts the others afresh. A `lucid-rae-v2` file's first layer, which has
-    fewer inputs, starts the first layer with the new inputs' weights at zero. 3x3 heads start 1x1
-    heads with their taps' sum (what they compute where the features are constant over 3x3). The
-    file's `emission_motion` metadata, when there, sets the model's."""
+    fewer inputs, starts the first layer with the new inputs' weights at zero. The file's
+    `emission_motion` metadata, when there, sets the model's."""
     tensors = load_file(path)
     with safe_open(path, "pt") as f:
         motion = (f.metadata() or {}).get("emission_motion")
@@ -73,8 +58,6 @@ def load_weights(model, path):
             w, b = tensors.get(f"{name}.weight"), tensors.get(f"{name}.bias")
             if name == "enc0" and w is not None and w.shape[1] < conv.weight.shape[1]:
                 w = torch.cat([w, w.new_zeros(w.shape[0], conv.weight.shape[1] - w.shape[1], 3, 3)], 1)
-            if w is not None and w.shape[-1] == 3 and conv.weight.shape[-1] == 1:
-                w = w.sum((2, 3), keepdim=True)
             if w is None or b is None or w.shape != conv.weight.shape or b.shape != conv.bias.shape:
                 skipped.append(name)
                 continue
@@ -228,7 +211,7 @@ def main():
     fmt = FORMAT
     meta = {
         "format": fmt,
-        "decoder": "kernel" if isinstance(model, KernelDenoiser) else "direct",
+        "decoder": args.model,
         "layers": json.dumps(layers),
         "model": args.model,
         "loss": args.loss,

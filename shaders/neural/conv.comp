@@ -1,10 +1,10 @@
 #version 460
-// One 3x3 (or 1x1) convolution of the learned denoiser (zero padding, fused bias and ReLU), reading one
+// One 3x3 convolution of the learned denoiser (zero padding, fused bias and ReLU), reading one
 // tensor (optionally at half resolution, upsampled by nearest neighbour) and optionally a second
 // one concatenated after it (the U-Net's skip connection, read in place: no copy). Each
 // invocation computes OUT_PER_THREAD output channels of one pixel; z selects the channel group.
 // Weights: vec4s over four consecutive output channels, at ((tap * CIN + ci) * OUT / 4 + o4),
-// then the bias (passes/src/denoise/neural/weights.rs packs them).
+// then the bias (passes/src/neural/weights.rs packs them).
 #include "neural/tensor.glsl"
 
 layout(local_size_x = 8, local_size_y = 8) in;
@@ -15,10 +15,6 @@ layout(constant_id = 2) const uint OUT_CHANNELS = 16;
 layout(constant_id = 3) const uint OUT_PER_THREAD = 16;
 layout(constant_id = 4) const bool IN0_UPSAMPLED = false;
 layout(constant_id = 5) const bool RELU = true;
-layout(constant_id = 6) const uint KERNEL_SIZE = 3;  // 3, or 1 for the kernel decoder's 1x1 heads
-
-const int TAPS = int(KERNEL_SIZE * KERNEL_SIZE);
-const int RADIUS = int(KERNEL_SIZE / 2u);
 
 const uint OUT4 = OUT_PER_THREAD / 4;
 
@@ -45,12 +41,12 @@ void main() {
     const uint out4_all = OUT_CHANNELS / 4u;
     uint group = gl_GlobalInvocationID.z * OUT4;
     vec4 acc[OUT4];
-    uint bias = params.weight_offset + uint(TAPS) * cin * out4_all + group;
+    uint bias = params.weight_offset + 9u * cin * out4_all + group;
     for (uint o = 0u; o < OUT4; ++o) {
         acc[o] = b_weights.v[bias + o];
     }
-    for (int tap = 0; tap < TAPS; ++tap) {
-        ivec2 q = pixel + ivec2(tap % int(KERNEL_SIZE), tap / int(KERNEL_SIZE)) - RADIUS;
+    for (int tap = 0; tap < 9; ++tap) {
+        ivec2 q = pixel + ivec2(tap % 3 - 1, tap / 3 - 1);
         if (any(lessThan(q, ivec2(0))) || any(greaterThanEqual(q, size))) {
             continue;
         }

@@ -18,12 +18,6 @@
 // 18 with one row a subgroup). The sums go through shared memory once more (in the weights' place)
 // for the bias, the ReLU and the pooling, and out as packed halves. Rows in shared memory are
 // padded by 16 bytes so that a matrix's rows fall in different banks.
-//
-// With HEADS (the kernel decoder's 1x1 heads, on `dec0`: POOL_LEVELS = 2), the tile, its 2x2
-// pooling and that pooled again stay in shared memory, and the three heads' 1x1 convolutions run
-// on them there (products of the staged outputs by the heads' weights, read straight from the
-// buffer): the outputs go out as the heads' (HEAD_CHANNELS, no ReLU) at full, half and quarter
-// resolution in b_out, b_pooled and b_pooled_twice, and `dec0`'s own never go to memory.
 #extension GL_NV_cooperative_matrix : require
 #extension GL_KHR_memory_scope_semantics : require
 #extension GL_KHR_shader_subgroup_basic : require
@@ -40,8 +34,6 @@ layout(constant_id = 5) const bool RELU = true;
 layout(constant_id = 6) const uint ROWS = 1;  // tile rows per subgroup: 1 to 4
 layout(constant_id = 7) const uint POOL_LEVELS = 0;  // also write the output 2x2 pooled (1), then again (2)
 layout(constant_id = 8) const uint GROUP_TILES = 4;  // 16-channel output tiles per workgroup
-layout(constant_id = 10) const bool HEADS = false;  // the 1x1 heads fused (above)
-layout(constant_id = 11) const uint HEAD_CHANNELS = 28;  // their outputs, padded to 4
 
 const uint THREADS = gl_WorkGroupSize.x;
 const uint SUBGROUPS = THREADS / 32u;
@@ -69,20 +61,6 @@ const uint INPUT_ITEMS = HALO_PIXELS * 4u;
 // What each invocation copies per chunk.
 const uint INPUT_LOADS = (INPUT_ITEMS + THREADS - 1u) / THREADS;
 const uint WEIGHT_LOADS = (GROUP_WEIGHT_UVEC4S + THREADS - 1u) / THREADS;
-// The fused heads' inputs and outputs in s_input (uvec2s, OUT_PADDED halves a pixel): the pooled
-// tile, the tile pooled twice (read as whole 16-pixel matrices, so its region is at least 16
-// pixels long), and the half and quarter heads' outputs.
-const uint HEAD_PIXEL_UVEC2S = OUT_PADDED / 4u;
-const uint POOLED_PIXELS = (TILE_W / 2u) * (TILE_H / 2u);
-const uint TWICE_PIXELS = (TILE_W / 4u) * (TILE_H / 4u);
-const uint POOLED_MATRICES = (POOLED_PIXELS + 15u) / 16u;
-const uint TWICE_MATRICES = (TWICE_PIXELS + 15u) / 16u;
-const uint TWICE_AT = POOLED_PIXELS * HEAD_PIXEL_UVEC2S;
-const uint HALF_OUT_AT = TWICE_AT + TWICE_MATRICES * 16u * HEAD_PIXEL_UVEC2S;
-const uint QUARTER_OUT_AT = HALF_OUT_AT + POOLED_MATRICES * 16u * HEAD_PIXEL_UVEC2S;
-const uint HEAD_OUT4 = HEAD_CHANNELS / 4u;
-const uint HEAD_TILES = (HEAD_CHANNELS + 15u) / 16u;
-const uint HEAD_ROW_UVEC4S = HEAD_TILES * 2u;  // a row of a head's weights in the buffer
 
 layout(set = 0, binding = 0, std430) readonly buffer In0 { uvec2 v[]; } b_in0;
 layout(set = 0, binding = 1, std430) readonly buffer In1 { uvec2 v[]; } b_in1;
@@ -102,16 +80,10 @@ layout(push_constant) uniform Params {
     uint in0_height;
     uint bias_offset;    // this layer's bias, in vec4s of b_weights
     uint half_offset;    // this layer's weights, in uvec4s of b_half_weights
-    // With HEADS, the full, half and quarter heads' biases and weights, the same way.
-    uint head_bias_offset[3];
-    uint head_half_offset[3];
 } params;
 
-// 16 channels of each pixel of the haloed tile (four packed in a uvec2), pixel-major; with HEADS,
-// after the products, the pooled tiles and the coarser heads' outputs (above).
-const uint INPUT_UVEC2S = HALO_PIXELS * PIXEL_UVEC2S;
-const uint HEADS_UVEC2S = QUARTER_OUT_AT + TWICE_MATRICES * 16u * HEAD_PIXEL_UVEC2S;
-shared uvec2 s_input[HEADS && HEADS_UVEC2S > INPUT_UVEC2S ? HEADS_UVEC2S : INPUT_UVEC2S];
+// 16 channels of each pixel of the haloed tile (four packed in a uvec2), pixel-major.
+shared uvec2 s_input[HALO_PIXELS * PIXEL_UVEC2S];
 // The chunk's weights as packed halves (per tap, 16 rows of MATRIX_ROW), then the tile's outputs
 // (pixel-major, MATRIX_ROW per pixel).
 shared uvec4 s_matrix[STAGED_WEIGHT_UVEC4S > OUT_UVEC4S ? STAGED_WEIGHT_UVEC4S : OUT_UVEC4S];
@@ -208,7 +180,7 @@ void finish_outputs(ivec2 tile_origin) {
         v = RELU ? max(v, vec4(0.0)) : v;
         uvec2 packed = pack_channels(v);
         ivec2 pixel = tile_origin + ivec2(p % TILE_W, p / TILE_W);
-        if (!HEADS && pixel.x < int(params.width) && pixel.y < int(params.height)) {
+        if (pixel.x < int(params.width) && pixel.y < int(params.height)) {
             b_out.v[tensor_index(pixel, params.width, OUT4, o4_first() + o4)] = packed;
         }
         if (POOL_LEVELS > 0u) {
@@ -222,12 +194,11 @@ void finish_outputs(ivec2 tile_origin) {
 
 // 2x2 averages of the tile's outputs (the image's last row and column repeat at odd sizes, as in
 // pool.comp): the tile origin is even, so every pooled pixel's sources are in this tile. With a
-// second level, the pooled tile is kept (packed, pixel-major) in s_input for it (and with HEADS,
-// for the half head, instead of going out).
+// second level, the pooled tile is kept (packed, pixel-major) in s_input for it.
 void write_pooled(ivec2 tile_origin) {
     uvec2 pooled_size = (uvec2(params.width, params.height) + 1u) / 2u;
     ivec2 last = ivec2(params.width, params.height) - 1;
-    const uint PIXELS = POOLED_PIXELS;
+    const uint PIXELS = (TILE_W / 2u) * (TILE_H / 2u);
     uint group = group_out4();
     for (uint i = gl_LocalInvocationIndex; i < PIXELS * group; i += gl_WorkGroupSize.x) {
         uint p = i / group;
@@ -242,9 +213,7 @@ void write_pooled(ivec2 tile_origin) {
             sum += unpack_channels(staged_output(uint(local.y) * TILE_W + uint(local.x), o4));
         }
         uvec2 packed = pack_channels(0.25 * sum);
-        if (!HEADS) {
-            b_pooled.v[tensor_index(pooled, pooled_size.x, OUT4, o4_first() + o4)] = packed;
-        }
+        b_pooled.v[tensor_index(pooled, pooled_size.x, OUT4, o4_first() + o4)] = packed;
         if (POOL_LEVELS > 1u) {
             s_input[p * N_TILES * 4u + o4] = packed;
         }
@@ -252,13 +221,13 @@ void write_pooled(ivec2 tile_origin) {
 }
 
 // The pooled tile pooled once more (its origin is a multiple of 4 in the image: every source is in
-// this tile again); with HEADS kept in s_input for the quarter head instead.
+// this tile again).
 void write_pooled_twice(ivec2 tile_origin) {
     uvec2 pooled_size = (uvec2(params.width, params.height) + 1u) / 2u;
     uvec2 twice_size = (pooled_size + 1u) / 2u;
     ivec2 last = ivec2(pooled_size) - 1;
     ivec2 pooled_origin = tile_origin / 2;
-    const uint PIXELS = TWICE_PIXELS;
+    const uint PIXELS = (TILE_W / 4u) * (TILE_H / 4u);
     uint group = group_out4();
     for (uint i = gl_LocalInvocationIndex; i < PIXELS * group; i += gl_WorkGroupSize.x) {
         uint p = i / group;
@@ -272,94 +241,7 @@ void write_pooled_twice(ivec2 tile_origin) {
             ivec2 local = min(twice * 2 + ivec2(d & 1, d >> 1), last) - pooled_origin;
             sum += unpack_channels(s_input[(uint(local.y) * (TILE_W / 2u) + uint(local.x)) * N_TILES * 4u + o4]);
         }
-        uvec2 packed = pack_channels(0.25 * sum);
-        if (HEADS) {
-            s_input[TWICE_AT + p * HEAD_PIXEL_UVEC2S + o4] = packed;
-        } else {
-            b_pooled_twice.v[tensor_index(twice, twice_size.x, OUT4, o4_first() + o4)] = packed;
-        }
-    }
-}
-
-// Head `head`'s 1x1 products for its output tile `n` over 16 pixels of a tile in s_input whose
-// first pixel is at `at` (the pooled tiles: HEAD_PIXEL_UVEC2S a pixel), summed in fp32; the
-// weights come straight from the buffer.
-Float16x16 pooled_head_products(uint head, uint at, uint n) {
-    Float16x16 acc = Float16x16(0.0);
-    for (uint c = 0u; c < OUT_PADDED / 16u; ++c) {
-        Half16 x;
-        Half16 w;
-        coopMatLoadNV(x, s_input, at + c * 4u, HEAD_PIXEL_UVEC2S, false);
-        coopMatLoadNV(w, b_half_weights.v, params.head_half_offset[head] + c * 16u * HEAD_ROW_UVEC4S + n * 2u,
-                      HEAD_ROW_UVEC4S, false);
-        acc = coopMatMulAddNV(x, w, acc);
-    }
-    return acc;
-}
-
-// The full-resolution head over this subgroup's rows of the staged tile, written over them (each
-// subgroup reads only its own rows, so no other subgroup waits on them).
-void full_head(uint first_row) {
-    Float16x16 acc[MAX_ROWS][MAX_N_TILES];
-    for (uint m = 0u; m < ROWS; ++m) {
-        for (uint n = 0u; n < HEAD_TILES; ++n) {
-            acc[m][n] = Float16x16(0.0);
-            for (uint c = 0u; c < OUT_PADDED / 16u; ++c) {
-                Half16 x;
-                Half16 w;
-                coopMatLoadNV(x, s_matrix, (first_row + m) * TILE_W * MATRIX_ROW + c * 2u, MATRIX_ROW, false);
-                coopMatLoadNV(w, b_half_weights.v, params.head_half_offset[0] + c * 16u * HEAD_ROW_UVEC4S + n * 2u,
-                              HEAD_ROW_UVEC4S, false);
-                acc[m][n] = coopMatMulAddNV(x, w, acc[m][n]);
-            }
-        }
-    }
-    subgroupMemoryBarrierShared();
-    subgroupBarrier();
-    for (uint m = 0u; m < ROWS; ++m) {
-        for (uint n = 0u; n < HEAD_TILES; ++n) {
-            coopMatStoreNV(Half16(acc[m][n]), s_matrix, (first_row + m) * TILE_W * MATRIX_ROW + n * 2u, MATRIX_ROW, false);
-        }
-    }
-}
-
-// The half and quarter heads over the pooled tiles, shared out among the subgroups by output
-// matrix (16 pixels by 16 channels), into their own places in s_input.
-void pooled_heads() {
-    const uint HALF_ITEMS = POOLED_MATRICES * HEAD_TILES;
-    for (uint item = gl_SubgroupID; item < HALF_ITEMS + TWICE_MATRICES * HEAD_TILES; item += SUBGROUPS) {
-        bool half_scale = item < HALF_ITEMS;
-        uint local = half_scale ? item : item - HALF_ITEMS;
-        uint m = local / HEAD_TILES;
-        uint n = local % HEAD_TILES;
-        uint from = (half_scale ? 0u : TWICE_AT) + m * 16u * HEAD_PIXEL_UVEC2S;
-        Float16x16 acc = pooled_head_products(half_scale ? 1u : 2u, from, n);
-        uint to = (half_scale ? HALF_OUT_AT : QUARTER_OUT_AT) + m * 16u * HEAD_PIXEL_UVEC2S + n * 4u;
-        coopMatStoreNV(Half16(acc), s_input, to, HEAD_PIXEL_UVEC2S, false);
-    }
-}
-
-// Head `head`'s output (0: full, 1: half, 2: quarter resolution) for the tile, plus its bias, out
-// to its tensor (`size` pixels; the tile's part starts at `origin` and has `per_row` pixels a row).
-void write_head(uint head, uint pixels, uint per_row, ivec2 origin, uvec2 size) {
-    uint first = head == 1u ? HALF_OUT_AT : QUARTER_OUT_AT;
-    for (uint i = gl_LocalInvocationIndex; i < pixels * HEAD_OUT4; i += gl_WorkGroupSize.x) {
-        uint p = i / HEAD_OUT4;
-        uint o4 = i % HEAD_OUT4;
-        ivec2 q = origin + ivec2(p % per_row, p / per_row);
-        if (q.x >= int(size.x) || q.y >= int(size.y)) {
-            continue;
-        }
-        uvec2 staged = head == 0u ? staged_output(p, o4) : s_input[first + p * HEAD_PIXEL_UVEC2S + o4];
-        uvec2 packed = pack_channels(unpack_channels(staged) + b_weights.v[params.head_bias_offset[head] + o4]);
-        uint at = tensor_index(q, size.x, HEAD_OUT4, o4);
-        if (head == 0u) {
-            b_out.v[at] = packed;
-        } else if (head == 1u) {
-            b_pooled.v[at] = packed;
-        } else {
-            b_pooled_twice.v[at] = packed;
-        }
+        b_pooled_twice.v[tensor_index(twice, twice_size.x, OUT4, o4_first() + o4)] = pack_channels(0.25 * sum);
     }
 }
 
@@ -427,16 +309,5 @@ void main() {
     if (POOL_LEVELS > 1u) {
         barrier();
         write_pooled_twice(tile_origin);
-    }
-    if (HEADS) {
-        barrier();
-        full_head(first_row);
-        pooled_heads();
-        barrier();
-        uvec2 size = uvec2(params.width, params.height);
-        uvec2 pooled_size = (size + 1u) / 2u;
-        write_head(0u, TILE_W * TILE_H, TILE_W, tile_origin, size);
-        write_head(1u, POOLED_PIXELS, TILE_W / 2u, tile_origin / 2, pooled_size);
-        write_head(2u, TWICE_PIXELS, TILE_W / 4u, tile_origin / 4, (pooled_size + 1u) / 2u);
     }
 }

@@ -40,8 +40,8 @@ mod weights;
 
 pub use network::{InferencePath, Network};
 pub use weights::{
-    Decoder, HeadKernel, Layer, NetworkWeights, WeightsError, BUILTIN, EMISSION_MOTION, FEATURES,
-    FORMAT, KERNEL_TAPS, UNET,
+    Decoder, Layer, NetworkWeights, WeightsError, BUILTIN, EMISSION_MOTION, FEATURES, FORMAT,
+    KERNEL_TAPS, UNET,
 };
 
 use crate::denoise::gbuffer::GBuffer;
@@ -359,35 +359,21 @@ pub fn add_neural(
     };
     p.dispatch([width, height, 1]);
 
-    let conv = |g: &mut RenderGraph, layer: usize, in0: Tensor, in1: Option<Tensor>, then| {
-        add_conv(g, network, &weights, layer, (in0, in1), then)
+    let conv = |g: &mut RenderGraph, layer: usize, in0: Tensor, in1: Option<Tensor>, pool| {
+        add_conv(g, network, &weights, layer, (in0, in1), pool)
     };
-    let (e0, [p0, _]) = conv(g, 0, features, None, Then::Pool(1));
-    let (e1, [p1, _]) = conv(g, 1, p0.expect("pooled"), None, Then::Pool(1));
-    let (e2, _) = conv(g, 2, p1.expect("pooled"), None, Then::Pool(0));
-    let (bottleneck, _) = conv(g, 3, e2, None, Then::Pool(0));
-    let (d1, _) = conv(g, 4, bottleneck, Some(e1), Then::Pool(0));
-    // The decoder's output layers: the kernel decoder's heads at full, half and quarter
-    // resolution (on `dec0` pooled once and twice), fused into `dec0` where they can be.
-    let fuse_heads = kernel
-        && network.heads == HeadKernel::OneByOne
-        && network.path == InferencePath::TensorCores;
-    let (net, coarser_heads) = if fuse_heads {
-        let (net, [half_net, quarter_net]) = conv(g, 5, d1, Some(e0), Then::Heads);
-        (net, half_net.zip(quarter_net))
-    } else {
-        let (d0, [f1, f2]) = conv(g, 5, d1, Some(e0), Then::Pool(if kernel { 2 } else { 0 }));
-        let (net, _) = conv(g, 6, d0, None, Then::Pool(0));
-        let coarser = f1.zip(f2).map(|(f1, f2)| {
-            let (half_net, _) = conv(g, 7, f1, None, Then::Pool(0));
-            let (quarter_net, _) = conv(g, 8, f2, None, Then::Pool(0));
-            (half_net, quarter_net)
-        });
-        (net, coarser)
-    };
+    let (e0, [p0, _]) = conv(g, 0, features, None, 1);
+    let (e1, [p1, _]) = conv(g, 1, p0.expect("pooled"), None, 1);
+    let (e2, _) = conv(g, 2, p1.expect("pooled"), None, 0);
+    let (bottleneck, _) = conv(g, 3, e2, None, 0);
+    let (d1, _) = conv(g, 4, bottleneck, Some(e1), 0);
+    let (d0, [d0_half, d0_quarter]) = conv(g, 5, d1, Some(e0), if kernel { 2 } else { 0 });
+    let (net, _) = conv(g, 6, d0, None, 0);
     // The kernel decoder's half scale (its head's output and filtered radiance) and the quarter
     // scale's detail; the output pass filters the full scale and composites.
-    let scales = coarser_heads.map(|(half_net, quarter_net)| {
+    let scales = d0_half.zip(d0_quarter).map(|(f1, f2)| {
+        let (half_net, _) = conv(g, 7, f1, None, 0);
+        let (quarter_net, _) = conv(g, 8, f2, None, 0);
         let [half_filtered, quarter_detail] =
             add_kernel_scales(g, pooled_radiance, [half_net, quarter_net]);
         (half_net, half_filtered, quarter_detail)
@@ -464,43 +450,21 @@ fn tensor_bytes(channels: u32, (width, height): (u32, u32)) -> u64 {
     u64::from(channels) * u64::from(width) * u64::from(height) * 2
 }
 
-/// What a convolution does with its output besides writing it.
-#[derive(Clone, Copy, PartialEq, Eq)]
-enum Then {
-    /// Also writes it 2x2 average-pooled (1), and that pooled once more (2), or neither (0).
-    Pool(u32),
-    /// Runs the three 1x1 heads that follow it (the kernel decoder's, on the tensor cores) on it,
-    /// on it pooled and on it pooled twice, and writes their outputs instead of its own.
-    Heads,
-}
-
 /// Adds convolution `index` of the network's layers over `in0` then `in1` (the skip connection), at
 /// `in1`'s size (`in0` upsampled when smaller) or, without `in1`, at `in0`'s. Returns its output
-/// and, as `then` asks, the output 2x2 average-pooled and that pooled once more (fused into the
-/// convolution on the tensor-core path); or, for [`Then::Heads`], the heads' outputs at full, half
-/// and quarter resolution.
+/// and, for `pool_levels` of 1 or 2, the output 2x2 average-pooled, and that pooled once more
+/// (fused into the convolution on the tensor-core path).
 fn add_conv(
     g: &mut RenderGraph,
     network: &Network,
     weights: &WeightHandles,
     index: usize,
     (in0, in1): (Tensor, Option<Tensor>),
-    then: Then,
+    pool_levels: u32,
 ) -> (Tensor, [Option<Tensor>; 2]) {
     let offset = network.offsets[index];
     let layer = &network.layers[index];
-    let heads = (then == Then::Heads).then(|| [index + 1, index + 2, index + 3]);
-    let pool_levels = match then {
-        Then::Pool(levels) => levels,
-        Then::Heads => 2,
-    };
-    // What goes out: the layer's output, or the heads' (of one padded size).
-    let out_channels = heads.map_or(layer.out_padded(), |h| network.layers[h[0]].out_padded());
-    debug_assert!(heads.is_none_or(|h| {
-        h.iter().all(|&i| {
-            network.layers[i].out_padded() == out_channels && network.layers[i].kernel == 1
-        })
-    }));
+    let out_channels = layer.out_padded();
     debug_assert_eq!(in0.channels, layer.in0);
     debug_assert_eq!(in1.map_or(0, |t| t.channels), layer.in1);
     let size = in1.map_or(in0.size, |t| t.size);
@@ -516,7 +480,7 @@ fn add_conv(
         .read("b_in1", in1.unwrap_or(in0).buffer)
         .specialize("IN0_CHANNELS", layer.in0)
         .specialize("IN1_CHANNELS", layer.in1)
-        .specialize("OUT_CHANNELS", layer.out_padded())
+        .specialize("OUT_CHANNELS", out_channels)
         .specialize("IN0_UPSAMPLED", in0.size != size)
         .specialize("RELU", layer.relu);
     let buffer = p.create_buffer("b_out", &name, tensor_bytes(out_channels, size));
@@ -528,19 +492,14 @@ fn add_conv(
     let push = [size.0, size.1, in0.size.0, in0.size.1];
     match (weights.half, &network.half) {
         (Some(half_weights), Some((_, half_offsets))) => {
-            let bias = |i: usize| {
-                let l = &network.layers[i];
-                network.offsets[i] + l.taps() * l.inputs() * l.out_padded() / 4
-            };
+            let bias = offset + 9 * layer.inputs() * out_channels / 4;
             let half_offset = half_offsets[index];
-            let head_bias = heads.map_or([0; 3], |h| h.map(bias));
-            let head_half = heads.map_or([0; 3], |h| h.map(|i| half_offsets[i]));
             // Workgroups of four subgroups, two rows of 16 pixels each, and up to 32 output
             // channels (64-channel layers in two workgroups): the fastest of the configurations
             // measured on an H100 (`bench/README.md`); a subgroup's two rows share the staged
             // rows their taps read, three rows take too many registers.
             let (subgroups, rows, group_tiles) = (4, 2, 2);
-            let tiles = layer.out_padded().div_ceil(16);
+            let tiles = out_channels.div_ceil(16);
             let half = half_size(size);
             let quarter = half_size(half);
             let mut pooled = |level: u32, name: &str, size: (u32, u32)| {
@@ -565,25 +524,8 @@ fn add_conv(
                 .specialize("ROWS", rows)
                 .specialize("POOL_LEVELS", pool_levels)
                 .specialize("GROUP_TILES", group_tiles)
-                .specialize("HEADS", heads.is_some())
-                .specialize("HEAD_CHANNELS", out_channels)
-                .specialize("local_size_x", 32 * subgroups);
-            let [hb0, hb1, hb2] = head_bias;
-            let [hh0, hh1, hh2] = head_half;
-            p.push(&[
-                push[0],
-                push[1],
-                push[2],
-                push[3],
-                bias(index),
-                half_offset,
-                hb0,
-                hb1,
-                hb2,
-                hh0,
-                hh1,
-                hh2,
-            ]);
+                .specialize("local_size_x", 32 * subgroups)
+                .push(&[push[0], push[1], push[2], push[3], bias, half_offset]);
             // A workgroup per 16 x (subgroups * rows) tile and group of output tiles.
             p.dispatch([
                 size.0.div_ceil(16) * 32 * subgroups,
@@ -596,12 +538,7 @@ fn add_conv(
             // Up to four groups of four output channels an invocation, a divisor of them all.
             let groups = out_channels / 4;
             let per_thread = 4 * [4, 2, 1].into_iter().find(|d| groups % d == 0).unwrap_or(1);
-            debug_assert!(
-                heads.is_none(),
-                "the portable path runs the heads as layers"
-            );
             p.specialize("OUT_PER_THREAD", per_thread)
-                .specialize("KERNEL_SIZE", layer.kernel)
                 .push(&[push[0], push[1], push[2], push[3], offset]);
             p.dispatch([size.0, size.1, out_channels / per_thread]);
             let half = (pool_levels >= 1).then(|| add_pool(g, output, &format!("{name}.pool")));

@@ -1,6 +1,6 @@
 //! The network's weights on the GPU and the way its convolutions run there.
 
-use super::weights::{Decoder, HeadKernel, Layer, NetworkWeights};
+use super::weights::{Decoder, Layer, NetworkWeights};
 use lucid_engine::memory::Buffer;
 use lucid_engine::{Context, EngineError, Result};
 use std::sync::Arc;
@@ -70,8 +70,6 @@ impl InferencePath {
 #[derive(Clone)]
 pub struct Network {
     pub(super) decoder: Decoder,
-    /// [`NetworkWeights::heads`].
-    pub(super) heads: HeadKernel,
     /// [`NetworkWeights::emission_motion`].
     pub(super) emission_motion: f32,
     /// The layers, in execution order ([`Decoder::layers`]).
@@ -112,7 +110,6 @@ impl Network {
         };
         Ok(Self {
             decoder: weights.decoder(),
-            heads: weights.heads(),
             emission_motion: weights.emission_motion(),
             layers: weights.layers().to_vec(),
             buffer,
@@ -139,21 +136,20 @@ impl Network {
 /// (their N).
 const MATRIX_SIZE: usize = 16;
 
-/// The weights in `conv_coop.comp`'s layout: per layer, per chunk of 16 input channels and per tap
-/// (nine, or one for 1x1 heads), a row-major (16 input x output channels rounded up to 16)
-/// half-precision matrix, zero past the layer's channels. Returns the halves and where each layer starts, in uvec4s (eight halves).
+/// The weights in `conv_coop.comp`'s layout: per layer, per chunk of 16 input channels and per tap,
+/// a row-major (16 input x output channels rounded up to 16) half-precision matrix, zero past the
+/// layer's channels. Returns the halves and where each layer starts, in uvec4s (eight halves).
 fn pack_half_weights(weights: &NetworkWeights) -> (Vec<u16>, Vec<u32>) {
     let mut halves = Vec::new();
     let mut offsets = Vec::new();
     for (index, layer) in weights.layers().iter().enumerate() {
         offsets.push((halves.len() / 8) as u32);
         let (cin, cout) = (layer.inputs() as usize, layer.out_padded() as usize);
-        let taps = layer.taps() as usize;
         let padded = cout.div_ceil(MATRIX_SIZE) * MATRIX_SIZE;
         // conv.comp's layout: output channels (padded to 4) innermost, at (tap * cin + ci) * cout.
         let packed = &weights.packed()[weights.offset(index) as usize * 4..];
         for chunk in 0..cin.div_ceil(MATRIX_SIZE) {
-            for tap in 0..taps {
+            for tap in 0..9 {
                 for k in 0..MATRIX_SIZE {
                     let ci = chunk * MATRIX_SIZE + k;
                     halves.extend((0..padded).map(|co| {

@@ -1,8 +1,7 @@
-//! The learned denoiser's weights: a safetensors file of float32 `<layer>.weight` [out, in, k, k]
-//! and `<layer>.bias` [out] tensors for each layer of its decoder's [`Decoder::layers`] (k = 3, or
-//! 1 for the kernel decoder's heads, [`HeadKernel`]), with `format` metadata [`FORMAT`] and
-//! `decoder` metadata naming the [`Decoder`] (written by `training/train.py`), packed into the
-//! order `shaders/neural/conv.comp` reads.
+//! The learned denoiser's weights: a safetensors file of float32 `<layer>.weight` [out, in, 3, 3]
+//! and `<layer>.bias` [out] tensors for each layer of its decoder's [`Decoder::layers`], with
+//! `format` metadata [`FORMAT`] and `decoder` metadata naming the [`Decoder`] (written by
+//! `training/train.py`), packed into the order `shaders/neural/conv.comp` reads.
 
 use safetensors::tensor::{Dtype, SafeTensors};
 use std::path::Path;
@@ -18,7 +17,7 @@ pub const FEATURES: u32 = 24;
 /// `training/kernel_model.py`).
 pub const KERNEL_TAPS: u32 = 25;
 
-/// One convolution of the network.
+/// One 3x3 convolution of the network.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct Layer {
     /// The tensor name prefix.
@@ -31,8 +30,6 @@ pub struct Layer {
     pub out: u32,
     /// Whether a ReLU follows (all but the output layers).
     pub relu: bool,
-    /// Its kernel's width and height in pixels: 3, or 1 for the kernel decoder's 1x1 heads.
-    pub kernel: u32,
 }
 
 impl Layer {
@@ -43,24 +40,17 @@ impl Layer {
             in1,
             out,
             relu: true,
-            kernel: 3,
         }
     }
 
-    const fn output(name: &'static str, out: u32, kernel: u32) -> Self {
+    const fn output(name: &'static str, out: u32) -> Self {
         Self {
             name,
             in0: 32,
             in1: 0,
             out,
             relu: false,
-            kernel,
         }
-    }
-
-    /// Taps of its kernel: 9 or 1.
-    pub fn taps(&self) -> u32 {
-        self.kernel * self.kernel
     }
 
     /// Input channels in all.
@@ -76,7 +66,7 @@ impl Layer {
 
     /// Floats this layer takes in the packed buffer (weights, then bias).
     fn packed_len(&self) -> usize {
-        (self.taps() * self.inputs() * self.out_padded() + self.out_padded()) as usize
+        (9 * self.inputs() * self.out_padded() + self.out_padded()) as usize
     }
 }
 
@@ -102,28 +92,6 @@ pub enum Decoder {
     Kernel,
 }
 
-/// The kernel size of the kernel decoder's three heads (`head_kernel` in
-/// `training/kernel_model.py`; the weights' shape says which). 1x1 heads take a ninth of the
-/// products, and the tensor-core path computes them inside `dec0`'s workgroups, from the tile it
-/// has just computed, so that `dec0`'s output never goes to memory (`shaders/neural/conv_coop.comp`).
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub enum HeadKernel {
-    /// 3x3 convolutions, as the U-Net's (the direct decoder's output layer is always one).
-    ThreeByThree,
-    /// 1x1 convolutions.
-    OneByOne,
-}
-
-impl HeadKernel {
-    /// The kernel's width and height in pixels.
-    pub fn size(self) -> u32 {
-        match self {
-            HeadKernel::ThreeByThree => 3,
-            HeadKernel::OneByOne => 1,
-        }
-    }
-}
-
 impl Decoder {
     /// The name in weights files.
     pub fn name(self) -> &'static str {
@@ -140,19 +108,17 @@ impl Decoder {
     }
 
     /// Every layer of a network with this decoder, in execution order: [`UNET`], then the output
-    /// layers (the kernel decoder's at full, half and quarter resolution, with `heads` kernels;
-    /// the direct decoder's is 3x3 whatever `heads`).
-    pub fn layers(self, heads: HeadKernel) -> Vec<Layer> {
-        let k = heads.size();
-        let outputs = match self {
-            Decoder::Direct => vec![Layer::output("out", 4, 3)],
-            Decoder::Kernel => vec![
-                Layer::output("out", KERNEL_TAPS + 2, k),
-                Layer::output("out_half", KERNEL_TAPS + 1, k),
-                Layer::output("out_quarter", KERNEL_TAPS, k),
+    /// layers (the kernel decoder's at full, half and quarter resolution).
+    pub fn layers(self) -> Vec<Layer> {
+        let outputs: &[Layer] = match self {
+            Decoder::Direct => &[Layer::output("out", 4)],
+            Decoder::Kernel => &[
+                Layer::output("out", KERNEL_TAPS + 2),
+                Layer::output("out_half", KERNEL_TAPS + 1),
+                Layer::output("out_quarter", KERNEL_TAPS),
             ],
         };
-        UNET.iter().copied().chain(outputs).collect()
+        UNET.iter().chain(outputs).copied().collect()
     }
 }
 
@@ -229,7 +195,6 @@ pub const EMISSION_MOTION: f32 = 0.0;
 #[derive(Clone, Debug, PartialEq)]
 pub struct NetworkWeights {
     decoder: Decoder,
-    heads: HeadKernel,
     emission_motion: f32,
     layers: Vec<Layer>,
     packed: Vec<f32>,
@@ -295,36 +260,25 @@ impl NetworkWeights {
                 })?
         };
         let tensors = SafeTensors::deserialize(bytes).map_err(|e| format_error(e.to_string()))?;
-        // The heads' kernel size, as `out.weight`'s shape says (any other shape is refused below).
-        let one_by_one = decoder == Decoder::Kernel
-            && tensors
-                .tensor("out.weight")
-                .is_ok_and(|t| t.shape().last() == Some(&1));
-        let heads = if one_by_one {
-            HeadKernel::OneByOne
-        } else {
-            HeadKernel::ThreeByThree
-        };
-        let layers = decoder.layers(heads);
+        let layers = decoder.layers();
         let mut packed = Vec::with_capacity(layers.iter().map(Layer::packed_len).sum());
         let mut offsets = Vec::with_capacity(layers.len());
         for layer in &layers {
             offsets.push((packed.len() / 4) as u32);
             let (cin, cout) = (layer.inputs() as usize, layer.out as usize);
-            let (k, taps) = (layer.kernel as usize, layer.taps() as usize);
             let padding = (layer.out_padded() - layer.out) as usize;
             let weight = read_tensor(
                 &tensors,
                 file,
                 &format!("{}.weight", layer.name),
-                &[cout, cin, k, k],
+                &[cout, cin, 3, 3],
             )?;
             let bias = read_tensor(&tensors, file, &format!("{}.bias", layer.name), &[cout])?;
             // conv.comp reads vec4s of four consecutive output channels at
             // (tap * cin + ci) * cout / 4, the output channels padded with zeros to a multiple of 4.
-            for tap in 0..taps {
+            for tap in 0..9 {
                 for ci in 0..cin {
-                    packed.extend((0..cout).map(|co| weight[(co * cin + ci) * taps + tap]));
+                    packed.extend((0..cout).map(|co| weight[(co * cin + ci) * 9 + tap]));
                     packed.extend(std::iter::repeat_n(0.0, padding));
                 }
             }
@@ -333,7 +287,6 @@ impl NetworkWeights {
         }
         Ok(Self {
             decoder,
-            heads,
             emission_motion,
             layers,
             packed,
@@ -344,11 +297,6 @@ impl NetworkWeights {
     /// The decoder these weights are for.
     pub fn decoder(&self) -> Decoder {
         self.decoder
-    }
-
-    /// The kernel size of the kernel decoder's heads (3x3 for the direct decoder).
-    pub fn heads(&self) -> HeadKernel {
-        self.heads
     }
 
     /// The least weight of this frame's emission per pixel of motion in its average over time
@@ -417,25 +365,20 @@ mod tests {
         decoder: Decoder,
         edit: impl Fn(&str, &mut Vec<usize>, &mut Vec<f32>) -> bool,
     ) -> Vec<u8> {
-        file_with_metadata(format, decoder, HeadKernel::ThreeByThree, &[], edit)
+        file_with_metadata(format, decoder, &[], edit)
     }
 
-    /// [`file_for`] with the heads' kernel size and more metadata entries.
+    /// [`file_for`] with more metadata entries.
     fn file_with_metadata(
         format: &str,
         decoder: Decoder,
-        heads: HeadKernel,
         extra: &[(&str, &str)],
         edit: impl Fn(&str, &mut Vec<usize>, &mut Vec<f32>) -> bool,
     ) -> Vec<u8> {
         let mut tensors = Vec::new();
-        for layer in decoder.layers(heads) {
-            let (cin, cout, k) = (
-                layer.inputs() as usize,
-                layer.out as usize,
-                layer.kernel as usize,
-            );
-            for (kind, shape) in [("weight", vec![cout, cin, k, k]), ("bias", vec![cout])] {
+        for layer in decoder.layers() {
+            let (cin, cout) = (layer.inputs() as usize, layer.out as usize);
+            for (kind, shape) in [("weight", vec![cout, cin, 3, 3]), ("bias", vec![cout])] {
                 let name = format!("{}.{kind}", layer.name);
                 let mut shape = shape;
                 let mut values = vec![0.5f32; shape.iter().product()];
@@ -485,70 +428,8 @@ mod tests {
             let good = file_for(FORMAT, decoder, |_, _, _| true);
             let loaded = NetworkWeights::from_bytes(&good, "w").expect("loads");
             assert_eq!(loaded.decoder(), decoder);
-            assert_eq!(loaded.heads(), HeadKernel::ThreeByThree);
-            assert_eq!(loaded.layers(), decoder.layers(HeadKernel::ThreeByThree));
+            assert_eq!(loaded.layers(), decoder.layers());
         }
-    }
-
-    /// Edits a tensor of a test's weights file (name, shape, values); false leaves it out.
-    type Edit<'a> = &'a dyn Fn(&str, &mut Vec<usize>, &mut Vec<f32>) -> bool;
-
-    #[test]
-    fn one_by_one_heads_load_and_pack_one_tap() {
-        let one = |edit: Edit<'_>| {
-            file_with_metadata(FORMAT, Decoder::Kernel, HeadKernel::OneByOne, &[], edit)
-        };
-        let weights = NetworkWeights::from_bytes(&one(&|_, _, _| true), "w").expect("loads");
-        assert_eq!(weights.heads(), HeadKernel::OneByOne);
-        let layers = weights.layers();
-        assert_eq!(layers, Decoder::Kernel.layers(HeadKernel::OneByOne));
-        let kernels: Vec<u32> = layers.iter().map(|l| l.kernel).collect();
-        assert_eq!(kernels, [3, 3, 3, 3, 3, 3, 1, 1, 1]);
-        let out = layers.len() - 3;
-        // One tap: 32 inputs by 28 padded outputs, then the bias.
-        assert_eq!(layers[out].packed_len(), 32 * 28 + 28);
-        let floats: usize = layers.iter().map(Layer::packed_len).sum();
-        assert_eq!(weights.packed().len(), floats);
-        // Input channel ci's weights for output co at ci * 28 + co.
-        let ramp = one(&|name, _, values| {
-            if name == "out.weight" {
-                values
-                    .iter_mut()
-                    .enumerate()
-                    .for_each(|(i, v)| *v = i as f32);
-            }
-            true
-        });
-        let weights = NetworkWeights::from_bytes(&ramp, "w").expect("loads");
-        let start = weights.offset(out) as usize * 4;
-        let (ci, co) = (5, 26);
-        assert_eq!(
-            weights.packed()[start + ci * 28 + co],
-            (co * 32 + ci) as f32
-        );
-        // Heads of two sizes, or a 1x1 direct decoder, are refused, naming the tensor.
-        let mixed = error(&one(&|name, shape, values| {
-            if name == "out_half.weight" {
-                shape[2..].copy_from_slice(&[3, 3]);
-                values.resize(shape.iter().product(), 0.5);
-            }
-            true
-        }));
-        assert!(
-            mixed.contains("out_half.weight") && mixed.contains("expected [26, 32, 1, 1]"),
-            "{mixed}"
-        );
-        let direct = error(&file(FORMAT, |name, shape, values| {
-            if name == "out.weight" {
-                shape[2..].copy_from_slice(&[1, 1]);
-                values.truncate(shape.iter().product());
-            }
-            true
-        }));
-        assert!(
-            direct.contains("out.weight") && direct.contains("expected [4, 32, 3, 3]"),
-            "{direct}"
-        );
     }
 
     #[test]
@@ -560,7 +441,6 @@ mod tests {
             file_with_metadata(
                 FORMAT,
                 Decoder::Kernel,
-                HeadKernel::ThreeByThree,
                 &[("emission_motion", value)],
                 |_, _, _| true,
             )
