@@ -55,9 +55,6 @@ layout(push_constant) uniform Params {
     // The least weight of this frame's emission in its average, per pixel of motion (the weights
     // file's, passes/src/denoise/neural/weights.rs).
     float emission_motion;
-    // The most this frame's demodulated radiance may exceed its reprojected running mean by, as a
-    // factor of the mean's luminance (0: no limit; the weights file's).
-    float firefly_clamp;
 } params;
 
 const float DEPTH_TOLERANCE = 0.05;
@@ -154,10 +151,17 @@ void pool_radiance(vec3 radiance) {
     }
 }
 
-// Writes the features of `pixel` (inside the image) and its history; returns its demodulated
-// radiance, limited against fireflies, for the pooling.
-vec3 write_features(ivec2 pixel) {
-    vec3 demodulated = max(input_demodulated(pixel), vec3(0.0));
+void main() {
+    ivec2 pixel = ivec2(gl_GlobalInvocationID.xy);
+    bool inside = pixel_in_bounds(pixel, ivec2(size()));
+    vec3 demodulated = inside ? max(input_demodulated(pixel), vec3(0.0)) : vec3(0.0);
+    if (POOLED_RADIANCE) {
+        pool_radiance(demodulated);
+    }
+    load_log_emission();
+    if (!inside) {
+        return;
+    }
     vec4 normal_roughness = input_normal_roughness(pixel);
     vec3 normal = normal_roughness.xyz;
     float depth = input_depth(pixel);
@@ -217,15 +221,6 @@ vec3 write_features(ivec2 pixel) {
         mask = 1.0;
     } else {
         warped = vec3(0.0);
-    }
-    // A sample far brighter than the pixel's reprojected robust running mean (from 4 frames of
-    // history) is scaled down to firefly_clamp times the mean's luminance.
-    if (params.firefly_clamp > 0.0 && mask > 0.0 && warped_accum.a >= 4.0) {
-        float limit = params.firefly_clamp * luminance(expand(warped_robust.rgb));
-        float lum = luminance(demodulated);
-        if (lum > limit) {
-            demodulated *= limit / lum;
-        }
     }
     // The running means (`accumulate`): this frame's values where nothing is reprojected.
     float lum = luminance(demodulated);
@@ -299,15 +294,4 @@ vec3 write_features(ivec2 pixel) {
     b_features.v[at + 3u] = pack_channels(vec4(warped.gb, mask, log_mean.r));
     b_features.v[at + 4u] = pack_channels(vec4(log_mean.gb, n / N_MAX, log_std));
     b_features.v[at + 5u] = pack_channels(vec4(log_robust, sqrt(robust_variance)));
-    return demodulated;
-}
-
-void main() {
-    ivec2 pixel = ivec2(gl_GlobalInvocationID.xy);
-    bool inside = pixel_in_bounds(pixel, ivec2(size()));
-    load_log_emission();
-    vec3 demodulated = inside ? write_features(pixel) : vec3(0.0);
-    if (POOLED_RADIANCE) {
-        pool_radiance(demodulated);
-    }
 }

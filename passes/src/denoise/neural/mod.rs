@@ -277,8 +277,6 @@ struct FeaturesParams {
     history_valid: u32,
     /// [`NetworkWeights::emission_motion`].
     emission_motion: f32,
-    /// [`NetworkWeights::firefly_clamp`].
-    firefly_clamp: f32,
 }
 
 /// Adds the denoiser over the frame's `inputs` at `width` x `height`, with its history under the
@@ -321,7 +319,7 @@ pub fn add_neural(
         albedo_history.prev,
         emission_history.prev,
     ];
-    let (emission_motion, firefly_clamp) = (network.emission_motion, network.firefly_clamp);
+    let emission_motion = network.emission_motion;
     inputs.read(&mut p);
     p.read("u_prev_output", prev[0])
         .read("u_ids", inputs.ids)
@@ -331,7 +329,6 @@ pub fn add_neural(
             height,
             history_valid: u32::from(prev.iter().all(|&h| ctx.history_valid(h))),
             emission_motion,
-            firefly_clamp,
         });
     p.history("u_prev_surface", "u_surface", surface_history);
     let accum = p.history("u_prev_accum", "u_accum", accum_history);

@@ -72,8 +72,6 @@ pub struct Network {
     pub(super) decoder: Decoder,
     /// [`NetworkWeights::emission_motion`].
     pub(super) emission_motion: f32,
-    /// [`NetworkWeights::firefly_clamp`].
-    pub(super) firefly_clamp: f32,
     /// The layers, in execution order ([`Decoder::layers`]).
     pub(super) layers: Vec<Layer>,
     /// Every layer's float32 weights and bias (`conv.comp`'s layout).
@@ -113,7 +111,6 @@ impl Network {
         Ok(Self {
             decoder: weights.decoder(),
             emission_motion: weights.emission_motion(),
-            firefly_clamp: weights.firefly_clamp(),
             layers: weights.layers().to_vec(),
             buffer,
             offsets: (0..weights.layers().len())

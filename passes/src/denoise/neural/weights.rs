@@ -196,7 +196,6 @@ pub const EMISSION_MOTION: f32 = 0.0;
 pub struct NetworkWeights {
     decoder: Decoder,
     emission_motion: f32,
-    firefly_clamp: f32,
     layers: Vec<Layer>,
     packed: Vec<f32>,
     offsets: Vec<u32>,
@@ -260,21 +259,6 @@ impl NetworkWeights {
                     expected: "a finite number from 0 up".into(),
                 })?
         };
-        let found = entry("firefly_clamp");
-        let firefly_clamp = if found.is_empty() {
-            0.0
-        } else {
-            found
-                .parse::<f32>()
-                .ok()
-                .filter(|v| v.is_finite() && *v >= 0.0)
-                .ok_or_else(|| WeightsError::Metadata {
-                    file: file.to_owned(),
-                    key: "firefly_clamp".into(),
-                    found,
-                    expected: "a finite number from 0 up".into(),
-                })?
-        };
         let tensors = SafeTensors::deserialize(bytes).map_err(|e| format_error(e.to_string()))?;
         let layers = decoder.layers();
         let mut packed = Vec::with_capacity(layers.iter().map(Layer::packed_len).sum());
@@ -304,7 +288,6 @@ impl NetworkWeights {
         Ok(Self {
             decoder,
             emission_motion,
-            firefly_clamp,
             layers,
             packed,
             offsets,
@@ -320,13 +303,6 @@ impl NetworkWeights {
     /// (the file's `emission_motion` metadata, else [`EMISSION_MOTION`]).
     pub fn emission_motion(&self) -> f32 {
         self.emission_motion
-    }
-
-    /// The most a pixel's demodulated radiance may exceed its reprojected running mean by, as a
-    /// factor of the mean's luminance, before the denoiser reads it (the file's `firefly_clamp`
-    /// metadata; 0: no limit).
-    pub fn firefly_clamp(&self) -> f32 {
-        self.firefly_clamp
     }
 
     /// The layers, in execution order ([`Decoder::layers`]).
