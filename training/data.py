@@ -1,6 +1,8 @@
 """Reads what `lucid dataset` writes: `index.json` and one safetensors file per camera-path
-sequence, holding `record` [T, RECORD_SIZE, H, W] and `reference` [T, 3, H, W] in float16; or a
-folder of such datasets (`shard-K/`, as `dataset_gpu.sh` renders them in parallel), read as one."""
+sequence, holding `record` [T, RECORD_SIZE, H, W] and `reference` [T, 3, H, W] in float16 and
+`objects` [T, H, W] (each pixel's object id, int32; datasets from before it have none: all one
+object); or a folder of such datasets (`shard-K/`, as `dataset_gpu.sh` renders them in parallel),
+read as one."""
 
 import json
 from pathlib import Path
@@ -24,7 +26,8 @@ def dataset_folders(root):
 
 def load_split(root, split, device):
     """The sequences of `split` ("train", "validation" or "study") as a list of dicts with
-    `record`, `reference` (float16 on `device`) and `name`."""
+    `record`, `reference` (float16 on `device`), `objects` ([T,1,H,W] float32 on `device`, as
+    `model.RecurrentDenoiser.step` takes them; zero where the dataset has none) and `name`."""
     out = []
     for folder in dataset_folders(root):
         index = json.loads((folder / "index.json").read_text())
@@ -36,7 +39,11 @@ def load_split(root, split, device):
             name = f"{folder.name}/{entry['file']}"
             if record.shape[1] != RECORD_SIZE:
                 raise ValueError(f"{name}: record has {record.shape[1]} channels, expected {RECORD_SIZE}")
-            out.append({"name": name, "record": record.to(device), "reference": reference.to(device)})
+            objects = tensors.get("objects")
+            if objects is None:
+                objects = torch.zeros(record.shape[0], record.shape[2], record.shape[3], dtype=torch.int32)
+            objects = objects.unsqueeze(1).float().to(device)
+            out.append({"name": name, "record": record.to(device), "reference": reference.to(device), "objects": objects})
     if not out:
         raise ValueError(f"{root}: no '{split}' sequences")
     return out
@@ -45,8 +52,8 @@ def load_split(root, split, device):
 def sample_batch(sequences, batch, frames, crop, generator):
     """`batch` random windows of `frames` consecutive frames, each a random `crop` x `crop` tile of
     one sequence, with a random exposure scale (radiance-like channels scaled together). Returns
-    float32 (records [B,T,C,H,W], references [B,T,3,H,W])."""
-    recs, refs = [], []
+    float32 (records [B,T,C,H,W], references [B,T,3,H,W], object ids [B,T,1,H,W])."""
+    recs, refs, objs = [], [], []
     for _ in range(batch):
         s = sequences[int(torch.randint(len(sequences), (1,), generator=generator))]
         t_total, _, h, w = s["record"].shape
@@ -55,10 +62,11 @@ def sample_batch(sequences, batch, frames, crop, generator):
         x0 = int(torch.randint((w - crop) // 4 + 1, (1,), generator=generator)) * 4
         rec = s["record"][t0 : t0 + frames, :, y0 : y0 + crop, x0 : x0 + crop].float()
         ref = s["reference"][t0 : t0 + frames, :, y0 : y0 + crop, x0 : x0 + crop].float()
+        objs.append(s["objects"][t0 : t0 + frames, :, y0 : y0 + crop, x0 : x0 + crop])
         scale = float(torch.exp(torch.empty(1).uniform_(-1.4, 1.4, generator=generator)))
         rec = rec.clone()
         rec[:, 0:3] *= scale  # demodulated
         rec[:, 6:9] *= scale  # emission
         recs.append(rec)
         refs.append(ref * scale)
-    return torch.stack(recs), torch.stack(refs)
+    return torch.stack(recs), torch.stack(refs), torch.stack(objs)

@@ -4,12 +4,13 @@ says) computes from them with the given weights (half-precision storage emulated
 radiance (`expected`), the running mean with its length (`accum`), the second moment of luminance
 (`moment`) and the range-compressed running mean with its second moment (`robust`), which
 `tests/neural_parity.rs` checks the Vulkan inference against. The synthetic pair also has each
-pixel's object id (`objects`; the others are all one object, as records have no ids).
+pixel's object id (`objects`), as do the dataset's frames of a dataset that has them.
 
     python3 make_parity.py --weights ../passes/src/denoise/neural/lucid-rae-v3.safetensors \
         [--data DATASET_DIR | --records FIXTURE] --out ../tests/references/neural_parity.safetensors
 
-With `--data`, the frames are a 32x24 crop of the first validation sequence's first two frames;
+With `--data`, the frames are a 32x24 crop of the first validation sequence's first two frames
+(and their object ids, where the dataset has them);
 with `--records`, the records of an existing fixture (to keep its frames when only the model or
 the weights change); without either, a synthetic pair (a textured plane seen by a camera that
 moves by a sub-pixel offset, an emitter on it that is an object of its own, sky in a corner, and
@@ -69,10 +70,15 @@ def from_dataset(root):
     folder = dataset_folders(root)[0]
     index = json.loads((folder / "index.json").read_text())
     entry = next(e for e in index["sequences"] if e["split"] == "validation")
-    rec = load_file(str(folder / entry["file"]))["record"][:2].float()
+    tensors = load_file(str(folder / entry["file"]))
+    rec = tensors["record"][:2].float()
     _, _, h, w = rec.shape
     y0, x0 = (h - H) // 2 // 4 * 4, (w - W) // 2 // 4 * 4
-    return rec[:, :, y0 : y0 + H, x0 : x0 + W].contiguous()
+    crop = rec[:, :, y0 : y0 + H, x0 : x0 + W].contiguous()
+    objects = tensors.get("objects")
+    if objects is not None:
+        objects = objects[:2, None, y0 : y0 + H, x0 : x0 + W].float().contiguous()
+    return crop, objects
 
 
 def main():
@@ -88,7 +94,7 @@ def main():
     load_weights(model, args.weights)
     objects = None
     if args.data:
-        record, source = from_dataset(args.data), args.data
+        (record, objects), source = from_dataset(args.data), args.data
     elif args.records:
         fixture = load_file(args.records)
         record, objects = fixture["record"], fixture.get("objects")

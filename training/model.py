@@ -283,8 +283,8 @@ class RecurrentDenoiser(nn.Module):
 
     def step(self, record, state, fp16_storage=False, objects=None):
         """One frame. `record` [B,RECORD_SIZE,H,W]; `objects` [B,1,H,W] the object id of each
-        pixel's first hit (masked by OBJECT_BITS; None: all one object, as in the dataset, whose
-        records have no ids); `state` None (no history) or the dict returned by the previous step
+        pixel's first hit (masked by OBJECT_BITS, as the dataset's `objects` are; None: all one
+        object); `state` None (no history) or the dict returned by the previous step
         (`output`: log radiance [B,3], `surface`: depth, normal and object [B,5],
         `accum`: running mean and its length [B,4], `moment`: second moment of luminance [B,1],
         `robust`: the compressed running mean and its second moment [B,4], `albedo` and
@@ -352,11 +352,13 @@ class RecurrentDenoiser(nn.Module):
         and length) serve output layers that filter the radiance (`kernel_model.py`)."""
         return self.convs["out"](d0)
 
-    def forward(self, records, fp16_storage=False):
-        """A sequence [B,T,RECORD_SIZE,H,W] from no history, all one object; returns [B,T,3,H,W]."""
+    def forward(self, records, fp16_storage=False, objects=None):
+        """A sequence [B,T,RECORD_SIZE,H,W] from no history, its pixels' object ids `objects`
+        [B,T,1,H,W] (None: all one object); returns [B,T,3,H,W]."""
         state, outs = None, []
         for t in range(records.shape[1]):
-            y, state = self.step(records[:, t], state, fp16_storage)
+            frame_objects = None if objects is None else objects[:, t]
+            y, state = self.step(records[:, t], state, fp16_storage, objects=frame_objects)
             outs.append(y)
         return torch.stack(outs, 1)
 

@@ -95,7 +95,7 @@ def main():
                 for s in sequences:
                     rec = s["record"].float().unsqueeze(0)
                     ref = s["reference"].float().unsqueeze(0)
-                    out = net(rec)
+                    out = net(rec, objects=s["objects"].unsqueeze(0))
                     rows.append({
                         "sequence": s["name"],
                         "relmse": ((out - ref) ** 2 / (ref**2 + 1e-2)).mean().item(),

@@ -105,7 +105,7 @@ def validate(model, sequences):
     for s in sequences:
         rec = s["record"].float().unsqueeze(0)
         ref = s["reference"].float().unsqueeze(0)
-        out = model(rec)
+        out = model(rec, objects=s["objects"].unsqueeze(0))
         rel.append(relmse(out, ref).item())
         ssim.append(display_ssim(out[0], ref[0]).mean().item())
         inst.append(temporal_l1(log_tonemap(out), log_tonemap(ref)).item())
@@ -114,17 +114,18 @@ def validate(model, sequences):
     return {"relmse": sum(rel) / n, "ssim": sum(ssim) / n, "temporal": sum(inst) / n}
 
 
-def run_window(model, rec, burn_in):
-    """The frames of a window [B, burn_in + frames, C, H, W] one `step` at a time, the first
-    `burn_in` without gradients; returns the outputs of the others [B, frames, 3, H, W]."""
+def run_window(model, rec, objects, burn_in):
+    """The frames of a window [B, burn_in + frames, C, H, W] (their object ids `objects` [B, burn_in
+    + frames, 1, H, W]) one `step` at a time, the first `burn_in` without gradients; returns the
+    outputs of the others [B, frames, 3, H, W]."""
     state = None
     if burn_in:
         with torch.no_grad():
             for t in range(burn_in):
-                _, state = model.step(rec[:, t], state)
+                _, state = model.step(rec[:, t], state, objects=objects[:, t])
     outs = []
     for t in range(burn_in, rec.shape[1]):
-        y, state = model.step(rec[:, t], state)
+        y, state = model.step(rec[:, t], state, objects=objects[:, t])
         outs.append(y)
     return torch.stack(outs, 1)
 
@@ -186,10 +187,10 @@ def main():
         for group in opt.param_groups:
             group["lr"] = args.lr * 0.5 * (1.0 + math.cos(math.pi * min(frac, 1.0)))
         burn_in = int(torch.randint(burn_in_min, args.burn_in + 1, (1,), generator=gen))
-        rec, ref = sample_batch(train, args.batch, burn_in + args.frames, args.crop, gen)
-        rec, ref = rec.to(dev), ref[:, burn_in:].to(dev)
+        rec, ref, objects = sample_batch(train, args.batch, burn_in + args.frames, args.crop, gen)
+        rec, ref, objects = rec.to(dev), ref[:, burn_in:].to(dev), objects.to(dev)
         with autocast():
-            out = run_window(model, rec, burn_in)
+            out = run_window(model, rec, objects, burn_in)
         loss, terms = compute_loss(out.float(), ref, ws)
         opt.zero_grad(set_to_none=True)
         loss.backward()

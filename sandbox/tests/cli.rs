@@ -336,6 +336,20 @@ fn dataset_writes_records_and_references_with_an_index() {
         assert_eq!(record.shape(), [2, 17, 12, 16]);
         assert_eq!(record.dtype(), safetensors::Dtype::F16);
         assert_eq!(tensors.tensor("reference").unwrap().shape(), [2, 3, 12, 16]);
+        // Each pixel's object: a room's walls, floor and furniture are objects of their own.
+        let objects = tensors.tensor("objects").unwrap();
+        assert_eq!(objects.shape(), [2, 12, 16]);
+        assert_eq!(objects.dtype(), safetensors::Dtype::I32);
+        let ids: Vec<i32> = bytemuck::pod_collect_to_vec(objects.data());
+        let distinct: std::collections::BTreeSet<i32> = ids.iter().copied().collect();
+        assert!(
+            distinct.len() > 1,
+            "one object id for the whole room: {distinct:?}"
+        );
+        assert!(
+            ids.iter().all(|&id| (0..1 << 24).contains(&id)),
+            "{distinct:?}"
+        );
     }
     let odd = lucid(&["dataset", "--out", dir.to_str().unwrap(), "--size", "18x12"]);
     assert!(stderr(&odd).contains("multiples of 4"), "{}", stderr(&odd));

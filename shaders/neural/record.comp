@@ -10,6 +10,8 @@
 layout(local_size_x = 32, local_size_y = 2) in;
 
 layout(set = 0, binding = 6, std430) writeonly buffer Record { float v[]; } b_record;
+// The G-buffer's ids: object (x), material, primitive, hit flag.
+layout(set = 0, binding = 7, rgba32ui) uniform readonly uimage2D u_ids;
 
 void put(uint channel, ivec2 pixel, uvec2 size, float value) {
     b_record.v[record_index(channel, pixel, size)] = value;
@@ -36,4 +38,5 @@ void main() {
     put(RECORD_ROUGHNESS, pixel, s, nr.w);
     put(RECORD_DEPTH, pixel, s, input_depth(pixel));
     put3(RECORD_MOTION, pixel, s, input_motion(pixel));
+    put(RECORD_OBJECT, pixel, s, float(imageLoad(u_ids, pixel).x & OBJECT_BITS));
 }

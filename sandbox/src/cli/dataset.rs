@@ -1,6 +1,7 @@
 //! `lucid dataset`: renders the learned denoiser's training data: camera-path sequences whose
 //! frames hold the denoiser's 1-sample inputs (the record of `lucid_passes::denoise::neural`: demodulated
-//! radiance, albedo, emission, normal, roughness, depth, motion) and a many-sample reference, one
+//! radiance, albedo, emission, normal, roughness, depth, motion), each pixel's object id (which the
+//! denoiser's averages of albedo and emission over time test) and a many-sample reference, one
 //! safetensors file per sequence plus `index.json` (read by `training/data.py`).
 //!
 //! Scenes: procedural rooms (`random-room-<seed>`) and the built-in scenes, except `classroom` and
@@ -21,7 +22,7 @@ use half::f16;
 use lucid_engine::atomic_write::write_atomic;
 use lucid_engine::scene::{builtin, Camera, Scene};
 use lucid_engine::{Context, ContextDesc};
-use lucid_passes::denoise::neural::RECORD_CHANNELS;
+use lucid_passes::denoise::neural::{RECORD_CHANNELS, RECORD_OBJECT};
 use lucid_passes::renderer::{Denoiser, Renderer, SamplesPerPixel, Settings};
 use lucid_passes::tradeoff::measure::REFERENCE_SPP_PER_FRAME;
 use safetensors::tensor::{Dtype, TensorView};
@@ -220,7 +221,8 @@ fn cameras(scene: &Scene, job: &Job, frames: u32) -> anyhow::Result<Vec<Camera>>
 }
 
 /// Renders one sequence: the 1-sample records through the learned denoiser's path and the
-/// references, written as float16 `record` [T, channels, H, W] and `reference` [T, 3, H, W].
+/// references, written as float16 `record` [T, channels, H, W] and `reference` [T, 3, H, W], and
+/// int32 `objects` [T, H, W] (the records' object ids).
 fn render_sequence(
     ctx: &Context,
     scene: &Scene,
@@ -251,11 +253,15 @@ fn render_sequence(
     let mut records: Vec<u16> =
         Vec::with_capacity(cameras.len() * pixels * RECORD_CHANNELS as usize);
     let mut references: Vec<u16> = Vec::with_capacity(cameras.len() * pixels * 3);
+    let mut objects: Vec<i32> = Vec::with_capacity(cameras.len() * pixels);
     for &camera in cameras {
         noisy.set_camera(camera);
         let (_, record) = noisy.render_and_read_record()?;
         let floats: Vec<f32> = bytemuck::pod_collect_to_vec(&record);
-        records.extend(floats.iter().map(|&v| f16::from_f32(v).to_bits()));
+        let (channels, ids) = floats.split_at(RECORD_OBJECT as usize * pixels);
+        records.extend(channels.iter().map(|&v| f16::from_f32(v).to_bits()));
+        // The ids are the low 24 bits, exact in the float.
+        objects.extend(ids.iter().map(|&id| id as i32));
 
         reference.set_camera(camera);
         for _ in 1..reference_frames {
@@ -272,6 +278,7 @@ fn render_sequence(
     let t = cameras.len();
     let record_bytes: &[u8] = bytemuck::cast_slice(&records);
     let reference_bytes: &[u8] = bytemuck::cast_slice(&references);
+    let object_bytes: &[u8] = bytemuck::cast_slice(&objects);
     let tensors = HashMap::from([
         (
             "record".to_string(),
@@ -288,6 +295,10 @@ fn render_sequence(
                 vec![t, 3, h as usize, w as usize],
                 reference_bytes,
             )?,
+        ),
+        (
+            "objects".to_string(),
+            TensorView::new(Dtype::I32, vec![t, h as usize, w as usize], object_bytes)?,
         ),
     ]);
     let metadata = HashMap::from([("scene".to_string(), scene.name.clone())]);

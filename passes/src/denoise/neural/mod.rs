@@ -58,6 +58,10 @@ use lucid_engine::{EngineError, Result};
 /// Channels of a pixel's record (`RECORD_SIZE` in `shaders/neural/record.glsl`).
 pub const RECORD_CHANNELS: u32 = 17;
 
+/// The plane after a read-back record's channels: each pixel's object id, its low 24 bits as a
+/// float (`RECORD_OBJECT` in the shader).
+pub const RECORD_OBJECT: u32 = RECORD_CHANNELS;
+
 /// The first channel of the first hit's albedo in a record (`RECORD_ALBEDO` in the shader).
 pub const RECORD_ALBEDO: u32 = 3;
 /// The first channel of the G-buffer normal in a record (`RECORD_NORMAL` in the shader).
@@ -92,9 +96,9 @@ pub fn record_image(record: &[u8], (width, height): (u32, u32), first: u32) -> R
         .map_err(|e| EngineError::InvalidArgument(e.to_string()))
 }
 
-/// Bytes of the record buffer of a `width` x `height` frame.
+/// Bytes of the record buffer of a `width` x `height` frame: its channels and the object ids.
 pub fn record_bytes(width: u32, height: u32) -> u64 {
-    u64::from(RECORD_CHANNELS) * u64::from(width) * u64::from(height) * 4
+    u64::from(RECORD_CHANNELS + 1) * u64::from(width) * u64::from(height) * 4
 }
 
 /// The learned denoiser as the renderer's denoiser: the network and its history prefix. It runs
@@ -192,6 +196,7 @@ pub fn add_record(
 ) -> BufferHandle {
     let mut p = g.compute_pass("neural.record", &RECORD);
     inputs.read(&mut p);
+    p.read("u_ids", inputs.ids);
     let record = p.create_buffer("b_record", "neural.record", record_bytes(width, height));
     p.dispatch([width, height, 1]);
     record
