@@ -207,6 +207,16 @@ impl<'a> PassContext<'a> {
     }
 }
 
+/// How many workgroups a dispatch runs.
+enum Work {
+    /// Enough to cover this many invocations.
+    Threads([u32; 3]),
+    /// Exactly these.
+    Groups([u32; 3]),
+    /// As many as the GPU reads from the buffer at this byte offset.
+    Indirect(BufferHandle, u64),
+}
+
 /// A compute dispatch being set up; see [`PassContext::compute`].
 pub struct Dispatch<'p, 'a> {
     pcx: &'p mut PassContext<'a>,
@@ -253,18 +263,20 @@ impl Dispatch<'_, '_> {
     /// Dispatches enough workgroups to cover `threads` invocations (the workgroup size comes from
     /// the shader); the shader must bounds-check.
     pub fn dispatch_threads(self, threads: [u32; 3]) -> Result<()> {
-        self.record(|wg| {
-            [
-                threads[0].div_ceil(wg[0]),
-                threads[1].div_ceil(wg[1]),
-                threads[2].div_ceil(wg[2]),
-            ]
-        })
+        self.record(Work::Threads(threads))
     }
 
     /// Dispatches exactly `groups` workgroups.
     pub fn dispatch_groups(self, groups: [u32; 3]) -> Result<()> {
-        self.record(|_| groups)
+        self.record(Work::Groups(groups))
+    }
+
+    /// Dispatches the workgroup counts that the GPU finds in `args` at byte `offset` (a
+    /// `VkDispatchIndirectCommand`: three u32, `offset` a multiple of 4, within the buffer), which
+    /// the pass must have declared with [`Access::IndirectCommandRead`], so that the graph orders
+    /// the dispatch after the pass that wrote the counts.
+    pub fn dispatch_indirect(self, args: BufferHandle, offset: u64) -> Result<()> {
+        self.record(Work::Indirect(args, offset))
     }
 
     fn error(&self, message: String) -> EngineError {
@@ -274,7 +286,32 @@ impl Dispatch<'_, '_> {
         }
     }
 
-    fn record(self, groups_for: impl FnOnce([u32; 3]) -> [u32; 3]) -> Result<()> {
+    /// The indirect-arguments buffer of `work` when it is one, checked: declared with
+    /// [`Access::IndirectCommandRead`], the command within the buffer and aligned.
+    fn indirect_args(&self, work: &Work) -> Result<Option<(vk::Buffer, u64)>> {
+        let Work::Indirect(args, offset) = *work else {
+            return Ok(None);
+        };
+        let access = self.pcx.declared(args, "indirect arguments")?;
+        if access != Access::IndirectCommandRead {
+            return Err(self.error(format!(
+                "indirect arguments {} need Access::IndirectCommandRead, not {access:?}",
+                self.pcx.resource_name(args.id())
+            )));
+        }
+        let buffer = self.pcx.buffer(args)?;
+        if offset % 4 != 0 || offset + 12 > buffer.size() {
+            return Err(self.error(format!(
+                "indirect arguments at byte {offset} do not fit {} ({} bytes) or are not 4-byte aligned",
+                buffer.name(),
+                buffer.size()
+            )));
+        }
+        Ok(Some((buffer.raw(), offset)))
+    }
+
+    fn record(self, work: Work) -> Result<()> {
+        let indirect = self.indirect_args(&work)?;
         let pipeline = self.pcx.library.pipeline(&self.shader, &self.spec)?;
         let reflection = pipeline.reflection.clone();
         let mut image_infos: Vec<(u32, vk::DescriptorType, vk::DescriptorImageInfo)> = Vec::new();
@@ -383,7 +420,16 @@ impl Dispatch<'_, '_> {
                 reflection.push_constant_size
             )));
         }
-        let groups = groups_for(pipeline.workgroup_size);
+        let wg = pipeline.workgroup_size;
+        let groups = match work {
+            Work::Threads(threads) => [
+                threads[0].div_ceil(wg[0]),
+                threads[1].div_ceil(wg[1]),
+                threads[2].div_ceil(wg[2]),
+            ],
+            Work::Groups(groups) => groups,
+            Work::Indirect(..) => [1, 1, 1],
+        };
         let device = self.pcx.ctx.device();
         let cmd = self.pcx.cmd;
         let writes: Vec<vk::WriteDescriptorSet> = image_infos
@@ -401,8 +447,9 @@ impl Dispatch<'_, '_> {
                     .buffer_info(std::slice::from_ref(info))
             }))
             .collect();
-        // SAFETY: cmd is recording; the pipeline, views and buffers are kept alive until the frame
-        // completes (pipelines via keep_alive, resources via the executor's frame slot).
+        // SAFETY: cmd is recording; the pipeline, views and buffers (the indirect arguments too,
+        // checked above) are kept alive until the frame completes (pipelines via keep_alive,
+        // resources via the executor's frame slot).
         unsafe {
             device.cmd_bind_pipeline(cmd, vk::PipelineBindPoint::COMPUTE, pipeline.pipeline);
             if !writes.is_empty() {
@@ -423,7 +470,9 @@ impl Dispatch<'_, '_> {
                     &self.push,
                 );
             }
-            if groups.iter().all(|&g| g > 0) {
+            if let Some((buffer, offset)) = indirect {
+                device.cmd_dispatch_indirect(cmd, buffer, offset);
+            } else if groups.iter().all(|&g| g > 0) {
                 device.cmd_dispatch(cmd, groups[0], groups[1], groups[2]);
             }
         }
