@@ -26,7 +26,7 @@ use crate::denoise::gbuffer::{self, GBuffer};
 use crate::denoise::{accumulate, neural, svgf};
 use crate::denoise::{DenoiseInputs, Denoised, FrameDenoiser, FrameInfo};
 use crate::light_transport::{self, Replay, ReplayParams};
-use crate::light_transport::{bdpt, path_trace};
+use crate::light_transport::{bdpt, path_trace, wavefront};
 use crate::plumbing::frame_constants::{self, FrameConstants};
 use crate::plumbing::scene_buffers::{specialization, SceneBuffers, SceneHandles};
 use crate::post::tonemap;
@@ -588,7 +588,8 @@ impl Renderer {
     }
 
     /// Adds this frame's light transport: path tracing (replaying last frame's paths as `replay`
-    /// asks, for the denoiser) or bidirectional path tracing; the denoiser's images when `surface`.
+    /// asks, for the denoiser), bidirectional path tracing or wavefront path tracing; the
+    /// denoiser's images when `surface`.
     fn add_transport(
         &self,
         g: &mut RenderGraph,
@@ -612,6 +613,9 @@ impl Renderer {
                     motion: gbuffer.motion,
                 });
                 path_trace::add_path_trace(g, scene, frame, &self.spec, replay.as_ref(), sampling)
+            }
+            Algorithm::PathTracingWavefront => {
+                wavefront::add_wavefront(g, scene, frame, &self.spec, sampling)
             }
             Algorithm::Bidirectional => bdpt::add_bdpt(
                 g,

@@ -16,6 +16,9 @@ impl ValueEnum for Algorithm {
         let help = match self {
             Algorithm::PathTracing => "Path tracing (NEE, MIS, Russian roulette)",
             Algorithm::Bidirectional => "Bidirectional path tracing (light vertex cache, MIS)",
+            Algorithm::PathTracingWavefront => {
+                "Path tracing as a wavefront: generate, extend, shade and shadow kernels over queues"
+            }
         };
         Some(PossibleValue::new(self.short_name()).help(help))
     }

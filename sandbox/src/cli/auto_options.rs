@@ -28,6 +28,7 @@ impl ValueEnum for AlgoArg {
         &[
             AlgoArg::Fixed(Algorithm::PathTracing),
             AlgoArg::Fixed(Algorithm::Bidirectional),
+            AlgoArg::Fixed(Algorithm::PathTracingWavefront),
             AlgoArg::Auto,
         ]
     }

@@ -1,0 +1,176 @@
+//! The wavefront path tracer's five kernels, each added as a compute pass that declares and binds
+//! what its shader (`shaders/wavefront/`) reads and writes: generate and accumulate over the
+//! pixels, extend, shade and shadow over a queue, dispatched indirectly from its length.
+
+use super::queues::{self, MAX_PATHS};
+use super::state::WaveBuffers;
+use crate::light_transport::Images;
+use crate::plumbing::scene_buffers::SceneHandles;
+use crate::shaders::wavefront::{ACCUMULATE, EXTEND, GENERATE, SHADE, SHADOW};
+use lucid_engine::error::EngineError;
+use lucid_engine::graph::{BufferHandle, ComputePass, RenderGraph};
+use lucid_engine::shader::{ShaderSource, Specialization};
+
+/// Push constants of the kernels over pixels (`Push` in `generate.comp`, `accumulate.comp`).
+#[repr(C)]
+#[derive(Clone, Copy, Debug, bytemuck::Pod, bytemuck::Zeroable)]
+struct SamplePush {
+    sample_index: u32,
+    slots: u32,
+}
+
+/// Push constants of the kernels over a queue (`Push` in `extend.comp`, `shade.comp`,
+/// `shadow.comp`).
+#[repr(C)]
+#[derive(Clone, Copy, Debug, bytemuck::Pod, bytemuck::Zeroable)]
+struct DepthPush {
+    depth: u32,
+}
+
+/// What every kernel reads: the scene, the frame constants and their specialization.
+#[derive(Clone, Copy)]
+pub struct Inputs<'a> {
+    /// The scene's buffers.
+    pub scene: &'a SceneHandles,
+    /// The frame constants (`b_frame`).
+    pub frame: BufferHandle,
+    /// The scene's specialization constants.
+    pub spec: &'a Specialization,
+    /// Image size in pixels (a path per pixel).
+    pub size: (u32, u32),
+    /// Longest path in segments.
+    pub max_depth: u32,
+    /// Whether the denoiser's images are written (`SURFACE_OUTPUTS`).
+    pub surface: bool,
+}
+
+impl Inputs<'_> {
+    fn pass<'g>(&self, g: &'g mut RenderGraph, name: &str, shader: &ShaderSource) -> ComputePass<'g> {
+        let mut pass = g.compute_pass(&format!("wavefront.{name}"), shader);
+        self.scene.read(&mut pass);
+        pass.specialization(self.spec)
+            .specialize("SURFACE_OUTPUTS", self.surface)
+            .read("b_frame", self.frame);
+        pass
+    }
+
+    fn paths(&self) -> u64 {
+        u64::from(self.size.0) * u64::from(self.size.1)
+    }
+}
+
+/// Adds sample `sample_index`'s camera rays, resetting the queues.
+pub fn add_generate(g: &mut RenderGraph, inputs: &Inputs<'_>, b: &mut WaveBuffers, sample_index: u32) {
+    let mut pass = inputs.pass(g, "generate", &GENERATE);
+    let paths = inputs.paths();
+    pass.require(move |ctx| {
+        if paths <= MAX_PATHS {
+            return Ok(());
+        }
+        Err(EngineError::InvalidArgument(format!(
+            "wavefront path tracing traces at most {MAX_PATHS} paths at once (a queue's workgroups \
+             must fit in {} in x on {}), not {paths}: use a smaller image",
+            MAX_PATHS / u64::from(queues::QUEUE_GROUP),
+            ctx.context().info().name
+        )))
+    });
+    for (binding, buffer) in &mut b.path_state {
+        if *binding == "b_path_rng" && sample_index > 0 {
+            buffer.read_write(&mut pass, binding);
+        } else {
+            buffer.write(&mut pass, binding);
+        }
+    }
+    b.ray_queues[0].write(&mut pass, "b_ray_queue");
+    b.counts.write(&mut pass, "b_counts");
+    b.args[0].write(&mut pass, "b_args_even");
+    b.args[1].write(&mut pass, "b_args_odd");
+    let push = SamplePush {
+        sample_index,
+        slots: queues::slots(inputs.max_depth),
+    };
+    pass.push(&push);
+    pass.dispatch([inputs.size.0, inputs.size.1, 1]);
+}
+
+/// Adds the closest-hit search of bounce `depth`'s ray queue.
+pub fn add_extend(g: &mut RenderGraph, inputs: &Inputs<'_>, b: &mut WaveBuffers, depth: u32) {
+    let mut pass = inputs.pass(g, "extend", &EXTEND);
+    let queue = (depth % 2) as usize;
+    b.state("b_ray_origin").read(&mut pass, "b_ray_origin");
+    b.state("b_ray_direction").read(&mut pass, "b_ray_direction");
+    b.ray_queues[queue].read(&mut pass, "b_ray_queue");
+    b.counts.read(&mut pass, "b_counts");
+    b.hits.write(&mut pass, "b_hits");
+    pass.push(&DepthPush { depth });
+    let slot = queues::ray_slot(depth);
+    pass.dispatch_indirect(b.args[queues::args_buffer(slot)].handle(), queues::args_offset(slot));
+}
+
+/// Adds the vertex of bounce `depth`: emission, light sample, next direction; fills the bounce's
+/// shadow queue and the next bounce's ray queue.
+pub fn add_shade(g: &mut RenderGraph, inputs: &Inputs<'_>, b: &mut WaveBuffers, depth: u32) {
+    let mut pass = inputs.pass(g, "shade", &SHADE);
+    let queue = (depth % 2) as usize;
+    for (binding, buffer) in &mut b.path_state {
+        buffer.read_write(&mut pass, binding);
+    }
+    b.ray_queues[queue].read(&mut pass, "b_ray_queue");
+    b.hits.read(&mut pass, "b_hits");
+    b.counts.read_write(&mut pass, "b_counts");
+    let slot = queues::ray_slot(depth);
+    let own_args = queues::args_buffer(slot);
+    b.args[1 - own_args].read_write(&mut pass, "b_args_out");
+    b.shadow_queue.write(&mut pass, "b_shadow_queue");
+    b.shadow_rays.write(&mut pass, "b_shadow_rays");
+    b.ray_queues[1 - queue].write(&mut pass, "b_next_ray_queue");
+    pass.push(&DepthPush { depth });
+    pass.dispatch_indirect(b.args[own_args].handle(), queues::args_offset(slot));
+}
+
+/// Adds the occlusion tests of bounce `depth`'s shadow queue.
+pub fn add_shadow(g: &mut RenderGraph, inputs: &Inputs<'_>, b: &mut WaveBuffers, depth: u32) {
+    let mut pass = inputs.pass(g, "shadow", &SHADOW);
+    b.state("b_path_radiance").read_write(&mut pass, "b_path_radiance");
+    b.counts.read(&mut pass, "b_counts");
+    b.shadow_queue.read(&mut pass, "b_shadow_queue");
+    b.shadow_rays.read(&mut pass, "b_shadow_rays");
+    pass.push(&DepthPush { depth });
+    let slot = queues::shadow_slot(depth);
+    pass.dispatch_indirect(b.args[queues::args_buffer(slot)].handle(), queues::args_offset(slot));
+}
+
+/// Adds sample `sample_index`'s paths to the images (creating them on the first sample, which
+/// `images` is `None` before); returns them.
+pub fn add_accumulate(
+    g: &mut RenderGraph,
+    inputs: &Inputs<'_>,
+    b: &mut WaveBuffers,
+    (images, stats): (Option<Images>, BufferHandle),
+    sample_index: u32,
+) -> (Images, BufferHandle) {
+    let mut pass = inputs.pass(g, "accumulate", &ACCUMULATE);
+    for binding in ["b_path_radiance", "b_first_hit"] {
+        b.state(binding).read(&mut pass, binding);
+    }
+    b.counts.read(&mut pass, "b_counts");
+    let stats = pass.read_write("b_stats", stats);
+    let images = match images {
+        None => Images::create(&mut pass, "wavefront", inputs.size, inputs.surface),
+        Some(mut images) => {
+            images.radiance = pass.read_write("u_radiance", images.radiance);
+            let s = &mut images.surface;
+            s.demodulated = pass.read_write("u_demodulated", s.demodulated);
+            s.albedo = pass.read_write("u_albedo", s.albedo);
+            s.emission = pass.read_write("u_emission", s.emission);
+            images
+        }
+    };
+    let push = SamplePush {
+        sample_index,
+        slots: queues::slots(inputs.max_depth),
+    };
+    pass.push(&push);
+    pass.dispatch([inputs.size.0, inputs.size.1, 1]);
+    (images, stats)
+}

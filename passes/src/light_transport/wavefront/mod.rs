@@ -1,0 +1,71 @@
+//! Wavefront path tracing: the path tracer's estimator (`trace_path` in
+//! `shaders/common/path.glsl`: next-event estimation with MIS, BSDF sampling, Russian roulette,
+//! the same random numbers) split into kernels over queues of paths (Laine, Karras and Aila 2013,
+//! "Megakernels considered harmful"), one compute pass each (`shaders/wavefront/`). Per sample:
+//! **generate** (a camera ray per pixel into the path state, every path in the first ray queue),
+//! then per bounce **extend** (closest hits of the ray queue), **shade** (emission, the light
+//! sample into the shadow queue, the next direction and Russian roulette into the next ray queue)
+//! and **shadow** (occlusion tests, adding the light samples that arrive), then **accumulate**
+//! (the paths into the images; the last sample writes the averages).
+//!
+//! The queue kernels are dispatched indirectly: shade counts the workgroups each queue needs as it
+//! appends ([`queues`]), and the graph orders each dispatch after that pass through the
+//! indirect-command read ([`lucid_engine::graph::ComputePass::dispatch_indirect`]), so a bounce
+//! whose paths have mostly ended launches only the workgroups its queues fill. The host records
+//! every bounce up to the longest path (it does not read the lengths back): a bounce with empty
+//! queues dispatches no workgroups.
+//!
+//! It does not replay last frame's paths ([`crate::renderer::Algorithm::replays_paths`]): SVGF
+//! runs without temporal gradients with it, as with bidirectional path tracing.
+
+mod kernels;
+mod queues;
+mod state;
+
+use crate::light_transport::{Frame, Outputs};
+use crate::plumbing::scene_buffers::SceneHandles;
+use kernels::Inputs;
+use lucid_engine::graph::{BufferHandle, RenderGraph};
+use lucid_engine::shader::Specialization;
+use state::WaveBuffers;
+
+/// Adds wavefront path tracing at `sampling`'s size, samples per pixel and longest path, reading
+/// the scene and the frame constants; the denoiser's images are written when `sampling.surface`.
+pub fn add_wavefront(
+    g: &mut RenderGraph,
+    scene: &SceneHandles,
+    frame: BufferHandle,
+    spec: &Specialization,
+    sampling: Frame,
+) -> Outputs {
+    let inputs = Inputs {
+        scene,
+        frame,
+        spec,
+        size: (sampling.width, sampling.height),
+        max_depth: sampling.max_depth,
+        surface: sampling.surface,
+    };
+    let paths = u64::from(sampling.width) * u64::from(sampling.height);
+    let mut buffers = WaveBuffers::new(paths, sampling.max_depth, sampling.surface);
+    let mut stats = crate::plumbing::stats::add_counter(g, "wavefront.stats");
+    let mut images = None;
+    for sample_index in 0..sampling.samples_per_pixel.get() {
+        kernels::add_generate(g, &inputs, &mut buffers, sample_index);
+        for depth in 0..sampling.max_depth {
+            kernels::add_extend(g, &inputs, &mut buffers, depth);
+            kernels::add_shade(g, &inputs, &mut buffers, depth);
+            // The last vertex only adds what it emits (trace_path's loop ends there).
+            if depth + 1 < sampling.max_depth {
+                kernels::add_shadow(g, &inputs, &mut buffers, depth);
+            }
+        }
+        let (written, counted) =
+            kernels::add_accumulate(g, &inputs, &mut buffers, (images, stats), sample_index);
+        images = Some(written);
+        stats = counted;
+    }
+    images
+        .expect("at least one sample per pixel")
+        .with_stats(stats)
+}

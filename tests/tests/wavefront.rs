@@ -1,0 +1,165 @@
+//! The wavefront path tracer (`pt-wavefront`) computes the megakernel's estimator.
+//!
+//! With the same seed it draws the same random numbers for every path, so it gives the
+//! megakernel's image up to floating-point rounding (a few paths that a rounding difference
+//! sends another way); with independent seeds the two converge to the same image.
+
+use lucid_engine::capture::ImageData;
+use lucid_passes::renderer::{Algorithm, Denoiser, Renderer, SamplesPerPixel, Settings};
+use lucid_tests::bdpt_stats::Comparison;
+use lucid_engine::graph::RenderGraph;
+use lucid_tests::render::{render_accumulated, scene};
+use std::time::Instant;
+
+const SIZE: u32 = 32;
+
+/// How two renders with the same random numbers differ.
+#[derive(Debug)]
+struct Difference {
+    /// Share of pixel channels whose relative difference is above 1e-3.
+    differing: f64,
+    /// The largest relative difference of the image's channel means.
+    mean: f64,
+}
+
+fn difference(a: &ImageData, b: &ImageData) -> Difference {
+    let mut differing = 0usize;
+    let mut sums = [[0.0f64; 3]; 2];
+    for (p, q) in a.pixels.iter().zip(&b.pixels) {
+        for c in 0..3 {
+            let (x, y) = (f64::from(p[c]), f64::from(q[c]));
+            if (x - y).abs() > 1e-3 * (x.abs() + y.abs()).max(1e-6) {
+                differing += 1;
+            }
+            sums[0][c] += x;
+            sums[1][c] += y;
+        }
+    }
+    Difference {
+        differing: differing as f64 / (3 * a.pixels.len()) as f64,
+        mean: (0..3)
+            .map(|c| (sums[0][c] - sums[1][c]).abs() / sums[0][c].max(1e-9))
+            .fold(0.0, f64::max),
+    }
+}
+
+/// One frame of `name` with `algorithm` and the denoiser `denoiser` (SVGF: the surface images are
+/// written): its radiance and, with a denoiser, its demodulated radiance; and the rays traced.
+fn one_frame(name: &str, algorithm: Algorithm, denoiser: Denoiser) -> (Vec<ImageData>, u32) {
+    let ctx = lucid_tests::context(false);
+    let settings = Settings {
+        algorithm,
+        denoiser,
+        samples_per_pixel: SamplesPerPixel::new(3).unwrap(),
+        seed: 7,
+        ..Settings::default()
+    };
+    let mut renderer = Renderer::new(&ctx, scene(name), SIZE, SIZE, settings).expect("renderer");
+    let mut g = RenderGraph::new();
+    let (images, stats) = renderer.add_frame(&mut g);
+    let mut handles = vec![images.radiance];
+    handles.extend(images.demodulated);
+    let ids: Vec<_> = handles.into_iter().map(|h| g.readback(h)).collect();
+    let outputs = lucid_tests::run(renderer.executor_mut(), g);
+    let images = ids
+        .into_iter()
+        .map(|id| outputs.image(id).expect("read-back image"))
+        .collect();
+    let stats: &[u32] = bytemuck::cast_slice(outputs.bytes(stats).expect("stats"));
+    assert_eq!(stats[0], 0, "no non-finite samples");
+    drop(renderer);
+    lucid_tests::assert_no_validation_messages(&ctx);
+    (images, stats[1])
+}
+
+/// The same seed: the wavefront's image, demodulated image (with SVGF) and ray count are the
+/// megakernel's but for a few paths.
+fn same_random_numbers_same_image(name: &str, denoiser: Denoiser) {
+    let (mega, mega_rays) = one_frame(name, Algorithm::PathTracing, denoiser);
+    let (wave, wave_rays) = one_frame(name, Algorithm::PathTracingWavefront, denoiser);
+    for (which, (a, b)) in ["radiance", "demodulated"].iter().zip(mega.iter().zip(&wave)) {
+        let d = difference(a, b);
+        eprintln!("{name} {which} ({denoiser:?}): {d:?}");
+        assert!(
+            d.differing < 0.02 && d.mean < 0.01,
+            "{name} {which}: the wavefront's image is not the megakernel's: {d:?}"
+        );
+    }
+    let rays = (f64::from(wave_rays) - f64::from(mega_rays)).abs() / f64::from(mega_rays);
+    eprintln!("{name}: rays {mega_rays} (megakernel) and {wave_rays} (wavefront)");
+    assert!(rays < 0.01, "rays {mega_rays} and {wave_rays}");
+}
+
+#[test]
+fn cornell_box_same_random_numbers_same_image() {
+    same_random_numbers_same_image("cornell-box", Denoiser::None);
+}
+
+#[test]
+fn cornell_box_surface_images_match() {
+    same_random_numbers_same_image("cornell-box", Denoiser::Svgf);
+}
+
+#[test]
+fn caustics_same_random_numbers_same_image() {
+    same_random_numbers_same_image("caustics", Denoiser::None);
+}
+
+#[test]
+fn blinds_room_same_random_numbers_same_image() {
+    same_random_numbers_same_image("blinds-room", Denoiser::None);
+}
+
+fn render(name: &str, algorithm: Algorithm, frames: u32, seed: u32) -> ImageData {
+    let start = Instant::now();
+    let settings = Settings {
+        algorithm,
+        samples_per_pixel: SamplesPerPixel::new(4).unwrap(),
+        seed,
+        ..Settings::default()
+    };
+    let image = render_accumulated(scene(name), (SIZE, SIZE), settings, frames);
+    eprintln!(
+        "{name} {} {} spp seed {seed}: {:.1} s",
+        algorithm.short_name(),
+        frames * 4,
+        start.elapsed().as_secs_f64()
+    );
+    image
+}
+
+/// Independent seeds: both estimators twice, compared as the BDPT tests compare (channel means
+/// within their noise, relative MSE between the two no more than their noise explains).
+fn converges_to_the_megakernels_image(name: &str, frames: u32, max_ratio: f64) {
+    let mega = [1, 2].map(|seed| render(name, Algorithm::PathTracing, frames, seed));
+    let wave = [3, 4].map(|seed| render(name, Algorithm::PathTracingWavefront, frames, seed));
+    let c = Comparison::new([&mega[0], &mega[1]], [&wave[0], &wave[1]]);
+    eprintln!(
+        "{name}: {c:?}\n  mean difference {:.2}% ({:.1} sigma), relMSE ratio {:.3}",
+        100.0 * c.mean_difference(),
+        c.mean_z(),
+        c.ratio()
+    );
+    assert!(
+        c.mean_difference() < 0.02 && c.mean_z() < 4.0,
+        "{name}: channel means differ: {:?} vs {:?}",
+        c.mean_a,
+        c.mean_b
+    );
+    assert!(
+        c.ratio() < max_ratio,
+        "{name}: relative MSE {:.4} between the estimates, noise explains {:.4}",
+        c.rel_mse,
+        c.expected_rel_mse
+    );
+}
+
+#[test]
+fn cornell_box_converges_to_the_megakernels_image() {
+    converges_to_the_megakernels_image("cornell-box", 16, 1.3);
+}
+
+#[test]
+fn caustics_converges_to_the_megakernels_image() {
+    converges_to_the_megakernels_image("caustics", 16, 1.3);
+}
