@@ -1,13 +1,26 @@
 //! The wavefront path tracer (`pt-wavefront`) computes the megakernel's estimator.
 //!
 //! With the same seed it draws the same random numbers for every path, so it gives the
-//! megakernel's image up to floating-point rounding (a few paths that a rounding difference
-//! sends another way); with independent seeds the two converge to the same image.
+//! megakernel's image up to floating-point rounding (a driver may round a kernel's arithmetic
+//! differently from the megakernel's and send a few paths another way): measured on lavapipe,
+//! 32x32 at 3 spp, the radiance, the demodulated radiance (with SVGF) and the ray count are
+//! identical, bit for bit, on `cornell-box`, `caustics` (glass) and `blinds-room` (sun and sky).
+//! The bounds allow 1% of the channels to differ by more than 1e-3 and the channel means by 0.1%.
+//! With independent seeds the two converge to the same image (compared as the BDPT tests compare,
+//! 64 spp at 32x32: measured mean differences 0.30% (0.4 sigma) on `cornell-box` and 0.09%
+//! (0.0 sigma) on `caustics`, relMSE ratios 0.97 and 0.94).
+//!
+//! Deliberately wrong wavefronts, checked once on lavapipe: dropping the light samples (NEE) gives
+//! 52% and 100% mean differences with the same seed and 56% (82 sigma, relMSE ratio 95) and 94%
+//! (16 sigma, ratio 118) with independent seeds on `cornell-box` and `caustics`; emission without
+//! its MIS weight (counted by both strategies) a 46% mean difference on `cornell-box` with the
+//! same seed (4.2% of the channels differ) and 58% (34 sigma, ratio 1.9) and 89% (5.0 sigma) with
+//! independent seeds on `cornell-box` and `caustics`. Every one of them fails these tests.
 
 use lucid_engine::capture::ImageData;
+use lucid_engine::graph::RenderGraph;
 use lucid_passes::renderer::{Algorithm, Denoiser, Renderer, SamplesPerPixel, Settings};
 use lucid_tests::bdpt_stats::Comparison;
-use lucid_engine::graph::RenderGraph;
 use lucid_tests::render::{render_accumulated, scene};
 use std::time::Instant;
 
@@ -77,17 +90,20 @@ fn one_frame(name: &str, algorithm: Algorithm, denoiser: Denoiser) -> (Vec<Image
 fn same_random_numbers_same_image(name: &str, denoiser: Denoiser) {
     let (mega, mega_rays) = one_frame(name, Algorithm::PathTracing, denoiser);
     let (wave, wave_rays) = one_frame(name, Algorithm::PathTracingWavefront, denoiser);
-    for (which, (a, b)) in ["radiance", "demodulated"].iter().zip(mega.iter().zip(&wave)) {
+    for (which, (a, b)) in ["radiance", "demodulated"]
+        .iter()
+        .zip(mega.iter().zip(&wave))
+    {
         let d = difference(a, b);
         eprintln!("{name} {which} ({denoiser:?}): {d:?}");
         assert!(
-            d.differing < 0.02 && d.mean < 0.01,
+            d.differing < 0.01 && d.mean < 1e-3,
             "{name} {which}: the wavefront's image is not the megakernel's: {d:?}"
         );
     }
     let rays = (f64::from(wave_rays) - f64::from(mega_rays)).abs() / f64::from(mega_rays);
     eprintln!("{name}: rays {mega_rays} (megakernel) and {wave_rays} (wavefront)");
-    assert!(rays < 0.01, "rays {mega_rays} and {wave_rays}");
+    assert!(rays < 1e-3, "rays {mega_rays} and {wave_rays}");
 }
 
 #[test]

@@ -45,7 +45,12 @@ pub struct Inputs<'a> {
 }
 
 impl Inputs<'_> {
-    fn pass<'g>(&self, g: &'g mut RenderGraph, name: &str, shader: &ShaderSource) -> ComputePass<'g> {
+    fn pass<'g>(
+        &self,
+        g: &'g mut RenderGraph,
+        name: &str,
+        shader: &ShaderSource,
+    ) -> ComputePass<'g> {
         let mut pass = g.compute_pass(&format!("wavefront.{name}"), shader);
         self.scene.read(&mut pass);
         pass.specialization(self.spec)
@@ -60,7 +65,12 @@ impl Inputs<'_> {
 }
 
 /// Adds sample `sample_index`'s camera rays, resetting the queues.
-pub fn add_generate(g: &mut RenderGraph, inputs: &Inputs<'_>, b: &mut WaveBuffers, sample_index: u32) {
+pub fn add_generate(
+    g: &mut RenderGraph,
+    inputs: &Inputs<'_>,
+    b: &mut WaveBuffers,
+    sample_index: u32,
+) {
     let mut pass = inputs.pass(g, "generate", &GENERATE);
     let paths = inputs.paths();
     pass.require(move |ctx| {
@@ -98,13 +108,17 @@ pub fn add_extend(g: &mut RenderGraph, inputs: &Inputs<'_>, b: &mut WaveBuffers,
     let mut pass = inputs.pass(g, "extend", &EXTEND);
     let queue = (depth % 2) as usize;
     b.state("b_ray_origin").read(&mut pass, "b_ray_origin");
-    b.state("b_ray_direction").read(&mut pass, "b_ray_direction");
+    b.state("b_ray_direction")
+        .read(&mut pass, "b_ray_direction");
     b.ray_queues[queue].read(&mut pass, "b_ray_queue");
     b.counts.read(&mut pass, "b_counts");
     b.hits.write(&mut pass, "b_hits");
     pass.push(&DepthPush { depth });
     let slot = queues::ray_slot(depth);
-    pass.dispatch_indirect(b.args[queues::args_buffer(slot)].handle(), queues::args_offset(slot));
+    pass.dispatch_indirect(
+        b.args[queues::args_buffer(slot)].handle(),
+        queues::args_offset(slot),
+    );
 }
 
 /// Adds the vertex of bounce `depth`: emission, light sample, next direction; fills the bounce's
@@ -131,13 +145,17 @@ pub fn add_shade(g: &mut RenderGraph, inputs: &Inputs<'_>, b: &mut WaveBuffers, 
 /// Adds the occlusion tests of bounce `depth`'s shadow queue.
 pub fn add_shadow(g: &mut RenderGraph, inputs: &Inputs<'_>, b: &mut WaveBuffers, depth: u32) {
     let mut pass = inputs.pass(g, "shadow", &SHADOW);
-    b.state("b_path_radiance").read_write(&mut pass, "b_path_radiance");
+    b.state("b_path_radiance")
+        .read_write(&mut pass, "b_path_radiance");
     b.counts.read(&mut pass, "b_counts");
     b.shadow_queue.read(&mut pass, "b_shadow_queue");
     b.shadow_rays.read(&mut pass, "b_shadow_rays");
     pass.push(&DepthPush { depth });
     let slot = queues::shadow_slot(depth);
-    pass.dispatch_indirect(b.args[queues::args_buffer(slot)].handle(), queues::args_offset(slot));
+    pass.dispatch_indirect(
+        b.args[queues::args_buffer(slot)].handle(),
+        queues::args_offset(slot),
+    );
 }
 
 /// Adds sample `sample_index`'s paths to the images (creating them on the first sample, which
