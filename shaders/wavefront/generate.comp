@@ -1,6 +1,6 @@
 #version 460
 // Wavefront path tracing, kernel 1 of 5 (passes/src/light_transport/wavefront/): the camera ray of
-// sample `push.sample` of every pixel, exactly as the megakernel draws it (shaders/path_trace/
+// sample `push.sample_index` of every pixel, exactly as the megakernel draws it (shaders/path_trace/
 // path_trace.comp: the first sample's generator from rng_init, later samples' from where the
 // pixel's last path left it), into the path state; the first ray queue holds every path. The
 // first invocation resets the queue lengths and the indirect arguments: the first ray queue's
@@ -15,16 +15,20 @@ layout(set = 0, binding = 25, std430) writeonly buffer Counts { uint c[]; } b_co
 layout(set = 0, binding = 26, std430) writeonly buffer ArgsEven { uint a[]; } b_args_even;
 layout(set = 0, binding = 27, std430) writeonly buffer ArgsOdd { uint a[]; } b_args_odd;
 
-layout(push_constant) uniform Push { uint sample_index; uint slots; } push;
+// slots: the queue slots (lengths and indirect arguments); counters: the lengths to reset, the
+// material bins' too (queues.glsl).
+layout(push_constant) uniform Push { uint sample_index; uint slots; uint counters; } push;
 
 void main() {
     ivec2 pixel = ivec2(gl_GlobalInvocationID.xy);
     uvec2 size = uvec2(b_frame.f.width, b_frame.f.height);
     uint paths = size.x * size.y;
     if (gl_GlobalInvocationID.xy == uvec2(0u)) {
+        for (uint slot = 0u; slot < push.counters; ++slot) {
+            b_counts.c[slot] = slot == 0u ? paths : 0u;
+        }
         for (uint slot = 0u; slot < push.slots; ++slot) {
             uint groups = slot == 0u ? (paths + QUEUE_GROUP - 1u) / QUEUE_GROUP : 0u;
-            b_counts.c[slot] = slot == 0u ? paths : 0u;
             b_args_even.a[4u * slot] = groups;
             b_args_odd.a[4u * slot] = 0u;
             for (uint i = 1u; i < 3u; ++i) {

@@ -18,6 +18,27 @@ struct ShadowRecord {
     vec4 radiance;  // what it brings when unoccluded, 0
 };
 
+// With material binning (the *_binned kernels), extend sorts each bounce's hits into bins, a
+// miss or the material kind it hit (MATERIAL_*), each bin a queue of its own: slot
+// material_bin_slot(depth, bin) after the queue slots, its places at bin x paths in the binned
+// queue; shade walks the bins one after the other, so a workgroup shades one kind of material
+// but where two bins meet.
+const uint MATERIAL_BINS = 5u;
+
+// The queue slots of paths at most `max_depth` segments long (queues::slots in Rust).
+uint queue_slots(uint max_depth) {
+    return 2u * max_depth + 1u;
+}
+
+// The bin of a hit: 0 for a miss, else 1 + its material's kind.
+uint material_bin(uint instance, uint material_kind) {
+    return instance == MISS ? 0u : 1u + min(material_kind, MATERIAL_BINS - 2u);
+}
+
+uint material_bin_slot(uint depth, uint bin, uint max_depth) {
+    return queue_slots(max_depth) + depth * MATERIAL_BINS + bin;
+}
+
 uint ray_slot(uint depth) {
     return 2u * depth;
 }

@@ -1,10 +1,12 @@
-//! The wavefront path tracer (`pt-wavefront`) computes the megakernel's estimator.
+//! The wavefront path tracer (`pt-wavefront`, and `pt-wavefront-binned` with its hits binned by
+//! material) computes the megakernel's estimator.
 //!
 //! With the same seed it draws the same random numbers for every path, so it gives the
 //! megakernel's image up to floating-point rounding (a driver may round a kernel's arithmetic
 //! differently from the megakernel's and send a few paths another way): measured on lavapipe,
-//! 32x32 at 3 spp, the radiance, the demodulated radiance (with SVGF) and the ray count are
-//! identical, bit for bit, on `cornell-box`, `caustics` (glass) and `blinds-room` (sun and sky).
+//! 32x32 at 3 spp, the radiance, the demodulated radiance (with SVGF) and the ray count of both
+//! are identical, bit for bit, on `cornell-box`, `caustics` (glass) and `blinds-room` (sun and
+//! sky).
 //! The bounds allow 1% of the channels to differ by more than 1e-3 and the channel means by 0.1%.
 //! With independent seeds the two converge to the same image (compared as the BDPT tests compare,
 //! 64 spp at 32x32: measured mean differences 0.30% (0.4 sigma) on `cornell-box` and 0.09%
@@ -85,25 +87,31 @@ fn one_frame(name: &str, algorithm: Algorithm, denoiser: Denoiser) -> (Vec<Image
     (images, stats[1])
 }
 
-/// The same seed: the wavefront's image, demodulated image (with SVGF) and ray count are the
-/// megakernel's but for a few paths.
+/// The same seed: the image, demodulated image (with SVGF) and ray count of both wavefronts (with
+/// and without material bins) are the megakernel's but for a few paths.
 fn same_random_numbers_same_image(name: &str, denoiser: Denoiser) {
     let (mega, mega_rays) = one_frame(name, Algorithm::PathTracing, denoiser);
-    let (wave, wave_rays) = one_frame(name, Algorithm::PathTracingWavefront, denoiser);
-    for (which, (a, b)) in ["radiance", "demodulated"]
-        .iter()
-        .zip(mega.iter().zip(&wave))
-    {
-        let d = difference(a, b);
-        eprintln!("{name} {which} ({denoiser:?}): {d:?}");
-        assert!(
-            d.differing < 0.01 && d.mean < 1e-3,
-            "{name} {which}: the wavefront's image is not the megakernel's: {d:?}"
-        );
+    for algorithm in [
+        Algorithm::PathTracingWavefront,
+        Algorithm::PathTracingWavefrontBinned,
+    ] {
+        let (wave, wave_rays) = one_frame(name, algorithm, denoiser);
+        let algo = algorithm.short_name();
+        for (which, (a, b)) in ["radiance", "demodulated"]
+            .iter()
+            .zip(mega.iter().zip(&wave))
+        {
+            let d = difference(a, b);
+            eprintln!("{name} {algo} {which} ({denoiser:?}): {d:?}");
+            assert!(
+                d.differing < 0.01 && d.mean < 1e-3,
+                "{name} {algo} {which}: not the megakernel's image: {d:?}"
+            );
+        }
+        let rays = (f64::from(wave_rays) - f64::from(mega_rays)).abs() / f64::from(mega_rays);
+        eprintln!("{name} {algo}: rays {mega_rays} (megakernel) and {wave_rays}");
+        assert!(rays < 1e-3, "{algo}: rays {mega_rays} and {wave_rays}");
     }
-    let rays = (f64::from(wave_rays) - f64::from(mega_rays)).abs() / f64::from(mega_rays);
-    eprintln!("{name}: rays {mega_rays} (megakernel) and {wave_rays} (wavefront)");
-    assert!(rays < 1e-3, "rays {mega_rays} and {wave_rays}");
 }
 
 #[test]

@@ -614,8 +614,12 @@ impl Renderer {
                 });
                 path_trace::add_path_trace(g, scene, frame, &self.spec, replay.as_ref(), sampling)
             }
-            Algorithm::PathTracingWavefront => {
-                wavefront::add_wavefront(g, scene, frame, &self.spec, sampling)
+            Algorithm::PathTracingWavefront | Algorithm::PathTracingWavefrontBinned => {
+                let config = wavefront::Config {
+                    bin_by_material: self.settings.algorithm
+                        == Algorithm::PathTracingWavefrontBinned,
+                };
+                wavefront::add_wavefront(g, scene, frame, &self.spec, sampling, &config)
             }
             Algorithm::Bidirectional => bdpt::add_bdpt(
                 g,

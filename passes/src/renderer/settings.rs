@@ -12,9 +12,17 @@ use lucid_engine::capture::{PngEncoding, ToneCurve};
 /// use lucid_passes::renderer::Algorithm;
 /// assert_eq!(
 ///     Algorithm::ALL.map(Algorithm::label),
-///     ["path tracing", "bidirectional", "path tracing (wavefront)"]
+///     [
+///         "path tracing",
+///         "bidirectional",
+///         "path tracing (wavefront)",
+///         "path tracing (wavefront, material bins)"
+///     ]
 /// );
-/// assert_eq!(Algorithm::ALL.map(Algorithm::short_name), ["pt", "bdpt", "pt-wavefront"]);
+/// assert_eq!(
+///     Algorithm::ALL.map(Algorithm::short_name),
+///     ["pt", "bdpt", "pt-wavefront", "pt-wavefront-binned"]
+/// );
 /// assert_eq!(Algorithm::PathTracing.other(), Algorithm::Bidirectional);
 /// assert_eq!(Algorithm::PathTracingWavefront.other(), Algorithm::PathTracing);
 /// ```
@@ -29,48 +37,57 @@ pub enum Algorithm {
     /// and shadow kernels over queues of paths
     /// ([`crate::light_transport::wavefront`]).
     PathTracingWavefront,
+    /// The wavefront path tracer with each bounce's hits binned by material kind before shading
+    /// ([`crate::light_transport::wavefront::Config::bin_by_material`]).
+    PathTracingWavefrontBinned,
 }
 
 impl Algorithm {
     /// Every algorithm, in the order menus and the command line list them.
-    pub const ALL: [Algorithm; 3] = [
+    pub const ALL: [Algorithm; 4] = [
         Algorithm::PathTracing,
         Algorithm::Bidirectional,
         Algorithm::PathTracingWavefront,
+        Algorithm::PathTracingWavefrontBinned,
     ];
 
     /// Whether the algorithm can replay last frame's paths where asked (SVGF's temporal gradients
     /// need it; `shaders/common/replay.glsl`). Bidirectional path tracing cannot: its camera paths
-    /// connect to this frame's light vertex cache; the wavefront path tracer does not (yet).
+    /// connect to this frame's light vertex cache; the wavefront path tracers do not (yet).
     pub fn replays_paths(self) -> bool {
         self == Algorithm::PathTracing
     }
 
-    /// The short name used on the command line and in reports (`pt`, `bdpt`, `pt-wavefront`).
+    /// The short name used on the command line and in reports (`pt`, `bdpt`, `pt-wavefront`,
+    /// `pt-wavefront-binned`).
     pub fn short_name(self) -> &'static str {
         match self {
             Algorithm::PathTracing => "pt",
             Algorithm::Bidirectional => "bdpt",
             Algorithm::PathTracingWavefront => "pt-wavefront",
+            Algorithm::PathTracingWavefrontBinned => "pt-wavefront-binned",
         }
     }
 
     /// The name shown in user interfaces (`path tracing`, `bidirectional`,
-    /// `path tracing (wavefront)`).
+    /// `path tracing (wavefront)`, `path tracing (wavefront, material bins)`).
     pub fn label(self) -> &'static str {
         match self {
             Algorithm::PathTracing => "path tracing",
             Algorithm::Bidirectional => "bidirectional",
             Algorithm::PathTracingWavefront => "path tracing (wavefront)",
+            Algorithm::PathTracingWavefrontBinned => "path tracing (wavefront, material bins)",
         }
     }
 
     /// The algorithm to compare with (what a side-by-side comparison shows by default): path
-    /// tracing and BDPT each other, the wavefront path tracer the megakernel.
+    /// tracing and BDPT each other, the wavefront path tracers the megakernel.
     pub fn other(self) -> Self {
         match self {
             Algorithm::PathTracing => Algorithm::Bidirectional,
-            Algorithm::Bidirectional | Algorithm::PathTracingWavefront => Algorithm::PathTracing,
+            Algorithm::Bidirectional
+            | Algorithm::PathTracingWavefront
+            | Algorithm::PathTracingWavefrontBinned => Algorithm::PathTracing,
         }
     }
 }

@@ -19,6 +19,9 @@ impl ValueEnum for Algorithm {
             Algorithm::PathTracingWavefront => {
                 "Path tracing as a wavefront: generate, extend, shade and shadow kernels over queues"
             }
+            Algorithm::PathTracingWavefrontBinned => {
+                "Wavefront path tracing, each bounce's hits binned by material kind before shading"
+            }
         };
         Some(PossibleValue::new(self.short_name()).help(help))
     }

@@ -1,12 +1,15 @@
 //! The wavefront path tracer's five kernels, each added as a compute pass that declares and binds
 //! what its shader (`shaders/wavefront/`) reads and writes: generate and accumulate over the
-//! pixels, extend, shade and shadow over a queue, dispatched indirectly from its length.
+//! pixels, extend, shade and shadow over a queue, dispatched indirectly from its length (extend
+//! and shade in their material-binning variants when asked).
 
 use super::queues::{self, MAX_PATHS};
 use super::state::WaveBuffers;
 use crate::light_transport::Images;
 use crate::plumbing::scene_buffers::SceneHandles;
-use crate::shaders::wavefront::{ACCUMULATE, EXTEND, GENERATE, SHADE, SHADOW};
+use crate::shaders::wavefront::{
+    ACCUMULATE, EXTEND, EXTEND_BINNED, GENERATE, SHADE, SHADE_BINNED, SHADOW,
+};
 use lucid_engine::error::EngineError;
 use lucid_engine::graph::{BufferHandle, ComputePass, RenderGraph};
 use lucid_engine::shader::{ShaderSource, Specialization};
@@ -17,6 +20,7 @@ use lucid_engine::shader::{ShaderSource, Specialization};
 struct SamplePush {
     sample_index: u32,
     slots: u32,
+    counters: u32,
 }
 
 /// Push constants of the kernels over a queue (`Push` in `extend.comp`, `shade.comp`,
@@ -42,6 +46,8 @@ pub struct Inputs<'a> {
     pub max_depth: u32,
     /// Whether the denoiser's images are written (`SURFACE_OUTPUTS`).
     pub surface: bool,
+    /// Whether extend bins the hits by material for shade (`extend_binned`, `shade_binned`).
+    pub binned: bool,
 }
 
 impl Inputs<'_> {
@@ -61,6 +67,14 @@ impl Inputs<'_> {
 
     fn paths(&self) -> u64 {
         u64::from(self.size.0) * u64::from(self.size.1)
+    }
+
+    fn sample_push(&self, sample_index: u32) -> SamplePush {
+        SamplePush {
+            sample_index,
+            slots: queues::slots(self.max_depth),
+            counters: queues::counters(self.max_depth, self.binned),
+        }
     }
 }
 
@@ -95,24 +109,30 @@ pub fn add_generate(
     b.counts.write(&mut pass, "b_counts");
     b.args[0].write(&mut pass, "b_args_even");
     b.args[1].write(&mut pass, "b_args_odd");
-    let push = SamplePush {
-        sample_index,
-        slots: queues::slots(inputs.max_depth),
-    };
-    pass.push(&push);
+    pass.push(&inputs.sample_push(sample_index));
     pass.dispatch([inputs.size.0, inputs.size.1, 1]);
 }
 
 /// Adds the closest-hit search of bounce `depth`'s ray queue.
 pub fn add_extend(g: &mut RenderGraph, inputs: &Inputs<'_>, b: &mut WaveBuffers, depth: u32) {
-    let mut pass = inputs.pass(g, "extend", &EXTEND);
+    let shader = if inputs.binned {
+        &EXTEND_BINNED
+    } else {
+        &EXTEND
+    };
+    let mut pass = inputs.pass(g, "extend", shader);
     let queue = (depth % 2) as usize;
     b.state("b_ray_origin").read(&mut pass, "b_ray_origin");
     b.state("b_ray_direction")
         .read(&mut pass, "b_ray_direction");
     b.ray_queues[queue].read(&mut pass, "b_ray_queue");
-    b.counts.read(&mut pass, "b_counts");
     b.hits.write(&mut pass, "b_hits");
+    if inputs.binned {
+        b.counts.read_write(&mut pass, "b_counts");
+        b.binned_queue.write(&mut pass, "b_binned_queue");
+    } else {
+        b.counts.read(&mut pass, "b_counts");
+    }
     pass.push(&DepthPush { depth });
     let slot = queues::ray_slot(depth);
     pass.dispatch_indirect(
@@ -124,12 +144,17 @@ pub fn add_extend(g: &mut RenderGraph, inputs: &Inputs<'_>, b: &mut WaveBuffers,
 /// Adds the vertex of bounce `depth`: emission, light sample, next direction; fills the bounce's
 /// shadow queue and the next bounce's ray queue.
 pub fn add_shade(g: &mut RenderGraph, inputs: &Inputs<'_>, b: &mut WaveBuffers, depth: u32) {
-    let mut pass = inputs.pass(g, "shade", &SHADE);
+    let shader = if inputs.binned { &SHADE_BINNED } else { &SHADE };
+    let mut pass = inputs.pass(g, "shade", shader);
     let queue = (depth % 2) as usize;
     for (binding, buffer) in &mut b.path_state {
         buffer.read_write(&mut pass, binding);
     }
-    b.ray_queues[queue].read(&mut pass, "b_ray_queue");
+    if inputs.binned {
+        b.binned_queue.read(&mut pass, "b_binned_queue");
+    } else {
+        b.ray_queues[queue].read(&mut pass, "b_ray_queue");
+    }
     b.hits.read(&mut pass, "b_hits");
     b.counts.read_write(&mut pass, "b_counts");
     let slot = queues::ray_slot(depth);
@@ -184,11 +209,7 @@ pub fn add_accumulate(
             images
         }
     };
-    let push = SamplePush {
-        sample_index,
-        slots: queues::slots(inputs.max_depth),
-    };
-    pass.push(&push);
+    pass.push(&inputs.sample_push(sample_index));
     pass.dispatch([inputs.size.0, inputs.size.1, 1]);
     (images, stats)
 }

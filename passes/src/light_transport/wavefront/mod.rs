@@ -15,6 +15,9 @@
 //! every bounce up to the longest path (it does not read the lengths back): a bounce with empty
 //! queues dispatches no workgroups.
 //!
+//! With [`Config::bin_by_material`] extend also sorts the hits into bins by material kind and
+//! shade walks the bins (`--algo pt-wavefront-binned`).
+//!
 //! It does not replay last frame's paths ([`crate::renderer::Algorithm::replays_paths`]): SVGF
 //! runs without temporal gradients with it, as with bidirectional path tracing.
 
@@ -29,6 +32,15 @@ use lucid_engine::graph::{BufferHandle, RenderGraph};
 use lucid_engine::shader::Specialization;
 use state::WaveBuffers;
 
+/// How the wavefront orders its work.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct Config {
+    /// Extend sorts each bounce's hits into bins by what they hit (a miss, or the material's
+    /// kind) and shade walks the bins one after the other, so that a workgroup mostly shades one
+    /// kind of material (`extend_binned`, `shade_binned`); the image is the same.
+    pub bin_by_material: bool,
+}
+
 /// Adds wavefront path tracing at `sampling`'s size, samples per pixel and longest path, reading
 /// the scene and the frame constants; the denoiser's images are written when `sampling.surface`.
 pub fn add_wavefront(
@@ -37,6 +49,7 @@ pub fn add_wavefront(
     frame: BufferHandle,
     spec: &Specialization,
     sampling: Frame,
+    config: &Config,
 ) -> Outputs {
     let inputs = Inputs {
         scene,
@@ -45,9 +58,15 @@ pub fn add_wavefront(
         size: (sampling.width, sampling.height),
         max_depth: sampling.max_depth,
         surface: sampling.surface,
+        binned: config.bin_by_material,
     };
     let paths = u64::from(sampling.width) * u64::from(sampling.height);
-    let mut buffers = WaveBuffers::new(paths, sampling.max_depth, sampling.surface);
+    let mut buffers = WaveBuffers::new(
+        paths,
+        sampling.max_depth,
+        sampling.surface,
+        config.bin_by_material,
+    );
     let mut stats = crate::plumbing::stats::add_counter(g, "wavefront.stats");
     let mut images = None;
     for sample_index in 0..sampling.samples_per_pixel.get() {

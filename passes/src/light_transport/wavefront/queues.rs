@@ -3,7 +3,8 @@
 //! its shadow-ray queue. The lengths sit in one buffer (a u32 per slot); the indirect arguments
 //! (a `VkDispatchIndirectCommand` per slot, 16 bytes apart) in two buffers by parity, so that the
 //! shade kernel reads its own queue's arguments for its dispatch and appends to the other buffer:
-//! a pass may not read one buffer both as indirect arguments and as storage.
+//! a pass may not read one buffer both as indirect arguments and as storage. The binned kernels
+//! also count each bounce's hits per material bin, after the slots' lengths.
 
 /// Invocations per workgroup of the kernels that run over a queue (`QUEUE_GROUP`).
 pub const QUEUE_GROUP: u32 = 128;
@@ -20,6 +21,16 @@ pub const MAX_PATHS: u64 = 65535 * QUEUE_GROUP as u64;
 /// path, but its code may name the slot).
 pub fn slots(max_depth: u32) -> u32 {
     2 * max_depth + 1
+}
+
+/// The bins the binned kernels sort each bounce's hits into: a miss, or the kind of the material
+/// hit (`MATERIAL_BINS` in `queues.glsl`).
+pub const MATERIAL_BINS: u32 = 5;
+
+/// The queue lengths kept per sample: a length per slot, and with `binned` one per material bin
+/// and bounce after them.
+pub fn counters(max_depth: u32, binned: bool) -> u32 {
+    slots(max_depth) + if binned { max_depth * MATERIAL_BINS } else { 0 }
 }
 
 /// The slot of bounce `depth`'s ray queue.

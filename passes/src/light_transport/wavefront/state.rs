@@ -66,6 +66,9 @@ pub struct WaveBuffers {
     /// Shadow rays by path (`ShadowRecord` of `queues.glsl`: origin and extent, direction, what
     /// they bring; 48 bytes).
     pub shadow_rays: Tracked,
+    /// The material bins' queues, `queues::MATERIAL_BINS` of `paths` places (a single element
+    /// without binning).
+    pub binned_queue: Tracked,
     /// Queue lengths, a u32 per slot ([`queues`]).
     pub counts: Tracked,
     /// Indirect arguments by parity ([`queues::args_buffer`]).
@@ -77,8 +80,9 @@ const VEC4: u64 = 16;
 
 impl WaveBuffers {
     /// The buffers for `paths` paths of at most `max_depth` segments; the first hit's albedo and
-    /// emission per path only with `surface` (a single element otherwise).
-    pub fn new(paths: u64, max_depth: u32, surface: bool) -> Self {
+    /// emission per path only with `surface`, the material bins only when `binned` (a single
+    /// element otherwise).
+    pub fn new(paths: u64, max_depth: u32, surface: bool, binned: bool) -> Self {
         let per_path = |bytes: u64| paths * bytes;
         let surface_bytes = if surface { per_path(2 * VEC4) } else { VEC4 };
         let path_state = [
@@ -102,7 +106,18 @@ impl WaveBuffers {
             ],
             shadow_queue: Tracked::new("shadow_queue", per_path(4)),
             shadow_rays: Tracked::new("shadow_rays", per_path(3 * VEC4)),
-            counts: Tracked::new("queue_counts", u64::from(queues::slots(max_depth)) * 4),
+            binned_queue: Tracked::new(
+                "binned_queue",
+                if binned {
+                    per_path(4) * u64::from(queues::MATERIAL_BINS)
+                } else {
+                    4
+                },
+            ),
+            counts: Tracked::new(
+                "queue_counts",
+                u64::from(queues::counters(max_depth, binned)) * 4,
+            ),
             args: [
                 Tracked::new("args_even", queues::args_bytes(max_depth)),
                 Tracked::new("args_odd", queues::args_bytes(max_depth)),
