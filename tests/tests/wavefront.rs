@@ -187,3 +187,31 @@ fn cornell_box_converges_to_the_megakernels_image() {
 fn caustics_converges_to_the_megakernels_image() {
     converges_to_the_megakernels_image("caustics", 16, 1.3);
 }
+
+/// Synchronization validation finds no hazard in the wavefront's passes: the barriers the graph
+/// derives between the queue kernels (the indirect-argument reads included) cover every access.
+/// Checked once: with `Access::IndirectCommandRead` given the compute stage and a storage read
+/// instead of the indirect-command stage and read, it reports READ_AFTER_WRITE hazards on the
+/// indirect-argument buffers at `vkCmdDispatchIndirect`.
+#[test]
+fn the_kernels_pass_synchronization_validation() {
+    let ctx = lucid_tests::context(true);
+    for algorithm in [
+        Algorithm::PathTracingWavefront,
+        Algorithm::PathTracingWavefrontBinned,
+    ] {
+        let settings = Settings {
+            algorithm,
+            denoiser: Denoiser::Svgf,
+            samples_per_pixel: SamplesPerPixel::new(2).unwrap(),
+            max_depth: 4,
+            ..Settings::default()
+        };
+        let mut renderer =
+            Renderer::new(&ctx, scene("caustics"), 16, 16, settings).expect("renderer");
+        renderer.render().expect("frame 0");
+        renderer.render_and_read().expect("frame 1");
+        assert!(renderer.stats().rays > 16 * 16 * 2, "rays are counted");
+    }
+    lucid_tests::assert_no_validation_messages(&ctx);
+}

@@ -76,6 +76,12 @@ mod tests {
     }
 
     #[test]
+    fn the_material_bins_count_after_the_slots() {
+        assert_eq!(counters(8, false), slots(8));
+        assert_eq!(counters(8, true), slots(8) + 8 * MATERIAL_BINS);
+    }
+
+    #[test]
     fn every_slot_a_shade_kernel_appends_to_fits() {
         let max_depth = 8;
         let last = ray_slot(max_depth);
