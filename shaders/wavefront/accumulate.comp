@@ -17,8 +17,8 @@ layout(set = 0, binding = 36, rgba32f) uniform image2D u_albedo;
 layout(set = 0, binding = 37, rgba32f) uniform image2D u_emission;
 layout(set = 0, binding = 38, std430) buffer Stats { uint non_finite; uint rays; uint cut_short; uint pad1; } b_stats;
 
-// slots: the queue slots, whose lengths add up to the rays traced (counters: generate's).
-layout(push_constant) uniform Push { uint sample_index; uint slots; uint counters; } push;
+// slots: the queue slots, whose lengths add up to the rays traced.
+layout(push_constant) uniform Push { uint sample_index; uint slots; } push;
 
 void main() {
     ivec2 pixel = ivec2(gl_GlobalInvocationID.xy);

@@ -8,7 +8,9 @@
 layout(set = 0, binding = 16, std430) buffer RayOrigin { vec4 v[]; } b_ray_origin;       // origin, prev_pdf
 layout(set = 0, binding = 17, std430) buffer RayDirection { vec4 v[]; } b_ray_direction; // direction, 0
 layout(set = 0, binding = 18, std430) buffer Throughput { vec4 v[]; } b_throughput;     // beta, prev_delta
-layout(set = 0, binding = 19, std430) buffer PrevVertex { vec4 v[]; } b_prev_vertex;    // prev_p, 0
+// prev_p; w: the camera ray's cone spread (pixel_spread) after generate, for the first hit's
+// texture filtering, 0 after shade.
+layout(set = 0, binding = 19, std430) buffer PrevVertex { vec4 v[]; } b_prev_vertex;
 layout(set = 0, binding = 20, std430) buffer PathRng { uint s[]; } b_path_rng;
 layout(set = 0, binding = 21, std430) buffer PathRadiance { vec4 v[]; } b_path_radiance;
 // The first hit's albedo (2 path) and emission (2 path + 1); one element only without
@@ -26,12 +28,13 @@ PathState load_path_state(uint path) {
     return st;
 }
 
-// Stores `st` and its next ray (o, d).
-void store_path_state(uint path, PathState st, vec3 o, vec3 d) {
+// Stores `st` and its next ray (o, d), whose cone widens by `spread` radians per unit distance
+// (the camera ray's; 0 for later rays, whose hits read level 0 of the textures).
+void store_path_state(uint path, PathState st, vec3 o, vec3 d, float spread) {
     b_ray_origin.v[path] = vec4(o, st.prev_pdf);
     b_ray_direction.v[path] = vec4(d, 0.0);
     b_throughput.v[path] = vec4(st.beta, st.prev_delta ? 1.0 : 0.0);
-    b_prev_vertex.v[path] = vec4(st.prev_p, 0.0);
+    b_prev_vertex.v[path] = vec4(st.prev_p, spread);
 }
 
 #endif

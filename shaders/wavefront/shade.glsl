@@ -87,7 +87,7 @@ void main() {
                 b_first_hit.v[2u * path + 1u] = vec4(radiance, 0.0);
             }
             if (depth + 1u < b_frame.f.max_depth) {
-                float spread = pixel_spread(b_frame.f.camera, float(b_frame.f.height));
+                float spread = b_prev_vertex.v[path].w;
                 float footprint = depth == 0u ? cone_lod(s, d, hit.t * spread) : NO_FOOTPRINT;
                 Shading sh = path_shading(s, d, footprint);
                 if (SURFACE_OUTPUTS && depth == 0u) {
@@ -103,7 +103,7 @@ void main() {
                 }
                 next_wanted = path_continue(st, s, sh, u_bsdf, depth, b_frame.f.rr_depth, rng, o, d);
                 if (next_wanted) {
-                    store_path_state(path, st, o, d);
+                    store_path_state(path, st, o, d, 0.0);
                 }
             }
         }

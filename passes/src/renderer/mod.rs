@@ -587,8 +587,8 @@ impl Renderer {
         )
     }
 
-    /// Adds this frame's light transport: path tracing (replaying last frame's paths as `replay`
-    /// asks, for the denoiser), bidirectional path tracing or wavefront path tracing; the
+    /// Adds this frame's light transport: path tracing, megakernel or wavefront (replaying last
+    /// frame's paths as `replay` asks, for the denoiser), or bidirectional path tracing; the
     /// denoiser's images when `surface`.
     fn add_transport(
         &self,
@@ -615,11 +615,16 @@ impl Renderer {
                 path_trace::add_path_trace(g, scene, frame, &self.spec, replay.as_ref(), sampling)
             }
             Algorithm::PathTracingWavefront | Algorithm::PathTracingWavefrontBinned => {
+                let replay = surface.then_some(Replay {
+                    params: replay,
+                    motion: gbuffer.motion,
+                });
                 let config = wavefront::Config {
                     bin_by_material: self.settings.algorithm
                         == Algorithm::PathTracingWavefrontBinned,
                 };
-                wavefront::add_wavefront(g, scene, frame, &self.spec, sampling, &config)
+                let inputs = (scene, frame, &self.spec);
+                wavefront::add_wavefront(g, inputs, replay.as_ref(), sampling, &config)
             }
             Algorithm::Bidirectional => bdpt::add_bdpt(
                 g,

@@ -33,8 +33,8 @@ pub enum Algorithm {
     PathTracing,
     /// Bidirectional path tracing with a light vertex cache.
     Bidirectional,
-    /// Path tracing's estimator (the same random numbers) as a wavefront: generate, extend, shade
-    /// and shadow kernels over queues of paths
+    /// Path tracing's estimator (the same random numbers, replay included) as a wavefront:
+    /// generate, extend, shade and shadow kernels over queues of paths
     /// ([`crate::light_transport::wavefront`]).
     PathTracingWavefront,
     /// The wavefront path tracer with each bounce's hits binned by material kind before shading
@@ -53,9 +53,9 @@ impl Algorithm {
 
     /// Whether the algorithm can replay last frame's paths where asked (SVGF's temporal gradients
     /// need it; `shaders/common/replay.glsl`). Bidirectional path tracing cannot: its camera paths
-    /// connect to this frame's light vertex cache; the wavefront path tracers do not (yet).
+    /// connect to this frame's light vertex cache.
     pub fn replays_paths(self) -> bool {
-        self == Algorithm::PathTracing
+        self != Algorithm::Bidirectional
     }
 
     /// The short name used on the command line and in reports (`pt`, `bdpt`, `pt-wavefront`,

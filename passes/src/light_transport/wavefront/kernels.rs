@@ -5,22 +5,31 @@
 
 use super::queues::{self, MAX_PATHS};
 use super::state::WaveBuffers;
-use crate::light_transport::Images;
+use crate::light_transport::{Images, ReplayParams};
 use crate::plumbing::scene_buffers::SceneHandles;
 use crate::shaders::wavefront::{
     ACCUMULATE, EXTEND, EXTEND_BINNED, GENERATE, SHADE, SHADE_BINNED, SHADOW,
 };
 use lucid_engine::error::EngineError;
-use lucid_engine::graph::{BufferHandle, ComputePass, RenderGraph};
+use lucid_engine::graph::{BufferHandle, ComputePass, ImageHandle, RenderGraph};
 use lucid_engine::shader::{ShaderSource, Specialization};
 
-/// Push constants of the kernels over pixels (`Push` in `generate.comp`, `accumulate.comp`).
+/// Push constants of the generate kernel (`Push` in `generate.comp`).
 #[repr(C)]
 #[derive(Clone, Copy, Debug, bytemuck::Pod, bytemuck::Zeroable)]
-struct SamplePush {
+struct GeneratePush {
+    replay: ReplayParams,
     sample_index: u32,
     slots: u32,
     counters: u32,
+}
+
+/// Push constants of the accumulate kernel (`Push` in `accumulate.comp`).
+#[repr(C)]
+#[derive(Clone, Copy, Debug, bytemuck::Pod, bytemuck::Zeroable)]
+struct AccumulatePush {
+    sample_index: u32,
+    slots: u32,
 }
 
 /// Push constants of the kernels over a queue (`Push` in `extend.comp`, `shade.comp`,
@@ -48,6 +57,9 @@ pub struct Inputs<'a> {
     pub surface: bool,
     /// Whether extend bins the hits by material for shade (`extend_binned`, `shade_binned`).
     pub binned: bool,
+    /// Which pixels replay last frame's paths, and the motion vectors that lead them there (a
+    /// placeholder never read when nothing replays).
+    pub replay: (ReplayParams, ImageHandle),
 }
 
 impl Inputs<'_> {
@@ -67,14 +79,6 @@ impl Inputs<'_> {
 
     fn paths(&self) -> u64 {
         u64::from(self.size.0) * u64::from(self.size.1)
-    }
-
-    fn sample_push(&self, sample_index: u32) -> SamplePush {
-        SamplePush {
-            sample_index,
-            slots: queues::slots(self.max_depth),
-            counters: queues::counters(self.max_depth, self.binned),
-        }
     }
 }
 
@@ -109,7 +113,13 @@ pub fn add_generate(
     b.counts.write(&mut pass, "b_counts");
     b.args[0].write(&mut pass, "b_args_even");
     b.args[1].write(&mut pass, "b_args_odd");
-    pass.push(&inputs.sample_push(sample_index));
+    pass.read("u_motion", inputs.replay.1);
+    pass.push(&GeneratePush {
+        replay: inputs.replay.0,
+        sample_index,
+        slots: queues::slots(inputs.max_depth),
+        counters: queues::counters(inputs.max_depth, inputs.binned),
+    });
     pass.dispatch([inputs.size.0, inputs.size.1, 1]);
 }
 
@@ -209,7 +219,10 @@ pub fn add_accumulate(
             images
         }
     };
-    pass.push(&inputs.sample_push(sample_index));
+    pass.push(&AccumulatePush {
+        sample_index,
+        slots: queues::slots(inputs.max_depth),
+    });
     pass.dispatch([inputs.size.0, inputs.size.1, 1]);
     (images, stats)
 }

@@ -18,17 +18,19 @@
 //! With [`Config::bin_by_material`] extend also sorts the hits into bins by material kind and
 //! shade walks the bins (`--algo pt-wavefront-binned`).
 //!
-//! It does not replay last frame's paths ([`crate::renderer::Algorithm::replays_paths`]): SVGF
-//! runs without temporal gradients with it, as with bidirectional path tracing.
+//! Like the megakernel, it replays last frame's paths where SVGF asks ([`Replay`]; generate
+//! starts a picked pixel's path from last frame's pixel, camera and random numbers).
 
 mod kernels;
 mod queues;
 mod state;
 
-use crate::light_transport::{Frame, Outputs};
+use crate::light_transport::{Frame, Outputs, Replay, ReplayParams};
+use crate::plumbing::placeholder::add_zero_image;
 use crate::plumbing::scene_buffers::SceneHandles;
 use kernels::Inputs;
 use lucid_engine::graph::{BufferHandle, RenderGraph};
+use lucid_engine::memory::ImageDesc;
 use lucid_engine::shader::Specialization;
 use state::WaveBuffers;
 
@@ -42,15 +44,24 @@ pub struct Config {
 }
 
 /// Adds wavefront path tracing at `sampling`'s size, samples per pixel and longest path, reading
-/// the scene and the frame constants; the denoiser's images are written when `sampling.surface`.
+/// the scene and the frame constants; the pixels `replay` picks replay last frame's paths
+/// (without it the passes do not depend on the G-buffer); the denoiser's images are written when
+/// `sampling.surface`.
 pub fn add_wavefront(
     g: &mut RenderGraph,
-    scene: &SceneHandles,
-    frame: BufferHandle,
-    spec: &Specialization,
+    (scene, frame, spec): (&SceneHandles, BufferHandle, &Specialization),
+    replay: Option<&Replay>,
     sampling: Frame,
     config: &Config,
 ) -> Outputs {
+    let replay = match replay {
+        Some(r) => (r.params, r.motion),
+        // Bound, never read: nothing is replayed, and the passes do not wait for the G-buffer.
+        None => (
+            ReplayParams::default(),
+            add_zero_image(g, "wavefront.no_motion", ImageDesc::rgba16f(1, 1)),
+        ),
+    };
     let inputs = Inputs {
         scene,
         frame,
@@ -59,6 +70,7 @@ pub fn add_wavefront(
         max_depth: sampling.max_depth,
         surface: sampling.surface,
         binned: config.bin_by_material,
+        replay,
     };
     let paths = u64::from(sampling.width) * u64::from(sampling.height);
     let mut buffers = WaveBuffers::new(
