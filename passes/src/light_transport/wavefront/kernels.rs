@@ -32,7 +32,7 @@ struct AccumulatePush {
     slots: u32,
 }
 
-/// Push constants of the kernels over a queue (`Push` in `extend.comp`, `shade.comp`,
+/// Push constants of the kernels over a queue (`Push` in `extend.glsl`, `shade.glsl`,
 /// `shadow.comp`).
 #[repr(C)]
 #[derive(Clone, Copy, Debug, bytemuck::Pod, bytemuck::Zeroable)]
@@ -40,7 +40,8 @@ struct DepthPush {
     depth: u32,
 }
 
-/// What every kernel reads: the scene, the frame constants and their specialization.
+/// What the kernels are given: the scene, the frame constants and their specialization, and the
+/// frame's size and options.
 #[derive(Clone, Copy)]
 pub struct Inputs<'a> {
     /// The scene's buffers.
@@ -91,15 +92,14 @@ pub fn add_generate(
 ) {
     let mut pass = inputs.pass(g, "generate", &GENERATE);
     let paths = inputs.paths();
-    pass.require(move |ctx| {
+    pass.require(move |_| {
         if paths <= MAX_PATHS {
             return Ok(());
         }
         Err(EngineError::InvalidArgument(format!(
             "wavefront path tracing traces at most {MAX_PATHS} paths at once (a queue's workgroups \
-             must fit in {} in x on {}), not {paths}: use a smaller image",
+             must fit in the {} every device dispatches in x), not {paths}: use a smaller image",
             MAX_PATHS / u64::from(queues::QUEUE_GROUP),
-            ctx.context().info().name
         )))
     });
     for (binding, buffer) in &mut b.path_state {
