@@ -27,11 +27,13 @@ void main() {
     uvec2 size = uvec2(b_frame.f.width, b_frame.f.height);
     uint paths = size.x * size.y;
     if (gl_GlobalInvocationID.xy == uvec2(0u)) {
+        // No ray is traced when paths have no segment (max_depth 0, as trace_path).
+        uint first = b_frame.f.max_depth > 0u ? paths : 0u;
         for (uint slot = 0u; slot < push.counters; ++slot) {
-            b_counts.c[slot] = slot == 0u ? paths : 0u;
+            b_counts.c[slot] = slot == 0u ? first : 0u;
         }
         for (uint slot = 0u; slot < push.slots; ++slot) {
-            uint groups = slot == 0u ? (paths + QUEUE_GROUP - 1u) / QUEUE_GROUP : 0u;
+            uint groups = slot == 0u ? (first + QUEUE_GROUP - 1u) / QUEUE_GROUP : 0u;
             b_args_even.a[4u * slot] = groups;
             b_args_odd.a[4u * slot] = 0u;
             for (uint i = 1u; i < 3u; ++i) {

@@ -61,17 +61,10 @@ fn difference(a: &ImageData, b: &ImageData) -> Difference {
     }
 }
 
-/// One frame of `name` with `algorithm` and the denoiser `denoiser` (SVGF: the surface images are
-/// written): its radiance and, with a denoiser, its demodulated radiance; and the rays traced.
-fn one_frame(name: &str, algorithm: Algorithm, denoiser: Denoiser) -> (Vec<ImageData>, u32) {
+/// One frame of `name` with `settings` (SVGF: the surface images are written): its radiance and,
+/// with a denoiser, its demodulated radiance; and the rays traced.
+fn one_frame(name: &str, settings: Settings) -> (Vec<ImageData>, u32) {
     let ctx = lucid_tests::context(false);
-    let settings = Settings {
-        algorithm,
-        denoiser,
-        samples_per_pixel: SamplesPerPixel::new(3).unwrap(),
-        seed: 7,
-        ..Settings::default()
-    };
     let mut renderer = Renderer::new(&ctx, scene(name), SIZE, SIZE, settings).expect("renderer");
     let mut g = RenderGraph::new();
     let (images, stats) = renderer.add_frame(&mut g);
@@ -93,12 +86,25 @@ fn one_frame(name: &str, algorithm: Algorithm, denoiser: Denoiser) -> (Vec<Image
 /// The same seed: the image, demodulated image (with SVGF) and ray count of both wavefronts (with
 /// and without material bins) are the megakernel's but for a few paths.
 fn same_random_numbers_same_image(name: &str, denoiser: Denoiser) {
-    let (mega, mega_rays) = one_frame(name, Algorithm::PathTracing, denoiser);
+    same_image_with(name, denoiser, 8);
+}
+
+/// [`same_random_numbers_same_image`] with paths at most `max_depth` segments long.
+fn same_image_with(name: &str, denoiser: Denoiser, max_depth: u32) {
+    let settings = |algorithm| Settings {
+        algorithm,
+        denoiser,
+        samples_per_pixel: SamplesPerPixel::new(3).unwrap(),
+        max_depth,
+        seed: 7,
+        ..Settings::default()
+    };
+    let (mega, mega_rays) = one_frame(name, settings(Algorithm::PathTracing));
     for algorithm in [
         Algorithm::PathTracingWavefront,
         Algorithm::PathTracingWavefrontBinned,
     ] {
-        let (wave, wave_rays) = one_frame(name, algorithm, denoiser);
+        let (wave, wave_rays) = one_frame(name, settings(algorithm));
         let algo = algorithm.short_name();
         for (which, (a, b)) in ["radiance", "demodulated"]
             .iter()
@@ -111,7 +117,8 @@ fn same_random_numbers_same_image(name: &str, denoiser: Denoiser) {
                 "{name} {algo} {which}: not the megakernel's image: {d:?}"
             );
         }
-        let rays = (f64::from(wave_rays) - f64::from(mega_rays)).abs() / f64::from(mega_rays);
+        let rays =
+            (f64::from(wave_rays) - f64::from(mega_rays)).abs() / f64::from(mega_rays.max(1));
         eprintln!("{name} {algo}: rays {mega_rays} (megakernel) and {wave_rays}");
         assert!(rays < 1e-3, "{algo}: rays {mega_rays} and {wave_rays}");
     }
@@ -125,6 +132,15 @@ fn cornell_box_same_random_numbers_same_image() {
 #[test]
 fn cornell_box_surface_images_match() {
     same_random_numbers_same_image("cornell-box", Denoiser::Svgf);
+}
+
+/// Paths of no segment (nothing traced), of one (emitters seen directly), two (direct light)
+/// and three.
+#[test]
+fn short_paths_same_random_numbers_same_image() {
+    for max_depth in 0..4 {
+        same_image_with("cornell-box", Denoiser::Svgf, max_depth);
+    }
 }
 
 #[test]
