@@ -3,9 +3,9 @@
 // functions and random numbers: what a miss brings or the hit emits (MIS), and unless the path is
 // at its longest, the light sample (its shadow ray appended to the bounce's shadow queue for the
 // shadow kernel), the next direction and Russian roulette (a surviving path appended to the next
-// bounce's ray queue). Appends are compacted per subgroup: one atomic per subgroup and queue
-// reserves the places, and the queue's indirect arguments grow by the workgroups the new places
-// begin, so they always hold ceil(length / QUEUE_GROUP) without a kernel of their own. With
+// bounce's ray queue). Appends are compacted per workgroup (append.glsl): one atomic per workgroup
+// and queue reserves the places, and the queue's indirect arguments grow by the workgroups the new
+// places begin, so they always hold ceil(length / QUEUE_GROUP) without a kernel of their own. With
 // BIN_BY_MATERIAL (shade_binned.comp) it takes the bounce's paths from extend's material bins,
 // one bin after the other, instead of the ray queue.
 #include "wavefront/common.glsl"
@@ -27,21 +27,11 @@ layout(set = 0, binding = 31, std430) writeonly buffer NextRayQueue { uint q[]; 
 
 layout(push_constant) uniform Push { uint depth; } push;
 
+// Appends to the bounce's shadow queue (0) and the next bounce's ray queue (1), growing their
+// indirect arguments.
+const uint APPEND_QUEUES = 2u;
+#define APPEND_ARGS
 #include "wavefront/append.glsl"
-
-// The place in queue `slot` of this invocation's item when `wanted` (undefined otherwise), the
-// queue's indirect arguments grown by the workgroups its new places begin; every invocation that
-// may append calls it once per queue.
-uint queue_append(bool wanted, uint slot) {
-    uint first;
-    uint added;
-    uint place = queue_reserve(wanted, slot, first, added);
-    uint groups = (first + added + QUEUE_GROUP - 1u) / QUEUE_GROUP - (first + QUEUE_GROUP - 1u) / QUEUE_GROUP;
-    if (subgroupElect() && groups > 0u) {
-        atomicAdd(b_args_out.a[4u * slot], groups);
-    }
-    return place;
-}
 
 // The path at place `i` of the bounce's queue (i below its length).
 uint queued_path(uint i) {
@@ -110,12 +100,14 @@ void main() {
         b_path_rng.s[path] = rng;
         b_path_radiance.v[path] = vec4(radiance, 0.0);
     }
-    uint shadow_place = queue_append(shadow_wanted, shadow_slot(depth));
-    uint next_place = queue_append(next_wanted, ray_slot(depth + 1u));
+    append_begin();
+    uint shadow_rank = append_rank(shadow_wanted, 0u);
+    uint next_rank = append_rank(next_wanted, 1u);
+    append_reserve(uint[APPEND_QUEUES](shadow_slot(depth), ray_slot(depth + 1u)));
     if (shadow_wanted) {
-        b_shadow_queue.q[shadow_place] = path;
+        b_shadow_queue.q[append_place(0u, shadow_rank)] = path;
     }
     if (next_wanted) {
-        b_next_ray_queue.q[next_place] = path;
+        b_next_ray_queue.q[append_place(1u, next_rank)] = path;
     }
 }
