@@ -6,7 +6,10 @@
 //! then per bounce **extend** (closest hits of the ray queue), **shade** (emission, the light
 //! sample into the shadow queue, the next direction and Russian roulette into the next ray queue)
 //! and **shadow** (occlusion tests, adding the light samples that arrive), then **accumulate**
-//! (the paths into the images; the last sample writes the averages).
+//! (the paths into the images; the last sample writes the averages). The samples of a frame run
+//! one wave after the other, each a path per pixel, because a pixel's sample starts its random
+//! numbers where its previous sample's path left them, as in the megakernel: the two draw the
+//! same numbers for every path and give the same image.
 //!
 //! The queue kernels are dispatched indirectly: shade counts the workgroups each queue needs as it
 //! appends ([`queues`]), and the graph orders each dispatch after that pass through the
