@@ -217,6 +217,14 @@ enum Work {
     Indirect(BufferHandle, u64),
 }
 
+/// What a dispatch records, resolved from its [`Work`].
+enum Launch {
+    /// `vkCmdDispatch` of these workgroups (none when any is 0).
+    Groups([u32; 3]),
+    /// `vkCmdDispatchIndirect` from this buffer at this byte offset.
+    Indirect(vk::Buffer, u64),
+}
+
 /// A compute dispatch being set up; see [`PassContext::compute`].
 pub struct Dispatch<'p, 'a> {
     pcx: &'p mut PassContext<'a>,
@@ -286,12 +294,9 @@ impl Dispatch<'_, '_> {
         }
     }
 
-    /// The indirect-arguments buffer of `work` when it is one, checked: declared with
+    /// The launch of indirect arguments at byte `offset` of `args`, checked: declared with
     /// [`Access::IndirectCommandRead`], the command within the buffer and aligned.
-    fn indirect_args(&self, work: &Work) -> Result<Option<(vk::Buffer, u64)>> {
-        let Work::Indirect(args, offset) = *work else {
-            return Ok(None);
-        };
+    fn indirect(&self, args: BufferHandle, offset: u64) -> Result<Launch> {
         let access = self.pcx.declared(args, "indirect arguments")?;
         if access != Access::IndirectCommandRead {
             return Err(self.error(format!(
@@ -307,11 +312,10 @@ impl Dispatch<'_, '_> {
                 buffer.size()
             )));
         }
-        Ok(Some((buffer.raw(), offset)))
+        Ok(Launch::Indirect(buffer.raw(), offset))
     }
 
     fn record(self, work: Work) -> Result<()> {
-        let indirect = self.indirect_args(&work)?;
         let pipeline = self.pcx.library.pipeline(&self.shader, &self.spec)?;
         let reflection = pipeline.reflection.clone();
         let mut image_infos: Vec<(u32, vk::DescriptorType, vk::DescriptorImageInfo)> = Vec::new();
@@ -421,14 +425,14 @@ impl Dispatch<'_, '_> {
             )));
         }
         let wg = pipeline.workgroup_size;
-        let groups = match work {
-            Work::Threads(threads) => [
+        let launch = match work {
+            Work::Threads(threads) => Launch::Groups([
                 threads[0].div_ceil(wg[0]),
                 threads[1].div_ceil(wg[1]),
                 threads[2].div_ceil(wg[2]),
-            ],
-            Work::Groups(groups) => groups,
-            Work::Indirect(..) => [1, 1, 1],
+            ]),
+            Work::Groups(groups) => Launch::Groups(groups),
+            Work::Indirect(args, offset) => self.indirect(args, offset)?,
         };
         let device = self.pcx.ctx.device();
         let cmd = self.pcx.cmd;
@@ -470,10 +474,14 @@ impl Dispatch<'_, '_> {
                     &self.push,
                 );
             }
-            if let Some((buffer, offset)) = indirect {
-                device.cmd_dispatch_indirect(cmd, buffer, offset);
-            } else if groups.iter().all(|&g| g > 0) {
-                device.cmd_dispatch(cmd, groups[0], groups[1], groups[2]);
+            match launch {
+                Launch::Groups(groups) if groups.iter().all(|&g| g > 0) => {
+                    device.cmd_dispatch(cmd, groups[0], groups[1], groups[2]);
+                }
+                Launch::Groups(_) => {}
+                Launch::Indirect(buffer, offset) => {
+                    device.cmd_dispatch_indirect(cmd, buffer, offset);
+                }
             }
         }
         self.pcx.keep_alive.push(pipeline);
