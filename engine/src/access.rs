@@ -16,6 +16,9 @@ pub enum Access {
     ComputeReadWrite,
     /// Compute shader samples it through a sampler (`sampler2D`).
     ComputeSampled,
+    /// Read by `vkCmdDispatchIndirect` as its workgroup counts (a buffer; the indirect-command
+    /// stage, before the compute shader runs).
+    IndirectCommandRead,
     /// Source of a copy.
     TransferRead,
     /// Destination of a copy or clear.
@@ -79,6 +82,14 @@ impl Access {
                 true,
                 false,
             ),
+            // Buffers only, which have no layout: GENERAL, as for the compute accesses.
+            Access::IndirectCommandRead => (
+                S::DRAW_INDIRECT,
+                A::INDIRECT_COMMAND_READ,
+                L::GENERAL,
+                true,
+                false,
+            ),
             Access::TransferRead => (
                 S::COPY,
                 A::TRANSFER_READ,
@@ -122,7 +133,7 @@ impl Access {
     pub fn image_usage(self) -> vk::ImageUsageFlags {
         use vk::ImageUsageFlags as U;
         match self {
-            Access::None | Access::Present => U::empty(),
+            Access::None | Access::Present | Access::IndirectCommandRead => U::empty(),
             Access::ComputeRead | Access::ComputeWrite | Access::ComputeReadWrite => U::STORAGE,
             Access::ComputeSampled | Access::FragmentSampled => U::SAMPLED,
             Access::TransferRead => U::TRANSFER_SRC,
@@ -138,6 +149,7 @@ impl Access {
             Access::ComputeRead | Access::ComputeWrite | Access::ComputeReadWrite => {
                 U::STORAGE_BUFFER
             }
+            Access::IndirectCommandRead => U::INDIRECT_BUFFER,
             Access::TransferRead => U::TRANSFER_SRC,
             Access::TransferWrite => U::TRANSFER_DST,
             _ => U::empty(),

@@ -592,3 +592,62 @@ fn a_layout_change_after_reads_in_several_passes_waits_for_all_of_them() {
         assert!(hazards(&plan).is_empty(), "{next}: {:?}", hazards(&plan));
     }
 }
+
+#[test]
+fn an_indirect_dispatch_waits_for_the_pass_that_wrote_its_counts() {
+    // A queue kernel appends and counts workgroups (storage writes), the next kernel dispatches
+    // that many (indirect-command read) and the one after overwrites the counts (a write after the
+    // indirect read): RAW and WAR barriers at the indirect-command stage, derived from the access.
+    static SHADER: lucid_engine::shader::ShaderSource = lucid_engine::shader::ShaderSource {
+        name: "test/queue",
+        path: "shaders/test/queue.comp",
+        spirv: &[],
+    };
+    let mut g = RenderGraph::new();
+    let out = g.import_image_desc("out", desc());
+    let mut shade = g.compute_pass("shade", &SHADER);
+    let args = shade.create_buffer("b_args", "args", 16);
+    shade.dispatch([64, 1, 1]);
+    let mut extend = g.compute_pass("extend", &SHADER);
+    let out = extend.write("u_out", out);
+    extend.dispatch_indirect(args, 0);
+    let mut reset = g.compute_pass("reset", &SHADER);
+    reset.read_write("b_args", args);
+    reset.read_write("u_out", out);
+    reset.dispatch([1, 1, 1]);
+    let plan = g.compile().unwrap().plan;
+    assert_eq!(plan.order(), ["shade", "extend", "reset"]);
+    let id = plan.resource_id("args").unwrap();
+    let barrier = |pass: &str| {
+        *plan
+            .pass(pass)
+            .unwrap()
+            .barriers
+            .iter()
+            .find(|b| b.resource == id)
+            .unwrap_or_else(|| panic!("{pass}: no barrier on args"))
+    };
+    let raw = barrier("extend");
+    assert_eq!(
+        raw.src,
+        BarrierSrc::Earlier {
+            stage: vk::PipelineStageFlags2::COMPUTE_SHADER,
+            access: vk::AccessFlags2::SHADER_STORAGE_WRITE
+        }
+    );
+    assert_eq!(raw.dst_stage, vk::PipelineStageFlags2::DRAW_INDIRECT);
+    assert_eq!(raw.dst_access, vk::AccessFlags2::INDIRECT_COMMAND_READ);
+    let accesses = &plan.pass("extend").unwrap().accesses;
+    assert!(accesses.contains(&(id, 1, Access::IndirectCommandRead)));
+    let war = barrier("reset");
+    assert!(
+        matches!(war.src, BarrierSrc::Earlier { stage, .. } if stage.contains(vk::PipelineStageFlags2::DRAW_INDIRECT)),
+        "{war:?}"
+    );
+    let args = &plan.resources[id.0 as usize];
+    assert_eq!(
+        args.buffer_usage,
+        vk::BufferUsageFlags::STORAGE_BUFFER | vk::BufferUsageFlags::INDIRECT_BUFFER
+    );
+    assert!(hazards(&plan).is_empty(), "{:?}", hazards(&plan));
+}

@@ -287,7 +287,7 @@ fn assert_clear_failure(args: &[&str], expect: &str) {
 fn converge_refuses_bad_lists_and_targets_clearly() {
     assert_clear_failure(
         &["--algos", "pt,mlt"],
-        "unknown algorithm \"mlt\" (expected pt, bdpt)",
+        "unknown algorithm \"mlt\" (expected pt, bdpt, pt-wavefront, pt-wavefront-binned)",
     );
     assert_clear_failure(
         &["--denoisers", "oidn"],

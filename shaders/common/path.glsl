@@ -2,6 +2,11 @@
 // Russian roulette), shared by the path tracer and the SVGF gradient pass, which replays a pixel's
 // path with exactly the path tracer's random numbers. Requires math, rng, scene, traverse, bsdf,
 // lights and surface.
+//
+// The path's steps are functions of their own (what a miss brings, what a hit emits, the light
+// sample and its shadow ray, the next direction) so that the wavefront path tracer
+// (shaders/wavefront/), which runs each step as a kernel over a queue of paths, computes exactly
+// the estimator trace_path computes, with the same random numbers drawn in the same order.
 #ifndef LUCID_PATH_GLSL
 #define LUCID_PATH_GLSL
 
@@ -11,6 +16,126 @@ struct PathResult {
     vec3 first_emission; // radiance emitted towards the camera by the first hit (or the sky)
 };
 
+// What a path carries from one segment to the next: its throughput and how its last direction was
+// sampled (for MIS where the segment meets an emitter or the sky).
+struct PathState {
+    vec3 beta;       // throughput
+    float prev_pdf;  // solid-angle pdf of the last direction (BSDF sampling)
+    bool prev_delta; // the last direction came from a delta lobe (or the camera): no MIS
+    vec3 prev_p;     // the vertex the last direction left from
+};
+
+// The state of a path whose camera ray starts at `origin`.
+PathState path_start(vec3 origin) {
+    PathState st;
+    st.beta = vec3(1.0);
+    st.prev_pdf = 0.0;
+    st.prev_delta = true;
+    st.prev_p = origin;
+    return st;
+}
+
+// The radiance the sky and the sun bring along `d`, a ray of path `st` that hit nothing,
+// MIS-weighted against their light samples.
+vec3 path_miss(PathState st, vec3 d) {
+    vec3 sun = sun_radiance(d);
+    float w_sun = st.prev_delta ? 1.0 : power_heuristic(st.prev_pdf, sun_pdf());
+    float w_env = st.prev_delta || !environment_sampled() ? 1.0 : power_heuristic(st.prev_pdf, environment_pdf(d));
+    return st.beta * (environment_radiance(d) * w_env + sun * w_sun);
+}
+
+// The radiance surface `s`, hit by a ray of path `st` along `d`, emits towards it, MIS-weighted
+// against the light samples that could have found it.
+vec3 path_emission(PathState st, Surface s, vec3 d) {
+    vec3 emitted = surface_emission(s, d);
+    if (max3(emitted) > 0.0) {
+        float w = st.prev_delta ? 1.0 : power_heuristic(st.prev_pdf, surface_light_pdf(s, st.prev_p));
+        return st.beta * emitted * w;
+    }
+    return vec3(0.0);
+}
+
+// The material at a hit and its shading frame.
+struct Shading {
+    BsdfParams m;
+    vec3 t;  // tangent
+    vec3 b;  // bitangent
+    vec3 wo; // towards where the ray came from, in the frame
+};
+
+// The shading of surface `s` hit along `d`; textures filtered for `footprint` (NO_FOOTPRINT:
+// level 0).
+Shading path_shading(Surface s, vec3 d, float footprint) {
+    Shading sh;
+    sh.m = material_params_lod(s.material, s.uv, s.color, footprint);
+    make_frame(s.ns, sh.t, sh.b);
+    sh.wo = to_local(-d, sh.t, sh.b, s.ns);
+    return sh;
+}
+
+// A shadow ray of next-event estimation, with what it brings to the path when unoccluded.
+struct ShadowRay {
+    vec3 origin;
+    vec3 dir;
+    float t_max;
+    vec3 radiance; // throughput x BSDF x light x MIS weight / pdf
+};
+
+// Next-event estimation at `s` with light sample `u_light`: false when it cannot bring anything
+// (a delta BSDF, no light sampled, the BSDF zero towards it), else the shadow ray to test.
+bool path_light_sample(PathState st, Surface s, Shading sh, vec4 u_light, out ShadowRay ray) {
+    if (bsdf_is_delta(sh.m)) {
+        return false;
+    }
+    LightSample ls;
+    if (!(sample_light(s.p, u_light, ls) && ls.pdf > 0.0)) {
+        return false;
+    }
+    float bsdf_pdf;
+    vec3 f = bsdf_eval(sh.m, sh.wo, to_local(ls.wi, sh.t, sh.b, s.ns), bsdf_pdf);
+    if (!(max3(f) > 0.0)) {
+        return false;
+    }
+    ray.origin = offset_origin(s.p, s.ng, ls.wi);
+    ray.dir = ls.wi;
+    ray.t_max = ls.dist >= T_INFINITY ? T_INFINITY : ls.dist * (1.0 - 1e-3);
+    float w = ls.delta ? 1.0 : power_heuristic(ls.pdf, bsdf_pdf);
+    ray.radiance = st.beta * f * ls.radiance * (w * ls.weight);
+    return true;
+}
+
+// Samples the direction after the vertex at `s` (at `depth`) with `u_bsdf`, then Russian roulette
+// from `rr_depth` on (one draw of `rng`): false when the path ends, else `st` and the next ray
+// (o, d).
+bool path_continue(inout PathState st, Surface s, Shading sh, vec3 u_bsdf, uint depth, uint rr_depth, inout uint rng, out vec3 o, out vec3 d) {
+    BsdfSample bs;
+    if (!bsdf_sample(sh.m, sh.wo, u_bsdf, bs)) {
+        return false;
+    }
+    vec3 wi = to_world(bs.wi, sh.t, sh.b, s.ns);
+    st.beta *= bs.weight;
+    st.prev_pdf = bs.pdf;
+    st.prev_delta = bs.delta;
+    st.prev_p = s.p;
+    o = offset_origin(s.p, s.ng, wi);
+    d = wi;
+    if (depth + 1u >= rr_depth) {
+        float q = min(max3(st.beta), 0.95);
+        if (rng_next(rng) >= q) {
+            return false;
+        }
+        st.beta /= q;
+    }
+    return true;
+}
+
+// The random numbers of a vertex, in the order trace_path draws them: the light sample's, then
+// the BSDF sample's (Russian roulette draws one more in path_continue).
+void path_vertex_numbers(inout uint rng, out vec4 u_light, out vec3 u_bsdf) {
+    u_light = vec4(rng_next(rng), rng_next2(rng), rng_side(rng));
+    u_bsdf = vec3(rng_next2(rng), rng_next(rng));
+}
+
 // Traces the path starting with the camera ray (o, d), whose cone widens by `spread` radians per
 // unit distance (textures at the first hit are filtered for it); adds the rays it traces to
 // `rays`.
@@ -19,29 +144,19 @@ PathResult trace_path(vec3 o, vec3 d, inout uint rng, uint max_depth, uint rr_de
     r.radiance = vec3(0.0);
     r.first_albedo = vec3(1.0);
     r.first_emission = vec3(0.0);
-    vec3 beta = vec3(1.0);
-    float prev_pdf = 0.0;
-    bool prev_delta = true;
-    vec3 prev_p = o;
+    PathState st = path_start(o);
     for (uint depth = 0u; depth < max_depth; ++depth) {
         Hit hit;
         rays += 1u;
         if (!trace_closest(o, d, T_INFINITY, hit)) {
-            vec3 sun = sun_radiance(d);
-            float w_sun = prev_delta ? 1.0 : power_heuristic(prev_pdf, sun_pdf());
-            float w_env = prev_delta || !environment_sampled() ? 1.0 : power_heuristic(prev_pdf, environment_pdf(d));
-            r.radiance += beta * (environment_radiance(d) * w_env + sun * w_sun);
+            r.radiance += path_miss(st, d);
             if (depth == 0u) {
                 r.first_emission = r.radiance;
             }
             break;
         }
         Surface s = surface_at(hit, o, d);
-        vec3 emitted = surface_emission(s, d);
-        if (max3(emitted) > 0.0) {
-            float w = prev_delta ? 1.0 : power_heuristic(prev_pdf, surface_light_pdf(s, prev_p));
-            r.radiance += beta * emitted * w;
-        }
+        r.radiance += path_emission(st, s, d);
         if (depth == 0u) {
             r.first_emission = r.radiance;
         }
@@ -49,49 +164,22 @@ PathResult trace_path(vec3 o, vec3 d, inout uint rng, uint max_depth, uint rr_de
             break;
         }
         float footprint = depth == 0u ? cone_lod(s, d, hit.t * spread) : NO_FOOTPRINT;
-        BsdfParams m = material_params_lod(s.material, s.uv, s.color, footprint);
+        Shading sh = path_shading(s, d, footprint);
         if (depth == 0u) {
-            r.first_albedo = demodulation_albedo(m);
+            r.first_albedo = demodulation_albedo(sh.m);
         }
-        vec3 t;
-        vec3 b;
-        make_frame(s.ns, t, b);
-        vec3 wo = to_local(-d, t, b, s.ns);
-        vec4 u_light = vec4(rng_next(rng), rng_next2(rng), rng_side(rng));
-        vec3 u_bsdf = vec3(rng_next2(rng), rng_next(rng));
-        if (!bsdf_is_delta(m)) {
-            LightSample ls;
-            if (sample_light(s.p, u_light, ls) && ls.pdf > 0.0) {
-                float bsdf_pdf;
-                vec3 f = bsdf_eval(m, wo, to_local(ls.wi, t, b, s.ns), bsdf_pdf);
-                if (max3(f) > 0.0) {
-                    vec3 origin = offset_origin(s.p, s.ng, ls.wi);
-                    float t_max = ls.dist >= T_INFINITY ? T_INFINITY : ls.dist * (1.0 - 1e-3);
-                    rays += 1u;
-                    if (!trace_occluded(origin, ls.wi, t_max)) {
-                        float w = ls.delta ? 1.0 : power_heuristic(ls.pdf, bsdf_pdf);
-                        r.radiance += beta * f * ls.radiance * (w * ls.weight);
-                    }
-                }
+        vec4 u_light;
+        vec3 u_bsdf;
+        path_vertex_numbers(rng, u_light, u_bsdf);
+        ShadowRay shadow;
+        if (path_light_sample(st, s, sh, u_light, shadow)) {
+            rays += 1u;
+            if (!trace_occluded(shadow.origin, shadow.dir, shadow.t_max)) {
+                r.radiance += shadow.radiance;
             }
         }
-        BsdfSample bs;
-        if (!bsdf_sample(m, wo, u_bsdf, bs)) {
+        if (!path_continue(st, s, sh, u_bsdf, depth, rr_depth, rng, o, d)) {
             break;
-        }
-        vec3 wi = to_world(bs.wi, t, b, s.ns);
-        beta *= bs.weight;
-        prev_pdf = bs.pdf;
-        prev_delta = bs.delta;
-        prev_p = s.p;
-        o = offset_origin(s.p, s.ng, wi);
-        d = wi;
-        if (depth + 1u >= rr_depth) {
-            float q = min(max3(beta), 0.95);
-            if (rng_next(rng) >= q) {
-                break;
-            }
-            beta /= q;
         }
     }
     return r;

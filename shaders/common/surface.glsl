@@ -51,6 +51,16 @@ vec3 normal_mapped(Surface s, uint map, float scale, vec3 t, vec3 bitangent) {
     return m > 1e-8 ? mapped / m : s.ns;
 }
 
+// The material of what `hit` hit (the one surface_at finds), without the rest of the surface:
+// the wavefront path tracer bins its hits by it.
+uint hit_material(Hit hit) {
+    Instance inst = b_instances.i[hit.instance];
+    if (HAS_SPHERES && inst.kind == INSTANCE_SPHERES) {
+        return b_spheres.s[hit.primitive].material;
+    }
+    return inst.kind == INSTANCE_FLATTENED ? b_triangle_ids.t[hit.primitive].x : inst.material;
+}
+
 Surface surface_at(Hit hit, vec3 origin, vec3 dir) {
     Surface s;
     Instance inst = b_instances.i[hit.instance];

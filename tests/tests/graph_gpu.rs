@@ -1,11 +1,14 @@
 //! Render graphs executed on the device (lavapipe in CI) with validation on: exact outputs,
-//! aliasing, history across frames, specialization, reflection and binding errors.
+//! aliasing, history across frames, specialization, reflection and binding errors, indirect
+//! dispatch.
 
 use lucid_engine::graph::{Access, Executor, ImageHandle, RenderGraph};
 use lucid_engine::memory::ImageDesc;
 use lucid_engine::shader::DescriptorKind;
 use lucid_passes::debug::test_pattern::{self, Params};
-use lucid_passes::shaders::test_pattern::{ACCUMULATE, COMBINE, GRADIENT, SCALE};
+use lucid_passes::shaders::test_pattern::{
+    ACCUMULATE, COMBINE, COUNT_INVOCATIONS, GRADIENT, INDIRECT_ARGS, SCALE,
+};
 use lucid_tests::{assert_no_validation_messages, executor, run};
 
 fn assert_close(got: &[[f32; 4]], want: &[[f32; 4]], tolerance: f32) {
@@ -477,4 +480,79 @@ fn layout_changes_after_reads_wait_for_them() {
         );
         assert_no_validation_messages(&ctx);
     }
+}
+
+/// Adds a pass that writes `groups` x 1 x 1 indirect arguments at word `at` of a new 32-byte
+/// buffer, and a pass creating a zeroed counter.
+fn indirect_args_and_counter(
+    g: &mut RenderGraph,
+    groups: u32,
+    at: u32,
+) -> (
+    lucid_engine::graph::BufferHandle,
+    lucid_engine::graph::BufferHandle,
+) {
+    let mut p = g.compute_pass("write_args", &INDIRECT_ARGS);
+    let args = p.create_buffer("b_args", "args", 32);
+    p.push(&[groups, at]);
+    p.dispatch([1, 1, 1]);
+    let mut p = g.add_pass("clear_counter");
+    let counter = p.create_buffer("counter", 8);
+    let counter = p.write(counter, Access::TransferWrite);
+    p.execute(move |ctx| ctx.fill_buffer(counter, 0));
+    (args, counter)
+}
+
+#[test]
+fn an_indirect_dispatch_runs_the_workgroups_an_earlier_pass_wrote() {
+    // Synchronization validation checks the barrier from the storage write of the arguments to
+    // their indirect-command read.
+    let (ctx, mut executor) = executor(true);
+    for (groups, at) in [(5, 0), (3, 4), (0, 0)] {
+        let mut g = RenderGraph::new();
+        let (args, counter) = indirect_args_and_counter(&mut g, groups, at);
+        let mut p = g.compute_pass("count", &COUNT_INVOCATIONS);
+        let counter = p.read_write("b_counter", counter);
+        p.dispatch_indirect(args, u64::from(at) * 4);
+        let readback = g.readback(counter);
+        let outputs = run(&mut executor, g);
+        let counts: &[u32] = bytemuck::cast_slice(outputs.bytes(readback).unwrap());
+        assert_eq!(
+            counts,
+            [32 * groups, groups],
+            "{groups} groups at word {at}"
+        );
+    }
+    assert_no_validation_messages(&ctx);
+}
+
+#[test]
+fn indirect_arguments_must_be_declared_as_such_and_fit() {
+    let (ctx, mut executor) = executor(false);
+    for (access, offset, expect) in [
+        (Access::ComputeRead, 0, "need Access::IndirectCommandRead"),
+        (Access::IndirectCommandRead, 24, "do not fit"),
+        (Access::IndirectCommandRead, 2, "4-byte aligned"),
+    ] {
+        let mut g = RenderGraph::new();
+        let (args, counter) = indirect_args_and_counter(&mut g, 1, 0);
+        let mut p = g.add_pass("count");
+        p.read(args, access);
+        let counter = p.write(counter, Access::ComputeReadWrite);
+        p.execute(move |ctx| {
+            ctx.compute(&COUNT_INVOCATIONS)
+                .buffer("b_counter", counter)
+                .dispatch_indirect(args, offset)
+        });
+        g.readback(counter);
+        let message = executor
+            .execute(g.compile().unwrap())
+            .expect_err("the frame fails")
+            .to_string();
+        assert!(
+            message.contains(expect) && message.contains("count"),
+            "{access:?} at {offset}: {message}"
+        );
+    }
+    assert_no_validation_messages(&ctx);
 }

@@ -1,4 +1,4 @@
-//! The light transport's frames (path tracing and bidirectional path tracing) are a pure function of (scene, camera, settings, frame index, seed):
+//! The light transport's frames (every algorithm: path tracing, BDPT, the wavefront path tracers) are a pure function of (scene, camera, settings, frame index, seed):
 //! rendering the same frame again gives the same image bit for bit and the same ray count; another
 //! seed gives another image. The images for a denoiser are traced only when one runs, and tracing
 //! them leaves the radiance unchanged.

@@ -43,6 +43,15 @@ impl Bound {
     }
 }
 
+/// How many workgroups a [`ComputePass`] dispatches.
+#[derive(Clone, Copy)]
+enum Size {
+    /// Enough to cover this many invocations.
+    Threads([u32; 3]),
+    /// What the buffer holds at this byte offset when the pass runs.
+    Indirect(BufferHandle, u64),
+}
+
 /// Push constants of any plain-data type, applied to a dispatch.
 trait PushConstants {
     fn apply<'p, 'a>(&self, dispatch: Dispatch<'p, 'a>) -> Dispatch<'p, 'a>;
@@ -187,7 +196,17 @@ impl ComputePass<'_> {
     /// Gives the pass its work: one dispatch of enough workgroups to cover `threads` invocations
     /// (the workgroup size comes from the shader, which must bounds-check).
     pub fn dispatch(self, threads: [u32; 3]) {
-        self.record(threads, Vec::new());
+        self.record(Size::Threads(threads), Vec::new());
+    }
+
+    /// Gives the pass its work: one dispatch of as many workgroups as the
+    /// `VkDispatchIndirectCommand` at byte `offset` of `args` holds when it runs (written by an
+    /// earlier pass, e.g. from a queue's length). The pass reads `args` with
+    /// [`Access::IndirectCommandRead`], so the graph puts the barrier from that write to the
+    /// indirect-command stage before it; the shader must bounds-check against the queue's length.
+    pub fn dispatch_indirect(mut self, args: BufferHandle, offset: u64) {
+        let args = self.pass.read(args, Access::IndirectCommandRead);
+        self.record(Size::Indirect(args, offset), Vec::new());
     }
 
     /// Gives the pass its work in several dispatches of `threads` invocations, one per element of
@@ -199,12 +218,12 @@ impl ComputePass<'_> {
             .into_iter()
             .map(|data| Box::new(data) as Box<dyn PushConstants>)
             .collect();
-        self.record(threads, pushes);
+        self.record(Size::Threads(threads), pushes);
     }
 
     /// Records the dispatches: one per element of `pushes`, or one with the pass's push constants
     /// when `pushes` is empty.
-    fn record(self, threads: [u32; 3], pushes: Vec<Box<dyn PushConstants>>) {
+    fn record(self, size: Size, pushes: Vec<Box<dyn PushConstants>>) {
         let Self {
             pass,
             shader,
@@ -236,7 +255,10 @@ impl ComputePass<'_> {
                 if let Some(push) = push {
                     dispatch = push.apply(dispatch);
                 }
-                dispatch.dispatch_threads(threads)?;
+                match size {
+                    Size::Threads(threads) => dispatch.dispatch_threads(threads)?,
+                    Size::Indirect(args, offset) => dispatch.dispatch_indirect(args, offset)?,
+                }
             }
             Ok(())
         });

@@ -207,6 +207,24 @@ impl<'a> PassContext<'a> {
     }
 }
 
+/// How many workgroups a dispatch runs.
+enum Work {
+    /// Enough to cover this many invocations.
+    Threads([u32; 3]),
+    /// Exactly these.
+    Groups([u32; 3]),
+    /// As many as the GPU reads from the buffer at this byte offset.
+    Indirect(BufferHandle, u64),
+}
+
+/// What a dispatch records, resolved from its [`Work`].
+enum Launch {
+    /// `vkCmdDispatch` of these workgroups (none when any is 0).
+    Groups([u32; 3]),
+    /// `vkCmdDispatchIndirect` from this buffer at this byte offset.
+    Indirect(vk::Buffer, u64),
+}
+
 /// A compute dispatch being set up; see [`PassContext::compute`].
 pub struct Dispatch<'p, 'a> {
     pcx: &'p mut PassContext<'a>,
@@ -253,18 +271,20 @@ impl Dispatch<'_, '_> {
     /// Dispatches enough workgroups to cover `threads` invocations (the workgroup size comes from
     /// the shader); the shader must bounds-check.
     pub fn dispatch_threads(self, threads: [u32; 3]) -> Result<()> {
-        self.record(|wg| {
-            [
-                threads[0].div_ceil(wg[0]),
-                threads[1].div_ceil(wg[1]),
-                threads[2].div_ceil(wg[2]),
-            ]
-        })
+        self.record(Work::Threads(threads))
     }
 
     /// Dispatches exactly `groups` workgroups.
     pub fn dispatch_groups(self, groups: [u32; 3]) -> Result<()> {
-        self.record(|_| groups)
+        self.record(Work::Groups(groups))
+    }
+
+    /// Dispatches the workgroup counts that the GPU finds in `args` at byte `offset` (a
+    /// `VkDispatchIndirectCommand`: three u32, `offset` a multiple of 4, within the buffer), which
+    /// the pass must have declared with [`Access::IndirectCommandRead`], so that the graph orders
+    /// the dispatch after the pass that wrote the counts.
+    pub fn dispatch_indirect(self, args: BufferHandle, offset: u64) -> Result<()> {
+        self.record(Work::Indirect(args, offset))
     }
 
     fn error(&self, message: String) -> EngineError {
@@ -274,7 +294,28 @@ impl Dispatch<'_, '_> {
         }
     }
 
-    fn record(self, groups_for: impl FnOnce([u32; 3]) -> [u32; 3]) -> Result<()> {
+    /// The launch of indirect arguments at byte `offset` of `args`, checked: declared with
+    /// [`Access::IndirectCommandRead`], the command within the buffer and aligned.
+    fn indirect(&self, args: BufferHandle, offset: u64) -> Result<Launch> {
+        let access = self.pcx.declared(args, "indirect arguments")?;
+        if access != Access::IndirectCommandRead {
+            return Err(self.error(format!(
+                "indirect arguments {} need Access::IndirectCommandRead, not {access:?}",
+                self.pcx.resource_name(args.id())
+            )));
+        }
+        let buffer = self.pcx.buffer(args)?;
+        if offset % 4 != 0 || offset + 12 > buffer.size() {
+            return Err(self.error(format!(
+                "indirect arguments at byte {offset} do not fit {} ({} bytes) or are not 4-byte aligned",
+                buffer.name(),
+                buffer.size()
+            )));
+        }
+        Ok(Launch::Indirect(buffer.raw(), offset))
+    }
+
+    fn record(self, work: Work) -> Result<()> {
         let pipeline = self.pcx.library.pipeline(&self.shader, &self.spec)?;
         let reflection = pipeline.reflection.clone();
         let mut image_infos: Vec<(u32, vk::DescriptorType, vk::DescriptorImageInfo)> = Vec::new();
@@ -383,7 +424,16 @@ impl Dispatch<'_, '_> {
                 reflection.push_constant_size
             )));
         }
-        let groups = groups_for(pipeline.workgroup_size);
+        let wg = pipeline.workgroup_size;
+        let launch = match work {
+            Work::Threads(threads) => Launch::Groups([
+                threads[0].div_ceil(wg[0]),
+                threads[1].div_ceil(wg[1]),
+                threads[2].div_ceil(wg[2]),
+            ]),
+            Work::Groups(groups) => Launch::Groups(groups),
+            Work::Indirect(args, offset) => self.indirect(args, offset)?,
+        };
         let device = self.pcx.ctx.device();
         let cmd = self.pcx.cmd;
         let writes: Vec<vk::WriteDescriptorSet> = image_infos
@@ -401,8 +451,9 @@ impl Dispatch<'_, '_> {
                     .buffer_info(std::slice::from_ref(info))
             }))
             .collect();
-        // SAFETY: cmd is recording; the pipeline, views and buffers are kept alive until the frame
-        // completes (pipelines via keep_alive, resources via the executor's frame slot).
+        // SAFETY: cmd is recording; the pipeline, views and buffers (the indirect arguments too,
+        // checked above) are kept alive until the frame completes (pipelines via keep_alive,
+        // resources via the executor's frame slot).
         unsafe {
             device.cmd_bind_pipeline(cmd, vk::PipelineBindPoint::COMPUTE, pipeline.pipeline);
             if !writes.is_empty() {
@@ -423,8 +474,14 @@ impl Dispatch<'_, '_> {
                     &self.push,
                 );
             }
-            if groups.iter().all(|&g| g > 0) {
-                device.cmd_dispatch(cmd, groups[0], groups[1], groups[2]);
+            match launch {
+                Launch::Groups(groups) if groups.iter().all(|&g| g > 0) => {
+                    device.cmd_dispatch(cmd, groups[0], groups[1], groups[2]);
+                }
+                Launch::Groups(_) => {}
+                Launch::Indirect(buffer, offset) => {
+                    device.cmd_dispatch_indirect(cmd, buffer, offset);
+                }
             }
         }
         self.pcx.keep_alive.push(pipeline);

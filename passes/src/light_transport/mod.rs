@@ -14,6 +14,7 @@ mod frame;
 mod outputs;
 pub mod path_trace;
 mod sample_batches;
+pub mod wavefront;
 
 pub use frame::Frame;
 pub use outputs::{Images, Outputs, Replay, ReplayParams, SurfaceImages};

@@ -26,7 +26,7 @@ use crate::denoise::gbuffer::{self, GBuffer};
 use crate::denoise::{accumulate, neural, svgf};
 use crate::denoise::{DenoiseInputs, Denoised, FrameDenoiser, FrameInfo};
 use crate::light_transport::{self, Replay, ReplayParams};
-use crate::light_transport::{bdpt, path_trace};
+use crate::light_transport::{bdpt, path_trace, wavefront};
 use crate::plumbing::frame_constants::{self, FrameConstants};
 use crate::plumbing::scene_buffers::{specialization, SceneBuffers, SceneHandles};
 use crate::post::tonemap;
@@ -587,8 +587,9 @@ impl Renderer {
         )
     }
 
-    /// Adds this frame's light transport: path tracing (replaying last frame's paths as `replay`
-    /// asks, for the denoiser) or bidirectional path tracing; the denoiser's images when `surface`.
+    /// Adds this frame's light transport: path tracing, megakernel or wavefront (replaying last
+    /// frame's paths as `replay` asks, for the denoiser), or bidirectional path tracing; the
+    /// denoiser's images when `surface`.
     fn add_transport(
         &self,
         g: &mut RenderGraph,
@@ -612,6 +613,18 @@ impl Renderer {
                     motion: gbuffer.motion,
                 });
                 path_trace::add_path_trace(g, scene, frame, &self.spec, replay.as_ref(), sampling)
+            }
+            Algorithm::PathTracingWavefront | Algorithm::PathTracingWavefrontBinned => {
+                let replay = surface.then_some(Replay {
+                    params: replay,
+                    motion: gbuffer.motion,
+                });
+                let config = wavefront::Config {
+                    bin_by_material: self.settings.algorithm
+                        == Algorithm::PathTracingWavefrontBinned,
+                };
+                let inputs = (scene, frame, &self.spec);
+                wavefront::add_wavefront(g, inputs, replay.as_ref(), sampling, &config)
             }
             Algorithm::Bidirectional => bdpt::add_bdpt(
                 g,

@@ -10,9 +10,21 @@ use lucid_engine::capture::{PngEncoding, ToneCurve};
 ///
 /// ```
 /// use lucid_passes::renderer::Algorithm;
-/// assert_eq!(Algorithm::ALL.map(Algorithm::label), ["path tracing", "bidirectional"]);
-/// assert_eq!(Algorithm::ALL.map(Algorithm::short_name), ["pt", "bdpt"]);
+/// assert_eq!(
+///     Algorithm::ALL.map(Algorithm::label),
+///     [
+///         "path tracing",
+///         "bidirectional",
+///         "path tracing (wavefront)",
+///         "path tracing (wavefront, material bins)"
+///     ]
+/// );
+/// assert_eq!(
+///     Algorithm::ALL.map(Algorithm::short_name),
+///     ["pt", "bdpt", "pt-wavefront", "pt-wavefront-binned"]
+/// );
 /// assert_eq!(Algorithm::PathTracing.other(), Algorithm::Bidirectional);
+/// assert_eq!(Algorithm::PathTracingWavefront.other(), Algorithm::PathTracing);
 /// ```
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
 pub enum Algorithm {
@@ -21,40 +33,61 @@ pub enum Algorithm {
     PathTracing,
     /// Bidirectional path tracing with a light vertex cache.
     Bidirectional,
+    /// Path tracing's estimator (the same random numbers, replay included) as a wavefront:
+    /// generate, extend, shade and shadow kernels over queues of paths
+    /// ([`crate::light_transport::wavefront`]).
+    PathTracingWavefront,
+    /// The wavefront path tracer with each bounce's hits binned by material kind before shading
+    /// ([`crate::light_transport::wavefront::Config::bin_by_material`]).
+    PathTracingWavefrontBinned,
 }
 
 impl Algorithm {
     /// Every algorithm, in the order menus and the command line list them.
-    pub const ALL: [Algorithm; 2] = [Algorithm::PathTracing, Algorithm::Bidirectional];
+    pub const ALL: [Algorithm; 4] = [
+        Algorithm::PathTracing,
+        Algorithm::Bidirectional,
+        Algorithm::PathTracingWavefront,
+        Algorithm::PathTracingWavefrontBinned,
+    ];
 
     /// Whether the algorithm can replay last frame's paths where asked (SVGF's temporal gradients
     /// need it; `shaders/common/replay.glsl`). Bidirectional path tracing cannot: its camera paths
     /// connect to this frame's light vertex cache.
     pub fn replays_paths(self) -> bool {
-        self == Algorithm::PathTracing
+        self != Algorithm::Bidirectional
     }
 
-    /// The short name used on the command line and in reports (`pt`, `bdpt`).
+    /// The short name used on the command line and in reports (`pt`, `bdpt`, `pt-wavefront`,
+    /// `pt-wavefront-binned`).
     pub fn short_name(self) -> &'static str {
         match self {
             Algorithm::PathTracing => "pt",
             Algorithm::Bidirectional => "bdpt",
+            Algorithm::PathTracingWavefront => "pt-wavefront",
+            Algorithm::PathTracingWavefrontBinned => "pt-wavefront-binned",
         }
     }
 
-    /// The name shown in user interfaces (`path tracing`, `bidirectional`).
+    /// The name shown in user interfaces (`path tracing`, `bidirectional`,
+    /// `path tracing (wavefront)`, `path tracing (wavefront, material bins)`).
     pub fn label(self) -> &'static str {
         match self {
             Algorithm::PathTracing => "path tracing",
             Algorithm::Bidirectional => "bidirectional",
+            Algorithm::PathTracingWavefront => "path tracing (wavefront)",
+            Algorithm::PathTracingWavefrontBinned => "path tracing (wavefront, material bins)",
         }
     }
 
-    /// The other algorithm (what a side-by-side comparison shows by default).
+    /// The algorithm to compare with (what a side-by-side comparison shows by default): path
+    /// tracing and BDPT each other, the wavefront path tracers the megakernel.
     pub fn other(self) -> Self {
         match self {
             Algorithm::PathTracing => Algorithm::Bidirectional,
-            Algorithm::Bidirectional => Algorithm::PathTracing,
+            Algorithm::Bidirectional
+            | Algorithm::PathTracingWavefront
+            | Algorithm::PathTracingWavefrontBinned => Algorithm::PathTracing,
         }
     }
 }

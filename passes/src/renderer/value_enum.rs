@@ -16,6 +16,12 @@ impl ValueEnum for Algorithm {
         let help = match self {
             Algorithm::PathTracing => "Path tracing (NEE, MIS, Russian roulette)",
             Algorithm::Bidirectional => "Bidirectional path tracing (light vertex cache, MIS)",
+            Algorithm::PathTracingWavefront => {
+                "Path tracing as a wavefront: generate, extend, shade and shadow kernels over queues"
+            }
+            Algorithm::PathTracingWavefrontBinned => {
+                "Wavefront path tracing, each bounce's hits binned by material kind before shading"
+            }
         };
         Some(PossibleValue::new(self.short_name()).help(help))
     }

@@ -28,6 +28,8 @@ impl ValueEnum for AlgoArg {
         &[
             AlgoArg::Fixed(Algorithm::PathTracing),
             AlgoArg::Fixed(Algorithm::Bidirectional),
+            AlgoArg::Fixed(Algorithm::PathTracingWavefront),
+            AlgoArg::Fixed(Algorithm::PathTracingWavefrontBinned),
             AlgoArg::Auto,
         ]
     }

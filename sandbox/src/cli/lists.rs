@@ -79,7 +79,7 @@ mod tests {
         );
         assert_eq!(
             algos("pt,mlt").unwrap_err(),
-            "unknown algorithm \"mlt\" (expected pt, bdpt)"
+            "unknown algorithm \"mlt\" (expected pt, bdpt, pt-wavefront, pt-wavefront-binned)"
         );
         assert!(algos("").unwrap_err().contains("empty"));
         assert!(algos("pt,,bdpt").unwrap_err().contains("empty"));

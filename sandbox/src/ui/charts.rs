@@ -41,25 +41,71 @@ pub fn line_graph(ui: &mut egui::Ui, values: &[f64]) {
     );
 }
 
-/// One horizontal bar per pass, scaled to the slowest, with its name and time.
+/// One horizontal bar per pass name, scaled to the slowest, with its name and time: passes that
+/// share a name (the wavefront path tracer's kernels run once per bounce) are summed into one bar
+/// marked with their count.
 pub fn bar_chart(ui: &mut egui::Ui, timings: &[PassTiming]) {
-    let max = timings.iter().map(|t| t.ms).fold(0.0, f64::max);
-    for t in timings {
+    let bars = by_name(timings);
+    let max = bars.iter().map(|b| b.1).fold(0.0, f64::max);
+    for (name, ms, count) in bars {
         let (rect, _) =
             ui.allocate_exact_size(Vec2::new(ui.available_width(), BAR_HEIGHT), Sense::hover());
         let painter = ui.painter_at(rect);
-        let fraction = if max > 0.0 { (t.ms / max) as f32 } else { 0.0 };
+        let fraction = if max > 0.0 { (ms / max) as f32 } else { 0.0 };
         let bar = Rect::from_min_size(
             rect.min,
             Vec2::new(rect.width() * fraction, rect.height() - 2.0),
         );
         painter.rect_filled(bar, 1.0, BAR);
+        let times = if count > 1 {
+            format!(" x{count}")
+        } else {
+            String::new()
+        };
         painter.text(
             rect.left_center() + Vec2::new(2.0, -1.0),
             egui::Align2::LEFT_CENTER,
-            format!("{} {:.3} ms", t.name, t.ms),
+            format!("{name}{times} {ms:.3} ms"),
             egui::FontId::monospace(10.0),
             ui.visuals().strong_text_color(),
+        );
+    }
+}
+
+/// The passes' times summed by name, in the order the names first run: (name, ms, passes).
+fn by_name(timings: &[PassTiming]) -> Vec<(&str, f64, usize)> {
+    let mut bars: Vec<(&str, f64, usize)> = Vec::new();
+    for t in timings {
+        match bars.iter_mut().find(|b| b.0 == t.name) {
+            Some(bar) => {
+                bar.1 += t.ms;
+                bar.2 += 1;
+            }
+            None => bars.push((&t.name, t.ms, 1)),
+        }
+    }
+    bars
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn passes_of_one_name_share_a_bar() {
+        let timing = |name: &str, ms| PassTiming {
+            name: name.into(),
+            ms,
+        };
+        let timings = [
+            timing("generate", 1.0),
+            timing("extend", 2.0),
+            timing("shade", 3.0),
+            timing("extend", 0.5),
+        ];
+        assert_eq!(
+            by_name(&timings),
+            [("generate", 1.0, 1), ("extend", 2.5, 2), ("shade", 3.0, 1)]
         );
     }
 }
