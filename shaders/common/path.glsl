@@ -3,10 +3,13 @@
 // path with exactly the path tracer's random numbers. Requires math, rng, scene, traverse, bsdf,
 // lights and surface.
 //
-// The path's steps are functions of their own (what a miss brings, what a hit emits, the light
-// sample and its shadow ray, the next direction) so that the wavefront path tracer
-// (shaders/wavefront/), which runs each step as a kernel over a queue of paths, computes exactly
-// the estimator trace_path computes, with the same random numbers drawn in the same order.
+// The path's steps are also functions of their own (what a miss brings, what a hit emits, the
+// light sample and its shadow ray, the next direction), which the wavefront path tracer
+// (shaders/wavefront/) runs as kernels over queues of paths, drawing the same random numbers in
+// the same order. trace_path keeps the steps written out: composed of these functions the
+// megakernel took more registers on an H100 (cornell-box 72 -> 96, classroom 96 -> 128) and 5-13%
+// more time (classroom 7.13 -> 8.06 ms at 1080p; bench/README.md). tests/wavefront.rs checks that
+// both compute the same image, bit for bit, from the same random numbers.
 #ifndef LUCID_PATH_GLSL
 #define LUCID_PATH_GLSL
 
@@ -144,19 +147,29 @@ PathResult trace_path(vec3 o, vec3 d, inout uint rng, uint max_depth, uint rr_de
     r.radiance = vec3(0.0);
     r.first_albedo = vec3(1.0);
     r.first_emission = vec3(0.0);
-    PathState st = path_start(o);
+    vec3 beta = vec3(1.0);
+    float prev_pdf = 0.0;
+    bool prev_delta = true;
+    vec3 prev_p = o;
     for (uint depth = 0u; depth < max_depth; ++depth) {
         Hit hit;
         rays += 1u;
         if (!trace_closest(o, d, T_INFINITY, hit)) {
-            r.radiance += path_miss(st, d);
+            vec3 sun = sun_radiance(d);
+            float w_sun = prev_delta ? 1.0 : power_heuristic(prev_pdf, sun_pdf());
+            float w_env = prev_delta || !environment_sampled() ? 1.0 : power_heuristic(prev_pdf, environment_pdf(d));
+            r.radiance += beta * (environment_radiance(d) * w_env + sun * w_sun);
             if (depth == 0u) {
                 r.first_emission = r.radiance;
             }
             break;
         }
         Surface s = surface_at(hit, o, d);
-        r.radiance += path_emission(st, s, d);
+        vec3 emitted = surface_emission(s, d);
+        if (max3(emitted) > 0.0) {
+            float w = prev_delta ? 1.0 : power_heuristic(prev_pdf, surface_light_pdf(s, prev_p));
+            r.radiance += beta * emitted * w;
+        }
         if (depth == 0u) {
             r.first_emission = r.radiance;
         }
@@ -164,22 +177,49 @@ PathResult trace_path(vec3 o, vec3 d, inout uint rng, uint max_depth, uint rr_de
             break;
         }
         float footprint = depth == 0u ? cone_lod(s, d, hit.t * spread) : NO_FOOTPRINT;
-        Shading sh = path_shading(s, d, footprint);
+        BsdfParams m = material_params_lod(s.material, s.uv, s.color, footprint);
         if (depth == 0u) {
-            r.first_albedo = demodulation_albedo(sh.m);
+            r.first_albedo = demodulation_albedo(m);
         }
-        vec4 u_light;
-        vec3 u_bsdf;
-        path_vertex_numbers(rng, u_light, u_bsdf);
-        ShadowRay shadow;
-        if (path_light_sample(st, s, sh, u_light, shadow)) {
-            rays += 1u;
-            if (!trace_occluded(shadow.origin, shadow.dir, shadow.t_max)) {
-                r.radiance += shadow.radiance;
+        vec3 t;
+        vec3 b;
+        make_frame(s.ns, t, b);
+        vec3 wo = to_local(-d, t, b, s.ns);
+        vec4 u_light = vec4(rng_next(rng), rng_next2(rng), rng_side(rng));
+        vec3 u_bsdf = vec3(rng_next2(rng), rng_next(rng));
+        if (!bsdf_is_delta(m)) {
+            LightSample ls;
+            if (sample_light(s.p, u_light, ls) && ls.pdf > 0.0) {
+                float bsdf_pdf;
+                vec3 f = bsdf_eval(m, wo, to_local(ls.wi, t, b, s.ns), bsdf_pdf);
+                if (max3(f) > 0.0) {
+                    vec3 origin = offset_origin(s.p, s.ng, ls.wi);
+                    float t_max = ls.dist >= T_INFINITY ? T_INFINITY : ls.dist * (1.0 - 1e-3);
+                    rays += 1u;
+                    if (!trace_occluded(origin, ls.wi, t_max)) {
+                        float w = ls.delta ? 1.0 : power_heuristic(ls.pdf, bsdf_pdf);
+                        r.radiance += beta * f * ls.radiance * (w * ls.weight);
+                    }
+                }
             }
         }
-        if (!path_continue(st, s, sh, u_bsdf, depth, rr_depth, rng, o, d)) {
+        BsdfSample bs;
+        if (!bsdf_sample(m, wo, u_bsdf, bs)) {
             break;
+        }
+        vec3 wi = to_world(bs.wi, t, b, s.ns);
+        beta *= bs.weight;
+        prev_pdf = bs.pdf;
+        prev_delta = bs.delta;
+        prev_p = s.p;
+        o = offset_origin(s.p, s.ng, wi);
+        d = wi;
+        if (depth + 1u >= rr_depth) {
+            float q = min(max3(beta), 0.95);
+            if (rng_next(rng) >= q) {
+                break;
+            }
+            beta /= q;
         }
     }
     return r;
