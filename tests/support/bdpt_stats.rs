@@ -89,6 +89,34 @@ impl Comparison {
             .map(|c| (self.mean_a[c] - self.mean_b[c]).abs() / self.mean_sigma[c].max(1e-12))
             .fold(0.0, f64::max)
     }
+
+    /// Prints the comparison of `name`'s two estimators.
+    pub fn report(&self, name: &str) {
+        eprintln!(
+            "{name}: {self:?}\n  mean difference {:.2}% ({:.1} sigma), relMSE ratio {:.3}",
+            100.0 * self.mean_difference(),
+            self.mean_z(),
+            self.ratio()
+        );
+    }
+
+    /// Panics unless the two estimators of `name` converge to one image: channel means within 2%
+    /// and 4 standard deviations of their noise, and a relative MSE between them at most
+    /// `max_ratio` times what their noise explains.
+    pub fn assert_converged(&self, name: &str, max_ratio: f64) {
+        assert!(
+            self.mean_difference() < 0.02 && self.mean_z() < 4.0,
+            "{name}: channel means differ: {:?} vs {:?}",
+            self.mean_a,
+            self.mean_b
+        );
+        assert!(
+            self.ratio() < max_ratio,
+            "{name}: relative MSE {:.4} between the estimates, noise explains {:.4}",
+            self.rel_mse,
+            self.expected_rel_mse
+        );
+    }
 }
 
 fn luminance(p: &[f32; 4]) -> f64 {

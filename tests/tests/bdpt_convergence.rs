@@ -38,40 +38,20 @@ fn compare_with_path_tracing(name: &str, frames: u32) -> Comparison {
     let pt = [1, 2].map(|seed| render(name, Algorithm::PathTracing, frames, seed));
     let bdpt = [3, 4].map(|seed| render(name, Algorithm::Bidirectional, frames, seed));
     let c = Comparison::new([&pt[0], &pt[1]], [&bdpt[0], &bdpt[1]]);
-    eprintln!(
-        "{name}: {c:?}\n  mean difference {:.2}% ({:.1} sigma), relMSE ratio {:.3}",
-        100.0 * c.mean_difference(),
-        c.mean_z(),
-        c.ratio()
-    );
+    c.report(name);
     c
-}
-
-fn assert_converged(name: &str, c: &Comparison, max_ratio: f64) {
-    assert!(
-        c.mean_difference() < 0.02 && c.mean_z() < 4.0,
-        "{name}: channel means differ: {:?} vs {:?}",
-        c.mean_a,
-        c.mean_b
-    );
-    assert!(
-        c.ratio() < max_ratio,
-        "{name}: relative MSE {:.4} between the estimates, noise explains {:.4}",
-        c.rel_mse,
-        c.expected_rel_mse
-    );
 }
 
 #[test]
 fn cornell_box_matches_path_tracing() {
     let c = compare_with_path_tracing("cornell-box", 32);
-    assert_converged("cornell-box", &c, 1.3);
+    c.assert_converged("cornell-box", 1.3);
 }
 
 #[test]
 fn cornell_teapot_matches_path_tracing() {
     let c = compare_with_path_tracing("cornell-teapot", 12);
-    assert_converged("cornell-teapot", &c, 1.4);
+    c.assert_converged("cornell-teapot", 1.4);
 }
 
 /// Copies of `images` with the pixels that see a sphere of `scene` (footprint sampled 4 x 4,
@@ -127,5 +107,5 @@ fn caustics_matches_a_path_traced_reference() {
     // Per pixel, the path tracer's noise here is too heavy-tailed for a pair of renders to
     // estimate (the caustic in the sphere's shadow is a rare hit of the lamp through the glass),
     // so only the means are compared.
-    assert_converged("caustics", &c, f64::INFINITY);
+    c.assert_converged("caustics", f64::INFINITY);
 }

@@ -177,24 +177,8 @@ fn converges_to_the_megakernels_image(name: &str, frames: u32, max_ratio: f64) {
     let mega = [1, 2].map(|seed| render(name, Algorithm::PathTracing, frames, seed));
     let wave = [3, 4].map(|seed| render(name, Algorithm::PathTracingWavefront, frames, seed));
     let c = Comparison::new([&mega[0], &mega[1]], [&wave[0], &wave[1]]);
-    eprintln!(
-        "{name}: {c:?}\n  mean difference {:.2}% ({:.1} sigma), relMSE ratio {:.3}",
-        100.0 * c.mean_difference(),
-        c.mean_z(),
-        c.ratio()
-    );
-    assert!(
-        c.mean_difference() < 0.02 && c.mean_z() < 4.0,
-        "{name}: channel means differ: {:?} vs {:?}",
-        c.mean_a,
-        c.mean_b
-    );
-    assert!(
-        c.ratio() < max_ratio,
-        "{name}: relative MSE {:.4} between the estimates, noise explains {:.4}",
-        c.rel_mse,
-        c.expected_rel_mse
-    );
+    c.report(name);
+    c.assert_converged(name, max_ratio);
 }
 
 #[test]
