@@ -3,6 +3,7 @@
 use lucid_engine::capture::ImageData;
 use lucid_engine::graph::{ImageHandle, RenderGraph};
 use lucid_engine::scene::{builtin, Scene};
+use lucid_engine::Context;
 use lucid_passes::renderer::{Algorithm, FrameImages, Renderer, SamplesPerPixel, Settings};
 
 /// Builds a built-in scene, panicking with the error if it cannot.
@@ -18,9 +19,20 @@ pub fn render_accumulated(
     settings: Settings,
     frames: u32,
 ) -> ImageData {
-    let ctx = crate::context(false);
+    render_accumulated_on(&crate::context(false), scene, size, settings, frames)
+}
+
+/// [`render_accumulated`] on `ctx` (a validated context): tests that render many images share
+/// one (NVIDIA's driver refuses new instances after a few dozen in one process).
+pub fn render_accumulated_on(
+    ctx: &Context,
+    scene: Scene,
+    size: (u32, u32),
+    settings: Settings,
+    frames: u32,
+) -> ImageData {
     let mut renderer = Renderer::new(
-        &ctx,
+        ctx,
         scene,
         size.0,
         size.1,
@@ -36,7 +48,7 @@ pub fn render_accumulated(
     let image = renderer.render_and_read().expect("last frame");
     assert_eq!(renderer.stats().non_finite_samples, 0, "no NaN/Inf samples");
     drop(renderer);
-    crate::assert_no_validation_messages(&ctx);
+    crate::assert_no_validation_messages(ctx);
     image
 }
 

@@ -21,9 +21,10 @@
 
 use lucid_engine::capture::ImageData;
 use lucid_engine::graph::RenderGraph;
+use lucid_engine::Context;
 use lucid_passes::renderer::{Algorithm, Denoiser, Renderer, SamplesPerPixel, Settings};
 use lucid_tests::bdpt_stats::Comparison;
-use lucid_tests::render::{frame_images, render_accumulated, scene};
+use lucid_tests::render::{frame_images, render_accumulated_on, scene};
 use lucid_tests::svgf::{
     light_switched_off, renderer as svgf_renderer, settings as svgf_settings, Method,
 };
@@ -61,11 +62,10 @@ fn difference(a: &ImageData, b: &ImageData) -> Difference {
     }
 }
 
-/// One frame of `name` with `settings` (SVGF: the surface images are written): its radiance and,
-/// with a denoiser, its demodulated radiance; and the rays traced.
-fn one_frame(name: &str, settings: Settings) -> (Vec<ImageData>, u32) {
-    let ctx = lucid_tests::context(false);
-    let mut renderer = Renderer::new(&ctx, scene(name), SIZE, SIZE, settings).expect("renderer");
+/// One frame of `name` with `settings` (SVGF: the surface images are written) on `ctx`: its
+/// radiance and, with a denoiser, its demodulated radiance; and the rays traced.
+fn one_frame(ctx: &Context, name: &str, settings: Settings) -> (Vec<ImageData>, u32) {
+    let mut renderer = Renderer::new(ctx, scene(name), SIZE, SIZE, settings).expect("renderer");
     let mut g = RenderGraph::new();
     let (images, stats) = renderer.add_frame(&mut g);
     let mut handles = vec![images.radiance];
@@ -79,18 +79,19 @@ fn one_frame(name: &str, settings: Settings) -> (Vec<ImageData>, u32) {
     let stats: &[u32] = bytemuck::cast_slice(outputs.bytes(stats).expect("stats"));
     assert_eq!(stats[0], 0, "no non-finite samples");
     drop(renderer);
-    lucid_tests::assert_no_validation_messages(&ctx);
+    lucid_tests::assert_no_validation_messages(ctx);
     (images, stats[1])
 }
 
 /// The same seed: the image, demodulated image (with SVGF) and ray count of both wavefronts (with
 /// and without material bins) are the megakernel's but for a few paths.
 fn same_random_numbers_same_image(name: &str, denoiser: Denoiser) {
-    same_image_with(name, denoiser, 8);
+    same_image_with(&lucid_tests::context(false), name, denoiser, 8);
 }
 
-/// [`same_random_numbers_same_image`] with paths at most `max_depth` segments long.
-fn same_image_with(name: &str, denoiser: Denoiser, max_depth: u32) {
+/// [`same_random_numbers_same_image`] with paths at most `max_depth` segments long, on `ctx`
+/// (one context a test: NVIDIA's driver refuses new instances after a few dozen in one process).
+fn same_image_with(ctx: &Context, name: &str, denoiser: Denoiser, max_depth: u32) {
     let settings = |algorithm| Settings {
         algorithm,
         denoiser,
@@ -99,12 +100,12 @@ fn same_image_with(name: &str, denoiser: Denoiser, max_depth: u32) {
         seed: 7,
         ..Settings::default()
     };
-    let (mega, mega_rays) = one_frame(name, settings(Algorithm::PathTracing));
+    let (mega, mega_rays) = one_frame(ctx, name, settings(Algorithm::PathTracing));
     for algorithm in [
         Algorithm::PathTracingWavefront,
         Algorithm::PathTracingWavefrontBinned,
     ] {
-        let (wave, wave_rays) = one_frame(name, settings(algorithm));
+        let (wave, wave_rays) = one_frame(ctx, name, settings(algorithm));
         let algo = algorithm.short_name();
         for (which, (a, b)) in ["radiance", "demodulated"]
             .iter()
@@ -138,8 +139,9 @@ fn cornell_box_surface_images_match() {
 /// and three.
 #[test]
 fn short_paths_same_random_numbers_same_image() {
+    let ctx = lucid_tests::context(false);
     for max_depth in 0..4 {
-        same_image_with("cornell-box", Denoiser::Svgf, max_depth);
+        same_image_with(&ctx, "cornell-box", Denoiser::Svgf, max_depth);
     }
 }
 
@@ -153,7 +155,7 @@ fn blinds_room_same_random_numbers_same_image() {
     same_random_numbers_same_image("blinds-room", Denoiser::None);
 }
 
-fn render(name: &str, algorithm: Algorithm, frames: u32, seed: u32) -> ImageData {
+fn render(ctx: &Context, name: &str, algorithm: Algorithm, frames: u32, seed: u32) -> ImageData {
     let start = Instant::now();
     let settings = Settings {
         algorithm,
@@ -161,7 +163,7 @@ fn render(name: &str, algorithm: Algorithm, frames: u32, seed: u32) -> ImageData
         seed,
         ..Settings::default()
     };
-    let image = render_accumulated(scene(name), (SIZE, SIZE), settings, frames);
+    let image = render_accumulated_on(ctx, scene(name), (SIZE, SIZE), settings, frames);
     eprintln!(
         "{name} {} {} spp seed {seed}: {:.1} s",
         algorithm.short_name(),
@@ -174,8 +176,9 @@ fn render(name: &str, algorithm: Algorithm, frames: u32, seed: u32) -> ImageData
 /// Independent seeds: both estimators twice, compared as the BDPT tests compare (channel means
 /// within their noise, relative MSE between the two no more than their noise explains).
 fn converges_to_the_megakernels_image(name: &str, frames: u32, max_ratio: f64) {
-    let mega = [1, 2].map(|seed| render(name, Algorithm::PathTracing, frames, seed));
-    let wave = [3, 4].map(|seed| render(name, Algorithm::PathTracingWavefront, frames, seed));
+    let ctx = lucid_tests::context(false);
+    let mega = [1, 2].map(|seed| render(&ctx, name, Algorithm::PathTracing, frames, seed));
+    let wave = [3, 4].map(|seed| render(&ctx, name, Algorithm::PathTracingWavefront, frames, seed));
     let c = Comparison::new([&mega[0], &mega[1]], [&wave[0], &wave[1]]);
     c.report(name);
     c.assert_converged(name, max_ratio);
