@@ -1,13 +1,13 @@
-// Wavefront path tracing, kernel 3 of 5: one vertex of each path in bounce `push.depth`'s ray
-// queue (dispatched indirectly), the loop body of trace_path through the path's step functions
+// Wavefront path tracing, kernel 3 of 5: one vertex of each path in bounce `push.depth`'s ray queue
+// (dispatched indirectly), the loop body of trace_path through the path's step functions
 // (common/path.glsl) and with its random numbers: what a miss brings or the hit emits (MIS), and
 // unless the path is at its longest, the light sample (its shadow ray appended to the bounce's
 // shadow queue for the shadow kernel), the next direction and Russian roulette (a surviving path
-// appended to the next bounce's ray queue). Appends are compacted per workgroup (append.glsl): one atomic per workgroup
-// and queue reserves the places, and the queue's indirect arguments grow by the workgroups the new
-// places begin, so they always hold ceil(length / QUEUE_GROUP) without a kernel of their own. With
-// BIN_BY_MATERIAL (shade_binned.comp) it takes the bounce's paths from extend's material bins,
-// one bin after the other, instead of the ray queue.
+// appended to the next bounce's ray queue). Appends are compacted per workgroup (append.glsl): one
+// atomic per workgroup and queue reserves the places, and the queue's indirect arguments grow by
+// the workgroups the new places begin, so they always hold ceil(length / QUEUE_GROUP) without a
+// kernel of their own. With BIN_BY_MATERIAL (shade_binned.comp) it takes the bounce's paths from
+// extend's material bins, one bin after the other, instead of the ray queue.
 #include "wavefront/common.glsl"
 #include "wavefront/path_state.glsl"
 
