@@ -46,19 +46,20 @@ void main() {
         emission_sum = imageLoad(u_emission, pixel).rgb;
     }
     vec3 radiance = b_path_radiance.v[path].xyz;
+    bool finite = !(any(isnan(radiance)) || any(isinf(radiance)));
     if (SURFACE_OUTPUTS) {
         vec3 albedo = b_first_hit.v[2u * path].xyz;
         albedo_sum += albedo;
-        if (!(any(isnan(radiance)) || any(isinf(radiance)))) {
+        if (finite) {
             vec3 emission = b_first_hit.v[2u * path + 1u].xyz;
             demodulated_sum += demodulate(radiance, emission, albedo);
             emission_sum += emission;
         }
     }
-    if (any(isnan(radiance)) || any(isinf(radiance))) {
-        atomicAdd(b_stats.non_finite, 1u);
-    } else {
+    if (finite) {
         sum += radiance;
+    } else {
+        atomicAdd(b_stats.non_finite, 1u);
     }
     bool last = push.sample_index + 1u >= spp;
     float scale = last ? 1.0 / float(spp) : 1.0;

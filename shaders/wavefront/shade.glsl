@@ -65,36 +65,36 @@ void main() {
         uint rng = b_path_rng.s[path];
         vec3 radiance = b_path_radiance.v[path].xyz;
         Hit hit = b_hits.h[path];
+        Surface s;
         if (hit.instance == MISS) {
             radiance += path_miss(st, d);
-            if (SURFACE_OUTPUTS && depth == 0u) {
-                b_first_hit.v[2u * path + 1u] = vec4(radiance, 0.0);
-            }
         } else {
-            Surface s = surface_at(hit, o, d);
+            s = surface_at(hit, o, d);
             radiance += path_emission(st, s, d);
+        }
+        // What the first hit (or the sky) emits towards the camera.
+        if (SURFACE_OUTPUTS && depth == 0u) {
+            b_first_hit.v[2u * path + 1u] = vec4(radiance, 0.0);
+        }
+        // The light sample and the next direction, unless the path ends here.
+        if (hit.instance != MISS && depth + 1u < b_frame.f.max_depth) {
+            float spread = b_prev_vertex.v[path].w;
+            float footprint = depth == 0u ? cone_lod(s, d, hit.t * spread) : NO_FOOTPRINT;
+            Shading sh = path_shading(s, d, footprint);
             if (SURFACE_OUTPUTS && depth == 0u) {
-                b_first_hit.v[2u * path + 1u] = vec4(radiance, 0.0);
+                b_first_hit.v[2u * path] = vec4(demodulation_albedo(sh.m), 0.0);
             }
-            if (depth + 1u < b_frame.f.max_depth) {
-                float spread = b_prev_vertex.v[path].w;
-                float footprint = depth == 0u ? cone_lod(s, d, hit.t * spread) : NO_FOOTPRINT;
-                Shading sh = path_shading(s, d, footprint);
-                if (SURFACE_OUTPUTS && depth == 0u) {
-                    b_first_hit.v[2u * path] = vec4(demodulation_albedo(sh.m), 0.0);
-                }
-                vec4 u_light;
-                vec3 u_bsdf;
-                path_vertex_numbers(rng, u_light, u_bsdf);
-                ShadowRay shadow;
-                shadow_wanted = path_light_sample(st, s, sh, u_light, shadow);
-                if (shadow_wanted) {
-                    b_shadow_rays.r[path] = ShadowRecord(vec4(shadow.origin, shadow.t_max), vec4(shadow.dir, 0.0), vec4(shadow.radiance, 0.0));
-                }
-                next_wanted = path_continue(st, s, sh, u_bsdf, depth, b_frame.f.rr_depth, rng, o, d);
-                if (next_wanted) {
-                    store_path_state(path, st, o, d, 0.0);
-                }
+            vec4 u_light;
+            vec3 u_bsdf;
+            path_vertex_numbers(rng, u_light, u_bsdf);
+            ShadowRay shadow;
+            shadow_wanted = path_light_sample(st, s, sh, u_light, shadow);
+            if (shadow_wanted) {
+                b_shadow_rays.r[path] = ShadowRecord(vec4(shadow.origin, shadow.t_max), vec4(shadow.dir, 0.0), vec4(shadow.radiance, 0.0));
+            }
+            next_wanted = path_continue(st, s, sh, u_bsdf, depth, b_frame.f.rr_depth, rng, o, d);
+            if (next_wanted) {
+                store_path_state(path, st, o, d, 0.0);
             }
         }
         b_path_rng.s[path] = rng;

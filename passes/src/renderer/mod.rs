@@ -605,20 +605,16 @@ impl Renderer {
             max_depth: self.settings.max_depth,
             surface,
         };
+        // Replay serves the denoiser; without one the path tracers need no G-buffer.
+        let replay = (surface && self.settings.algorithm.replays_paths()).then_some(Replay {
+            params: replay,
+            motion: gbuffer.motion,
+        });
         match self.settings.algorithm {
             Algorithm::PathTracing => {
-                // Replay serves the denoiser; without one the pass needs no G-buffer.
-                let replay = surface.then_some(Replay {
-                    params: replay,
-                    motion: gbuffer.motion,
-                });
                 path_trace::add_path_trace(g, scene, frame, &self.spec, replay.as_ref(), sampling)
             }
             Algorithm::PathTracingWavefront | Algorithm::PathTracingWavefrontBinned => {
-                let replay = surface.then_some(Replay {
-                    params: replay,
-                    motion: gbuffer.motion,
-                });
                 let config = wavefront::Config {
                     bin_by_material: self.settings.algorithm
                         == Algorithm::PathTracingWavefrontBinned,

@@ -146,7 +146,7 @@ pub fn add_extend(g: &mut RenderGraph, inputs: &Inputs<'_>, b: &mut WaveBuffers,
     pass.push(&DepthPush { depth });
     let slot = queues::ray_slot(depth);
     pass.dispatch_indirect(
-        b.args[queues::args_buffer(slot)].handle(),
+        b.args[queues::args_buffer(slot)].latest(),
         queues::args_offset(slot),
     );
 }
@@ -174,7 +174,7 @@ pub fn add_shade(g: &mut RenderGraph, inputs: &Inputs<'_>, b: &mut WaveBuffers, 
     b.shadow_rays.write(&mut pass, "b_shadow_rays");
     b.ray_queues[1 - queue].write(&mut pass, "b_next_ray_queue");
     pass.push(&DepthPush { depth });
-    pass.dispatch_indirect(b.args[own_args].handle(), queues::args_offset(slot));
+    pass.dispatch_indirect(b.args[own_args].latest(), queues::args_offset(slot));
 }
 
 /// Adds the occlusion tests of bounce `depth`'s shadow queue.
@@ -188,7 +188,7 @@ pub fn add_shadow(g: &mut RenderGraph, inputs: &Inputs<'_>, b: &mut WaveBuffers,
     pass.push(&DepthPush { depth });
     let slot = queues::shadow_slot(depth);
     pass.dispatch_indirect(
-        b.args[queues::args_buffer(slot)].handle(),
+        b.args[queues::args_buffer(slot)].latest(),
         queues::args_offset(slot),
     );
 }

@@ -22,7 +22,8 @@ impl Tracked {
         }
     }
 
-    fn latest(&self) -> BufferHandle {
+    /// The latest version (e.g. for an indirect dispatch).
+    pub fn latest(&self) -> BufferHandle {
         self.handle
             .unwrap_or_else(|| panic!("{} is read before a kernel writes it", self.name))
     }
@@ -43,11 +44,6 @@ impl Tracked {
     /// Reads the buffer through `binding`.
     pub fn read(&self, pass: &mut ComputePass<'_>, binding: &str) {
         pass.read(binding, self.latest());
-    }
-
-    /// The latest version, for an indirect dispatch.
-    pub fn handle(&self) -> BufferHandle {
-        self.latest()
     }
 }
 
