@@ -15,10 +15,11 @@
 #                         its log and the parity fixture from them
 #   dataset.json          the dataset's index
 # (6 files: what the GPU machine sends back is limited to 8.)
-# A variant is MODEL:LOSS[:BURN_IN[:SEED[:WEIGHTS]]] (train.py's --model, --loss, --burn-in, --seed,
-# --weights: the loss terms' weights, comma-separated; a BURN_IN of J-K draws each step's from J to
-# K, train.py's --burn-in-min J --burn-in K) and is named
-# MODEL-LOSS[-burnK][-seedN][-wA_B_C]. VARIANTS defaults to
+# A variant is MODEL:LOSS[:BURN_IN[:SEED[:WEIGHTS[:OPTIONS]]]] (train.py's --model, --loss,
+# --burn-in, --seed, --weights: the loss terms' weights, comma-separated; a BURN_IN of J-K draws
+# each step's from J to K, train.py's --burn-in-min J --burn-in K; OPTIONS: more train.py options
+# as NAME=VALUE joined by +, e.g. fireflies=5e-5+widths=16,32,64,64,32,16) and is named
+# MODEL-LOSS[-burnK][-seedN][-wA_B_C][-NAME_VALUE...]. VARIANTS defaults to
 # "direct:l1grad:12 kernel:l1grad:12"; SEED (0) is the seed of variants that name none: the same
 # seed draws the same training windows. Also: LUCID, SHARDS, ROOMS, FRAMES, SEQUENCES
 # (dataset_gpu.sh), DATA, the dataset's folder; INIT, weights every variant starts from (e.g.
@@ -36,12 +37,21 @@ start=$(date +%s)
 names=()
 args=()
 for v in $variants; do
-  IFS=: read -r model loss burn seed weights extra <<< "$v"
+  IFS=: read -r model loss burn seed weights options extra <<< "$v"
   if [ -z "$model" ] || [ -z "$loss" ] || [ -n "$extra" ]; then
-    echo "variant '$v' is not MODEL:LOSS[:BURN_IN[:SEED[:WEIGHTS]]]" >&2
+    echo "variant '$v' is not MODEL:LOSS[:BURN_IN[:SEED[:WEIGHTS[:OPTIONS]]]]" >&2
     exit 2
   fi
-  name=$model-$loss${burn:+-burn$burn}${seed:+-seed$seed}${weights:+-w${weights//,/_}}
+  option_args=""
+  if [ -n "$options" ]; then
+    IFS=+ read -ra pairs <<< "$options"
+    for pair in "${pairs[@]}"; do
+      if [[ $pair != *=* ]]; then echo "variant '$v': option '$pair' is not NAME=VALUE" >&2; exit 2; fi
+      option_args+=" --${pair%%=*} ${pair#*=}"
+    done
+  fi
+  suffix=${options//[=,+]/_}
+  name=$model-$loss${burn:+-burn$burn}${seed:+-seed$seed}${weights:+-w${weights//,/_}}${suffix:+-$suffix}
   for n in "${names[@]}"; do
     if [ "$n" = "$name" ]; then echo "variant $name twice" >&2; exit 2; fi
   done
@@ -50,7 +60,7 @@ for v in $variants; do
   if [[ $burn == *-* ]]; then
     burn_args="--burn-in-min ${burn%-*} --burn-in ${burn#*-}"
   fi
-  args+=("--model $model --loss $loss $burn_args --seed ${seed:-${SEED:-0}}${weights:+ --weights $weights}")
+  args+=("--model $model --loss $loss $burn_args --seed ${seed:-${SEED:-0}}${weights:+ --weights $weights}$option_args")
 done
 ship=${SHIP:-${names[0]}}
 mkdir -p "$out"
@@ -99,7 +109,8 @@ for name in names:
     a = r["args"]
     rows.append({
         "name": name, "ok": True, "model": a["model"], "loss": a["loss"], "loss_weights": r["loss_weights"],
-        "burn_in": a["burn_in"], "seed": a["seed"], "format": r["format"],
+        "burn_in": a["burn_in"], "seed": a["seed"], "widths": a.get("widths"), "fireflies": a.get("fireflies"),
+        "format": r["format"],
         **{k: r["final"][k] for k in keys},
         "steps": r["steps"], "train_seconds": r["train_seconds"], "total_seconds": r["total_seconds"],
         "parameters": r["parameters"], "macs_per_pixel": r["macs_per_pixel"], "flops_per_pixel": r["flops_per_pixel"],

@@ -5,12 +5,13 @@ object); or a folder of such datasets (`shard-K/`, as `dataset_gpu.sh` renders t
 read as one."""
 
 import json
+import math
 from pathlib import Path
 
 import torch
 from safetensors.torch import load_file
 
-from model import RECORD_SIZE
+from model import LUMINANCE, RECORD_SIZE
 
 
 def dataset_folders(root):
@@ -70,3 +71,22 @@ def sample_batch(sequences, batch, frames, crop, generator):
         recs.append(rec)
         refs.append(ref * scale)
     return torch.stack(recs), torch.stack(refs), torch.stack(objs)
+
+
+# How much brighter than its frame's mean an added firefly is: drawn log-uniformly in this range.
+FIREFLY_GAIN = (10.0, 1e4)
+
+
+def add_fireflies(radiance, rate, generator):
+    """`radiance` [B,T,3,H,W] (demodulated) with isolated bright samples added at `rate` per pixel
+    and frame, each FIREFLY_GAIN times its frame's mean luminance and tinted at random: samples of
+    paths so rare that no neighbour and no other frame supports them, which the references lack."""
+    b, t, _, h, w = radiance.shape
+    draw = lambda *shape: torch.rand(*shape, generator=generator).to(radiance.device)  # noqa: E731
+    hit = draw(b, t, 1, h, w) < rate
+    lo, hi = (math.log(g) for g in FIREFLY_GAIN)
+    gain = torch.exp(lo + (hi - lo) * draw(b, t, 1, h, w))
+    weights = torch.tensor(LUMINANCE, device=radiance.device).view(1, 1, 3, 1, 1)
+    mean = (radiance * weights).sum(2, keepdim=True).mean((3, 4), keepdim=True).clamp_min(1e-3)
+    tint = 0.5 + 0.5 * draw(b, t, 3, h, w)
+    return radiance + hit * gain * mean * tint

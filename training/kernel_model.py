@@ -3,7 +3,7 @@ metadata `kernel`), measured against the direct-predicting `model.RecurrentDenoi
 inference runs both (`shaders/neural/kernel*` and `output.comp` for this one).
 
 Everything but the output layer is `model.py`'s: the input features, the reprojected history, the
-U-Net convolutions of `model.LAYERS` up to `dec0`, the temporal blend with the warped history and
+U-Net convolutions of `model.unet_layers` up to `dec0`, the temporal blend with the warped history and
 the recurrent state. The output layer `out` is replaced by `KernelOutput`:
 
 - **Three scales** (Vogels et al. 2018, "Denoising with kernel prediction and asymmetric loss
@@ -26,7 +26,7 @@ the recurrent state. The output layer `out` is replaced by `KernelOutput`:
   swaps its output layer (`predict`), so it keeps `step`/`forward` and the state as `model.py`
   defines them.
 
-Export (`export_tensors`): the layers of `model.LAYERS` under their names (`out` with its
+Export (`export_tensors`): the layers of `model.unet_layers` under their names (`out` with its
 25 + 1 + (outputs - 3) channels) plus `out_half` and `out_quarter`, float32.
 
 With `fp16_storage` the heads' outputs are rounded to half precision, as the shaders store them;
@@ -37,20 +37,22 @@ import torch
 import torch.nn as nn
 import torch.nn.functional as F
 
-from model import LAYERS, RecurrentDenoiser, half, pool
+from model import WIDTHS, RecurrentDenoiser, half, pool, unet_layers
 
 KERNEL = 5
 TAPS = KERNEL * KERNEL
-_OUT = {name: (cin, cout) for name, cin, cout in LAYERS}["out"]
-OUT_IN = _OUT[0]
 # The direct model's output channels after the 3 radiance channels (blend weight, ...).
-EXTRA = _OUT[1] - 3
-# (name, input channels, output channels, resolution divisor) of the kernel heads.
-HEADS = [
-    ("out", OUT_IN, TAPS + 1 + EXTRA, 1),
-    ("out_half", OUT_IN, TAPS + 1, 2),
-    ("out_quarter", OUT_IN, TAPS, 4),
-]
+EXTRA = unet_layers()[-1][2] - 3
+
+
+def heads(features):
+    """(name, input channels, output channels, resolution divisor) of the kernel heads on
+    `features` channels of decoder features."""
+    return [
+        ("out", features, TAPS + 1 + EXTRA, 1),
+        ("out_half", features, TAPS + 1, 2),
+        ("out_quarter", features, TAPS, 4),
+    ]
 
 
 def apply_kernel(x, logits):
@@ -80,9 +82,11 @@ class KernelOutput(nn.Module):
     radiance in channels 0-2, then the other output channels), the radiance here being the
     multi-scale kernel-filtered input."""
 
-    def __init__(self):
+    def __init__(self, features):
         super().__init__()
-        self.heads = nn.ModuleDict({name: nn.Conv2d(cin, cout, 3, padding=1) for name, cin, cout, _ in HEADS})
+        self.heads = nn.ModuleDict(
+            {name: nn.Conv2d(cin, cout, 3, padding=1) for name, cin, cout, _ in heads(features)}
+        )
 
     def forward(self, d0, radiance, fp16):
         radiance = radiance.float().clamp_min(0.0)
@@ -104,16 +108,16 @@ class KernelOutput(nn.Module):
 class KernelDenoiser(RecurrentDenoiser):
     """`RecurrentDenoiser` with the kernel-predicting output layer; same `step`, `forward`, state."""
 
-    def __init__(self):
-        super().__init__()
-        self.convs["out"] = KernelOutput()
+    def __init__(self, widths=WIDTHS):
+        super().__init__(widths)
+        self.convs["out"] = KernelOutput(self.widths[-1])
 
     def predict(self, d0, rec, accum, fp16_storage):
         return self.convs["out"](d0, rec["demodulated"], fp16_storage)
 
     def named_convs(self):
         """Every convolution under its export name."""
-        convs = {name: self.convs[name] for name, _, _ in LAYERS if name != "out"}
+        convs = {name: self.convs[name] for name, _, _ in self.layers if name != "out"}
         convs.update(self.convs["out"].heads.items())
         return convs
 
@@ -122,10 +126,11 @@ class KernelDenoiser(RecurrentDenoiser):
     EXTRA_MACS_PER_PIXEL = 3 * TAPS * (1 + 1 / 4 + 1 / 16) + 3 * 2 * (1 + 1 / 4)
 
 
-def kernel_layers():
-    """(name, input channels, output channels) of every exported layer, in execution order."""
-    layers = [(n, cin, cout) for n, cin, cout in LAYERS if n != "out"]
-    return layers + [(n, cin, cout) for n, cin, cout, _ in HEADS]
+def kernel_layers(widths=WIDTHS):
+    """(name, input channels, output channels) of every exported layer of a network of `widths`,
+    in execution order."""
+    layers = [(n, cin, cout) for n, cin, cout in unet_layers(widths) if n != "out"]
+    return layers + [(n, cin, cout) for n, cin, cout, _ in heads(widths[-1])]
 
 
 def export_tensors(model):

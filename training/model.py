@@ -36,16 +36,33 @@ RECORD_CHANNELS = {
 RECORD_SIZE = sum(RECORD_CHANNELS.values())
 
 FEATURES = 24  # a multiple of 4: the shaders pack 4 half-precision channels per uvec2
-# (name, input channels, output channels): the convolutions, in execution order.
-LAYERS = [
-    ("enc0", FEATURES, 32),
-    ("enc1", 32, 32),
-    ("enc2", 32, 64),
-    ("bottleneck", 64, 64),
-    ("dec1", 64 + 32, 32),
-    ("dec0", 32 + 32, 32),
-    ("out", 32, 4),
-]
+# The U-Net's hidden layers, in execution order, and the shipped network's widths (their output
+# channels, multiples of 16): `unet_layers` derives every layer's inputs from the widths, so a
+# network of other widths is the same code (the Vulkan inference reads them from the weights'
+# shapes).
+HIDDEN = ("enc0", "enc1", "enc2", "bottleneck", "dec1", "dec0")
+WIDTHS = (32, 32, 64, 64, 32, 32)
+
+
+def unet_layers(widths=WIDTHS, outputs=4):
+    """(name, input channels, output channels) of the convolutions, in execution order, for the
+    hidden layers' `widths` and `outputs` channels of the output layer."""
+    e0, e1, e2, b, d1, d0 = widths
+    return [
+        ("enc0", FEATURES, e0),
+        ("enc1", e0, e1),
+        ("enc2", e1, e2),
+        ("bottleneck", e2, b),
+        ("dec1", b + e1, d1),
+        ("dec0", d1 + e0, d0),
+        ("out", d0, outputs),
+    ]
+
+
+def widths_of(tensors):
+    """The hidden layers' widths of a weights file's `tensors` (name -> tensor)."""
+    return tuple(int(tensors[f"{name}.weight"].shape[0]) for name in HIDDEN)
+
 
 # Reprojection validity, as in SVGF's temporal pass (without its depth-slope term).
 DEPTH_TOLERANCE = 0.05
@@ -272,11 +289,13 @@ def up(x):
 
 
 class RecurrentDenoiser(nn.Module):
-    """The U-Net of `LAYERS` and the recurrent output blend."""
+    """The U-Net of `unet_layers(widths)` and the recurrent output blend."""
 
-    def __init__(self):
+    def __init__(self, widths=WIDTHS):
         super().__init__()
-        self.convs = nn.ModuleDict({name: nn.Conv2d(cin, cout, 3, padding=1) for name, cin, cout in LAYERS})
+        self.widths = tuple(widths)
+        self.layers = unet_layers(self.widths)
+        self.convs = nn.ModuleDict({name: nn.Conv2d(cin, cout, 3, padding=1) for name, cin, cout in self.layers})
         # `antialias_surface`'s weight of this frame's emission per pixel of motion (the weights
         # file's `emission_motion` metadata).
         self.emission_motion = EMISSION_MOTION
@@ -347,7 +366,7 @@ class RecurrentDenoiser(nn.Module):
         return radiance, state
 
     def predict(self, d0, rec, accum, fp16_storage):
-        """The output layer on the last decoder features `d0` [B,32,H,W]: log radiance (3) and the
+        """The output layer on the last decoder features `d0` [B,widths[-1],H,W]: log radiance (3) and the
         blend weight's logit (1). `rec` (the frame's record, split) and `accum` (its running mean
         and length) serve output layers that filter the radiance (`kernel_model.py`)."""
         return self.convs["out"](d0)
@@ -368,6 +387,6 @@ def export_tensors(model):
     `<layer>.bias` [out], float32."""
     return {
         f"{name}.{kind}": getattr(model.convs[name], kind).detach().float().cpu().contiguous()
-        for name, _, _ in LAYERS
+        for name, _, _ in model.layers
         for kind in ("weight", "bias")
     }

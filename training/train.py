@@ -2,12 +2,16 @@
 
     python3 train.py --data DIR --minutes 6 --out weights.safetensors --log train.json [--init W]
         [--model direct|kernel] [--loss l1grad|l1msssim] [--burn-in K [--burn-in-min J]]
+        [--widths E0,E1,E2,B,D1,D0] [--fireflies RATE]
 
 `--model kernel` trains `kernel_model.KernelDenoiser` (both export as `lucid-rae-v3`, the decoder
 named in the file's `decoder` metadata; the renderer runs either); `--loss` picks a loss of `losses.py`; `--burn-in K` runs the first K
 frames of each window without gradients and without loss, so that the recurrent state has warmed
 up when the loss starts; with `--burn-in-min J`, each step draws its burn-in from J to K, so that
-the loss also sees the first frames after a cut (the renderer's first frames have no history).
+the loss also sees the first frames after a cut (the renderer's first frames have no history);
+`--widths` sets the U-Net's channel counts (a wider `--init` is narrowed to them); `--fireflies`
+adds isolated bright samples to the training inputs (not the references), so that the network
+learns to drop what no neighbour or frame supports.
 """
 
 import argparse
@@ -21,24 +25,79 @@ import torch.nn as nn
 from safetensors import safe_open
 from safetensors.torch import load_file, save_file
 
-from data import load_split, sample_batch
+from data import add_fireflies, load_split, sample_batch
 from kernel_model import KernelDenoiser, kernel_layers
 from kernel_model import export_tensors as kernel_export_tensors
 from losses import DEFAULT_WEIGHTS, LOSSES, TERM_NAMES, display_ssim, log_tonemap, loss_fn, relmse, temporal_l1
-from model import DECODERS, FORMAT, LAYERS, RECORD_SIZE, RecurrentDenoiser, export_tensors
+from model import DECODERS, FORMAT, HIDDEN, RECORD_SIZE, WIDTHS, RecurrentDenoiser, export_tensors, widths_of
 
 MODELS = DECODERS
 
+# What each layer reads, in the order of its input channels (None: the input features).
+SOURCES = {
+    "enc0": (None,),
+    "enc1": ("enc0",),
+    "enc2": ("enc1",),
+    "bottleneck": ("enc2",),
+    "dec1": ("bottleneck", "enc1"),
+    "dec0": ("dec1", "enc0"),
+    "out": ("dec0",),
+    "out_half": ("dec0",),
+    "out_quarter": ("dec0",),
+}
 
-def build_model(name):
-    return KernelDenoiser() if name == "kernel" else RecurrentDenoiser()
+
+def build_model(name, widths=WIDTHS):
+    return KernelDenoiser(widths) if name == "kernel" else RecurrentDenoiser(widths)
+
+
+def file_widths(path):
+    """The U-Net widths of a weights file train.py wrote."""
+    with safe_open(path, "pt") as f:
+        return tuple(int(f.get_slice(f"{name}.weight").get_shape()[0]) for name in HIDDEN)
 
 
 def named_convs(model):
     """The model's convolutions under the names its weights file uses."""
     if isinstance(model, KernelDenoiser):
         return model.named_convs()
-    return {name: model.convs[name] for name, _, _ in LAYERS}
+    return {name: model.convs[name] for name, _, _ in model.layers}
+
+
+def narrow(tensors, widths):
+    """A wider network's `tensors` cut down to `widths`: a narrowed layer keeps the output channels
+    the layers reading them weigh most (the L2 norm of those weights), and those layers keep the
+    matching input channels."""
+    have = dict(zip(HIDDEN, widths_of(tensors)))
+    want = dict(zip(HIDDEN, widths))
+    wider = [name for name in HIDDEN if want[name] > have[name]]
+    if wider:
+        raise ValueError(f"layers {wider} are wider than the file's ({have})")
+    layers = [name for name in SOURCES if f"{name}.weight" in tensors]
+
+    def offset(layer, source):
+        sources = SOURCES[layer]
+        return sum(have[s] for s in sources[: sources.index(source)] if s is not None)
+
+    kept = {}
+    for name in HIDDEN:
+        norms = torch.zeros(have[name])
+        for layer in layers:
+            if name in SOURCES[layer]:
+                at = offset(layer, name)
+                norms += tensors[f"{layer}.weight"][:, at : at + have[name]].float().pow(2).sum((0, 2, 3))
+        kept[name] = torch.topk(norms, want[name]).indices.sort().values
+    out = {}
+    for layer in layers:
+        w, b = tensors[f"{layer}.weight"], tensors[f"{layer}.bias"]
+        if layer in kept:
+            w, b = w[kept[layer]], b[kept[layer]]
+        columns = [
+            torch.arange(w.shape[1]) if s is None else offset(layer, s) + kept[s] for s in SOURCES[layer]
+        ]
+        out[f"{layer}.weight"] = w[:, torch.cat(columns)].contiguous()
+        out[f"{layer}.bias"] = b.contiguous()
+    return out
 
 
 def load_weights(model, path):
@@ -46,8 +105,12 @@ def load_weights(model, path):
     layers; the kernel model takes every layer whose shapes match (so direct weights start its
     shared layers) and starts the others afresh. A `lucid-rae-v2` file's first layer, which has
     fewer inputs, starts the first layer with the new inputs' weights at zero. The file's
-    `emission_motion` metadata, when there, sets the model's."""
+    `emission_motion` metadata, when there, sets the model's. A file of a wider network starts a
+    narrower model from the channels its layers weigh most (`narrow`)."""
     tensors = load_file(path)
+    if all(f"{name}.weight" in tensors for name in HIDDEN) and widths_of(tensors) != model.widths:
+        print(f"--init: {path}'s widths {widths_of(tensors)} narrowed to {model.widths}", flush=True)
+        tensors = narrow(tensors, model.widths)
     with safe_open(path, "pt") as f:
         motion = (f.metadata() or {}).get("emission_motion")
     if motion is not None:
@@ -146,6 +209,18 @@ def main():
     ap.add_argument("--model", choices=MODELS, default="direct")
     ap.add_argument("--loss", choices=LOSSES, default="l1grad")
     ap.add_argument(
+        "--widths",
+        default=",".join(str(w) for w in WIDTHS),
+        help=f"the U-Net's widths, comma-separated: output channels of {', '.join(HIDDEN)}",
+    )
+    ap.add_argument(
+        "--fireflies",
+        type=float,
+        default=0.0,
+        help="training inputs get isolated bright samples the references lack, at this rate a pixel "
+        "and frame (data.add_fireflies)",
+    )
+    ap.add_argument(
         "--weights",
         help="the loss terms' weights, comma-separated: l1grad spatial,gradient,temporal (default "
         "0.8,0.1,0.1); l1msssim l1,msssim,temporal (default 0.16,0.84,0.1)",
@@ -167,7 +242,10 @@ def main():
     shortest = min(s["record"].shape[0] for s in train)
     if window > shortest:
         raise SystemExit(f"--burn-in {args.burn_in} + --frames {args.frames} > {shortest}, the shortest sequence")
-    model = build_model(args.model).to(dev)
+    widths = tuple(int(w) for w in args.widths.split(","))
+    if len(widths) != len(HIDDEN) or any(w <= 0 or w % 16 for w in widths):
+        raise SystemExit(f"--widths takes {len(HIDDEN)} multiples of 16")
+    model = build_model(args.model, widths).to(dev)
     if args.init:
         load_weights(model, args.init)
     cost = model_cost(model, dev)
@@ -179,6 +257,8 @@ def main():
     compute_loss = loss_fn(args.loss)
     autocast = (lambda: torch.autocast("cuda", dtype=torch.bfloat16)) if dev == "cuda" else contextlib.nullcontext
     gen = torch.Generator().manual_seed(args.seed)
+    # Its own generator, so that the same seed draws the same windows with or without fireflies.
+    firefly_gen = torch.Generator().manual_seed(args.seed + 1)
     budget = args.minutes * 60.0
     start = time.time()
     history, step = [], 0
@@ -188,6 +268,8 @@ def main():
             group["lr"] = args.lr * 0.5 * (1.0 + math.cos(math.pi * min(frac, 1.0)))
         burn_in = int(torch.randint(burn_in_min, args.burn_in + 1, (1,), generator=gen))
         rec, ref, objects = sample_batch(train, args.batch, burn_in + args.frames, args.crop, gen)
+        if args.fireflies:
+            rec[:, :, 0:3] = add_fireflies(rec[:, :, 0:3], args.fireflies, firefly_gen)
         rec, ref, objects = rec.to(dev), ref[:, burn_in:].to(dev), objects.to(dev)
         with autocast():
             out = run_window(model, rec, objects, burn_in)
@@ -206,9 +288,9 @@ def main():
     train_seconds = time.time() - start
     final = validate(model, val)
     if isinstance(model, KernelDenoiser):
-        layers, tensors = kernel_layers(), kernel_export_tensors(model)
+        layers, tensors = kernel_layers(model.widths), kernel_export_tensors(model)
     else:
-        layers, tensors = LAYERS, export_tensors(model)
+        layers, tensors = model.layers, export_tensors(model)
     fmt = FORMAT
     meta = {
         "format": fmt,
@@ -219,6 +301,7 @@ def main():
         "loss_weights": ",".join(str(w) for w in ws),
         "emission_motion": str(model.emission_motion),
         "burn_in": str(args.burn_in) if burn_in_min == args.burn_in else f"{burn_in_min}-{args.burn_in}",
+        "fireflies": str(args.fireflies),
         "steps": str(step),
         "data": args.data,
         "init": args.init or "",

@@ -7,7 +7,9 @@
 //! decoders are checked whichever one ships; the third (`make_parity.py`'s synthetic frames, the
 //! committed weights) has a visible emitter, objects of their own and sub-pixel motion, so the
 //! emission's average over time that re-modulates the output (from taps of the same object, its
-//! history clamp) is checked too; `the_emission_stays_on_its_object` checks what that average is
+//! history clamp) is checked too; the fourth (the same frames) is of a network of other widths
+//! (`references/neural_narrow_weights.safetensors`: the committed weights narrowed by
+//! `training/train.py`'s `narrow`, 16 channels at full resolution); `the_emission_stays_on_its_object` checks what that average is
 //! for over more frames. The running means of the noisy radiance and their
 //! second moments (reprojected in the second frame) are also compared directly, so they are checked
 //! whatever weight the network gives them. Every inference path the device runs is checked
@@ -85,24 +87,36 @@ fn fixture(name: &'static str, weights: NetworkWeights) -> Fixture {
     }
 }
 
-/// The committed weights' fixture, the other decoder's and the emitters'.
-fn fixtures() -> [Fixture; 3] {
-    let alternative = NetworkWeights::load(std::path::Path::new(&references(
-        "neural_alternative_weights.safetensors",
-    )))
-    .expect("load the alternative weights");
+/// The committed weights' fixture, the other decoder's, the emitters' and a narrower network's.
+fn fixtures() -> [Fixture; 4] {
+    let load = |file: &str| {
+        NetworkWeights::load(std::path::Path::new(&references(file)))
+            .unwrap_or_else(|e| panic!("load {file}: {e}"))
+    };
     let fixtures = [
         fixture("neural_parity.safetensors", NetworkWeights::builtin()),
-        fixture("neural_parity_alternative.safetensors", alternative),
+        fixture(
+            "neural_parity_alternative.safetensors",
+            load("neural_alternative_weights.safetensors"),
+        ),
         fixture(
             "neural_parity_emitters.safetensors",
             NetworkWeights::builtin(),
+        ),
+        fixture(
+            "neural_parity_narrow.safetensors",
+            load("neural_narrow_weights.safetensors"),
         ),
     ];
     let decoders = fixtures.each_ref().map(|f| f.weights.decoder());
     assert!(
         decoders.contains(&Decoder::Direct) && decoders.contains(&Decoder::Kernel),
         "the fixtures cover both decoders: {decoders:?}"
+    );
+    let widths = fixtures.each_ref().map(|f| f.weights.widths());
+    assert!(
+        widths.iter().any(|w| *w != widths[0]),
+        "the fixtures cover networks of other widths: {widths:?}"
     );
     fixtures
 }
@@ -241,6 +255,7 @@ fn denoise(
         network.decoder().name(),
         network.path().short_name()
     );
+    executor.reset_history();
     let mut images = Vec::new();
     for record in records {
         let mut g = RenderGraph::new();

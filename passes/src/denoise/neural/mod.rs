@@ -13,7 +13,7 @@
 //!    and of the radiance range-compressed against fireflies): 24 half-precision channels; for the
 //!    kernel decoder also the radiance pooled to half and quarter resolution.
 //! 3. **Network**: 3x3 convolutions at full, half and quarter resolution with skip connections
-//!    ([`UNET`]), fused bias and ReLU, average pooling down and nearest upsampling up (read in
+//!    ([`Widths::unet`]: the widths are the weights file's), fused bias and ReLU, average pooling down and nearest upsampling up (read in
 //!    place by the next convolution); on the tensor cores where the device has them, else portable
 //!    compute ([`InferencePath`]).
 //! 4. **Decoder** ([`Decoder`]): either one output layer predicting log radiance directly, or
@@ -40,8 +40,8 @@ mod weights;
 
 pub use network::{InferencePath, Network};
 pub use weights::{
-    Decoder, Layer, NetworkWeights, WeightsError, BUILTIN, EMISSION_MOTION, FEATURES, FORMAT,
-    KERNEL_TAPS, UNET,
+    Decoder, Layer, NetworkWeights, WeightsError, Widths, BUILTIN, EMISSION_MOTION, FEATURES,
+    FORMAT, HIDDEN, KERNEL_TAPS,
 };
 
 use crate::denoise::gbuffer::GBuffer;

@@ -1,5 +1,6 @@
 //! The learned denoiser's weights: a safetensors file of float32 `<layer>.weight` [out, in, 3, 3]
-//! and `<layer>.bias` [out] tensors for each layer of its decoder's [`Decoder::layers`], with
+//! and `<layer>.bias` [out] tensors for each layer of its decoder's [`Decoder::layers`] (the
+//! U-Net's [`Widths`] are the hidden layers' output channels), with
 //! `format` metadata [`FORMAT`] and `decoder` metadata naming the [`Decoder`] (written by
 //! `training/train.py`), packed into the order `shaders/neural/conv.comp` reads.
 
@@ -43,10 +44,10 @@ impl Layer {
         }
     }
 
-    const fn output(name: &'static str, out: u32) -> Self {
+    const fn output(name: &'static str, in0: u32, out: u32) -> Self {
         Self {
             name,
-            in0: 32,
+            in0,
             in1: 0,
             out,
             relu: false,
@@ -70,16 +71,33 @@ impl Layer {
     }
 }
 
-/// The U-Net's layers up to the decoder's output layers, in execution order (`LAYERS` in
-/// `training/model.py` without `out`).
-pub const UNET: [Layer; 6] = [
-    Layer::hidden("enc0", FEATURES, 0, 32),
-    Layer::hidden("enc1", 32, 0, 32),
-    Layer::hidden("enc2", 32, 0, 64),
-    Layer::hidden("bottleneck", 64, 0, 64),
-    Layer::hidden("dec1", 64, 32, 32),
-    Layer::hidden("dec0", 32, 32, 32),
-];
+/// The U-Net's hidden layers, in execution order (`HIDDEN` in `training/model.py`).
+pub const HIDDEN: [&str; 6] = ["enc0", "enc1", "enc2", "bottleneck", "dec1", "dec0"];
+
+/// The U-Net's widths: the output channels of each of its [`HIDDEN`] layers, positive multiples
+/// of 16. A weights file's are its tensors' shapes; the committed network's are
+/// [`Widths::COMMITTED`].
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct Widths(pub [u32; 6]);
+
+impl Widths {
+    /// The committed network's (`WIDTHS` in `training/model.py`).
+    pub const COMMITTED: Widths = Widths([32, 32, 64, 64, 32, 32]);
+
+    /// The U-Net's layers up to the decoder's output layers, in execution order (`unet_layers` in
+    /// `training/model.py` without `out`): each reads what the layers before it write.
+    pub fn unet(self) -> [Layer; 6] {
+        let [e0, e1, e2, b, d1, d0] = self.0;
+        [
+            Layer::hidden("enc0", FEATURES, 0, e0),
+            Layer::hidden("enc1", e0, 0, e1),
+            Layer::hidden("enc2", e1, 0, e2),
+            Layer::hidden("bottleneck", e2, 0, b),
+            Layer::hidden("dec1", b, e1, d1),
+            Layer::hidden("dec0", d1, e0, d0),
+        ]
+    }
+}
 
 /// What the network's last layers predict (the weights file's `decoder` metadata; measured
 /// against each other in `training/README.md`).
@@ -107,18 +125,20 @@ impl Decoder {
             .find(|d| d.name() == name)
     }
 
-    /// Every layer of a network with this decoder, in execution order: [`UNET`], then the output
-    /// layers (the kernel decoder's at full, half and quarter resolution).
-    pub fn layers(self) -> Vec<Layer> {
-        let outputs: &[Layer] = match self {
-            Decoder::Direct => &[Layer::output("out", 4)],
-            Decoder::Kernel => &[
-                Layer::output("out", KERNEL_TAPS + 2),
-                Layer::output("out_half", KERNEL_TAPS + 1),
-                Layer::output("out_quarter", KERNEL_TAPS),
+    /// Every layer of a network of `widths` with this decoder, in execution order:
+    /// [`Widths::unet`], then the output layers on the last decoder features (the kernel
+    /// decoder's at full, half and quarter resolution).
+    pub fn layers(self, widths: Widths) -> Vec<Layer> {
+        let features = widths.0[5];
+        let outputs = match self {
+            Decoder::Direct => vec![Layer::output("out", features, 4)],
+            Decoder::Kernel => vec![
+                Layer::output("out", features, KERNEL_TAPS + 2),
+                Layer::output("out_half", features, KERNEL_TAPS + 1),
+                Layer::output("out_quarter", features, KERNEL_TAPS),
             ],
         };
-        UNET.iter().chain(outputs).copied().collect()
+        widths.unet().into_iter().chain(outputs).collect()
     }
 }
 
@@ -196,6 +216,7 @@ pub const EMISSION_MOTION: f32 = 0.0;
 pub struct NetworkWeights {
     decoder: Decoder,
     emission_motion: f32,
+    widths: Widths,
     layers: Vec<Layer>,
     packed: Vec<f32>,
     offsets: Vec<u32>,
@@ -260,7 +281,8 @@ impl NetworkWeights {
                 })?
         };
         let tensors = SafeTensors::deserialize(bytes).map_err(|e| format_error(e.to_string()))?;
-        let layers = decoder.layers();
+        let widths = read_widths(&tensors, file)?;
+        let layers = decoder.layers(widths);
         let mut packed = Vec::with_capacity(layers.iter().map(Layer::packed_len).sum());
         let mut offsets = Vec::with_capacity(layers.len());
         for layer in &layers {
@@ -288,6 +310,7 @@ impl NetworkWeights {
         Ok(Self {
             decoder,
             emission_motion,
+            widths,
             layers,
             packed,
             offsets,
@@ -305,7 +328,12 @@ impl NetworkWeights {
         self.emission_motion
     }
 
-    /// The layers, in execution order ([`Decoder::layers`]).
+    /// The U-Net's widths (its tensors' shapes).
+    pub fn widths(&self) -> Widths {
+        self.widths
+    }
+
+    /// The layers, in execution order ([`Decoder::layers`] of [`NetworkWeights::widths`]).
     pub fn layers(&self) -> &[Layer] {
         &self.layers
     }
@@ -319,6 +347,33 @@ impl NetworkWeights {
     pub fn offset(&self, index: usize) -> u32 {
         self.offsets[index]
     }
+}
+
+/// The U-Net's widths: each hidden layer's output channels, from its weights' shape (their other
+/// dimensions are checked as they are read).
+fn read_widths(tensors: &SafeTensors<'_>, file: &str) -> Result<Widths, WeightsError> {
+    let mut widths = [0; 6];
+    for (width, name) in widths.iter_mut().zip(HIDDEN) {
+        let tensor = format!("{name}.weight");
+        let problem = |problem: String| WeightsError::Tensor {
+            file: file.to_owned(),
+            tensor: tensor.clone(),
+            problem,
+        };
+        let view = tensors
+            .tensor(&tensor)
+            .map_err(|_| problem("missing".into()))?;
+        let out = view.shape().first().copied().unwrap_or(0);
+        *width = u32::try_from(out)
+            .ok()
+            .filter(|&w| w > 0 && w % 16 == 0 && w <= 256)
+            .ok_or_else(|| {
+                problem(format!(
+                    "{out} output channels, expected a multiple of 16 from 16 to 256"
+                ))
+            })?;
+    }
+    Ok(Widths(widths))
 }
 
 /// The float32 values of tensor `name`, which must have `shape` and be finite.
@@ -365,18 +420,19 @@ mod tests {
         decoder: Decoder,
         edit: impl Fn(&str, &mut Vec<usize>, &mut Vec<f32>) -> bool,
     ) -> Vec<u8> {
-        file_with_metadata(format, decoder, &[], edit)
+        file_with_metadata(format, decoder, Widths::COMMITTED, &[], edit)
     }
 
-    /// [`file_for`] with more metadata entries.
+    /// [`file_for`] of a network of `widths` with more metadata entries.
     fn file_with_metadata(
         format: &str,
         decoder: Decoder,
+        widths: Widths,
         extra: &[(&str, &str)],
         edit: impl Fn(&str, &mut Vec<usize>, &mut Vec<f32>) -> bool,
     ) -> Vec<u8> {
         let mut tensors = Vec::new();
-        for layer in decoder.layers() {
+        for layer in decoder.layers(widths) {
             let (cin, cout) = (layer.inputs() as usize, layer.out as usize);
             for (kind, shape) in [("weight", vec![cout, cin, 3, 3]), ("bias", vec![cout])] {
                 let name = format!("{}.{kind}", layer.name);
@@ -428,7 +484,7 @@ mod tests {
             let good = file_for(FORMAT, decoder, |_, _, _| true);
             let loaded = NetworkWeights::from_bytes(&good, "w").expect("loads");
             assert_eq!(loaded.decoder(), decoder);
-            assert_eq!(loaded.layers(), decoder.layers());
+            assert_eq!(loaded.layers(), decoder.layers(Widths::COMMITTED));
         }
     }
 
@@ -441,6 +497,7 @@ mod tests {
             file_with_metadata(
                 FORMAT,
                 Decoder::Kernel,
+                Widths::COMMITTED,
                 &[("emission_motion", value)],
                 |_, _, _| true,
             )
@@ -455,6 +512,48 @@ mod tests {
                 "{message}"
             );
         }
+    }
+
+    #[test]
+    fn the_widths_come_from_the_weights_shapes() {
+        let slim = Widths([16, 32, 64, 64, 32, 16]);
+        let bytes = file_with_metadata(FORMAT, Decoder::Kernel, slim, &[], |_, _, _| true);
+        let weights = NetworkWeights::from_bytes(&bytes, "w").expect("loads");
+        assert_eq!(weights.widths(), slim);
+        assert_eq!(weights.layers(), Decoder::Kernel.layers(slim));
+        let dec0 = weights.layers()[5];
+        assert_eq!((dec0.in0, dec0.in1, dec0.out), (32, 16, 16));
+        assert!(weights.layers()[6..].iter().all(|head| head.in0 == 16));
+        let floats: usize = weights.layers().iter().map(Layer::packed_len).sum();
+        assert_eq!(weights.packed().len(), floats);
+
+        // A head that reads other channels than dec0 writes.
+        let mismatched =
+            file_with_metadata(FORMAT, Decoder::Kernel, slim, &[], |name, shape, values| {
+                if name == "out_half.weight" {
+                    shape[1] = 32;
+                    values.resize(shape.iter().product(), 0.5);
+                }
+                true
+            });
+        let message = error(&mismatched);
+        assert!(
+            message.contains("out_half.weight") && message.contains("expected [26, 16, 3, 3]"),
+            "{message}"
+        );
+        // A width the tensor-core tiles do not divide.
+        let odd = file(FORMAT, |name, shape, values| {
+            if name == "enc1.weight" {
+                shape[0] = 24;
+                values.truncate(shape.iter().product());
+            }
+            true
+        });
+        let message = error(&odd);
+        assert!(
+            message.contains("enc1.weight") && message.contains("24 output channels"),
+            "{message}"
+        );
     }
 
     #[test]
