@@ -82,7 +82,7 @@ def add_fireflies(radiance, rate, generator):
     and frame, each FIREFLY_GAIN times its frame's mean luminance and tinted at random: samples of
     paths so rare that no neighbour and no other frame supports them, which the references lack."""
     b, t, _, h, w = radiance.shape
-    draw = lambda *shape: torch.rand(*shape, generator=generator).to(radiance.device)  # noqa: E731
+    draw = lambda *shape: torch.rand(*shape, generator=generator, device=radiance.device)  # noqa: E731
     hit = draw(b, t, 1, h, w) < rate
     lo, hi = (math.log(g) for g in FIREFLY_GAIN)
     gain = torch.exp(lo + (hi - lo) * draw(b, t, 1, h, w))

@@ -41,7 +41,7 @@ FEATURES = 24  # a multiple of 4: the shaders pack 4 half-precision channels per
 # network of other widths is the same code (the Vulkan inference reads them from the weights'
 # shapes).
 HIDDEN = ("enc0", "enc1", "enc2", "bottleneck", "dec1", "dec0")
-WIDTHS = (32, 32, 64, 64, 32, 32)
+WIDTHS = (16, 32, 64, 64, 32, 16)
 
 
 def unet_layers(widths=WIDTHS, outputs=4):

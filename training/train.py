@@ -257,8 +257,9 @@ def main():
     compute_loss = loss_fn(args.loss)
     autocast = (lambda: torch.autocast("cuda", dtype=torch.bfloat16)) if dev == "cuda" else contextlib.nullcontext
     gen = torch.Generator().manual_seed(args.seed)
-    # Its own generator, so that the same seed draws the same windows with or without fireflies.
-    firefly_gen = torch.Generator().manual_seed(args.seed + 1)
+    # Its own generator, so that the same seed draws the same windows with or without fireflies; on
+    # the training device (drawn on the CPU, they took half the steps).
+    firefly_gen = torch.Generator(dev).manual_seed(args.seed + 1)
     budget = args.minutes * 60.0
     start = time.time()
     history, step = [], 0
@@ -268,9 +269,9 @@ def main():
             group["lr"] = args.lr * 0.5 * (1.0 + math.cos(math.pi * min(frac, 1.0)))
         burn_in = int(torch.randint(burn_in_min, args.burn_in + 1, (1,), generator=gen))
         rec, ref, objects = sample_batch(train, args.batch, burn_in + args.frames, args.crop, gen)
+        rec, ref, objects = rec.to(dev), ref[:, burn_in:].to(dev), objects.to(dev)
         if args.fireflies:
             rec[:, :, 0:3] = add_fireflies(rec[:, :, 0:3], args.fireflies, firefly_gen)
-        rec, ref, objects = rec.to(dev), ref[:, burn_in:].to(dev), objects.to(dev)
         with autocast():
             out = run_window(model, rec, objects, burn_in)
         loss, terms = compute_loss(out.float(), ref, ws)

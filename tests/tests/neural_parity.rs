@@ -8,8 +8,9 @@
 //! committed weights) has a visible emitter, objects of their own and sub-pixel motion, so the
 //! emission's average over time that re-modulates the output (from taps of the same object, its
 //! history clamp) is checked too; the fourth (the same frames) is of a network of other widths
-//! (`references/neural_narrow_weights.safetensors`: the committed weights narrowed by
-//! `training/train.py`'s `narrow`, 16 channels at full resolution); `the_emission_stays_on_its_object` checks what that average is
+//! (`references/neural_narrow_weights.safetensors`: the twelfth session's 32-channel weights
+//! narrowed by `training/train.py`'s `narrow` to 16 channels out of `dec0`, the committed network
+//! having 16 out of `enc0` too); `the_emission_stays_on_its_object` checks what that average is
 //! for over more frames. The running means of the noisy radiance and their
 //! second moments (reprojected in the second frame) are also compared directly, so they are checked
 //! whatever weight the network gives them. Every inference path the device runs is checked

@@ -82,7 +82,7 @@ pub struct Widths(pub [u32; 6]);
 
 impl Widths {
     /// The committed network's (`WIDTHS` in `training/model.py`).
-    pub const COMMITTED: Widths = Widths([32, 32, 64, 64, 32, 32]);
+    pub const COMMITTED: Widths = Widths([16, 32, 64, 64, 32, 16]);
 
     /// The U-Net's layers up to the decoder's output layers, in execution order (`unet_layers` in
     /// `training/model.py` without `out`): each reads what the layers before it write.
@@ -477,6 +477,7 @@ mod tests {
     #[test]
     fn committed_weights_load_and_pack_every_layer() {
         let weights = NetworkWeights::builtin();
+        assert_eq!(weights.widths(), Widths::COMMITTED);
         let floats: usize = weights.layers().iter().map(Layer::packed_len).sum();
         assert_eq!(weights.packed().len(), floats);
         assert_eq!(weights.offset(0), 0);
@@ -516,13 +517,14 @@ mod tests {
 
     #[test]
     fn the_widths_come_from_the_weights_shapes() {
-        let slim = Widths([16, 32, 64, 64, 32, 16]);
+        let slim = Widths([32, 32, 64, 64, 32, 16]);
+        assert_ne!(slim, Widths::COMMITTED);
         let bytes = file_with_metadata(FORMAT, Decoder::Kernel, slim, &[], |_, _, _| true);
         let weights = NetworkWeights::from_bytes(&bytes, "w").expect("loads");
         assert_eq!(weights.widths(), slim);
         assert_eq!(weights.layers(), Decoder::Kernel.layers(slim));
         let dec0 = weights.layers()[5];
-        assert_eq!((dec0.in0, dec0.in1, dec0.out), (32, 16, 16));
+        assert_eq!((dec0.in0, dec0.in1, dec0.out), (32, 32, 16));
         assert!(weights.layers()[6..].iter().all(|head| head.in0 == 16));
         let floats: usize = weights.layers().iter().map(Layer::packed_len).sum();
         assert_eq!(weights.packed().len(), floats);
