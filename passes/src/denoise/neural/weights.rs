@@ -74,8 +74,8 @@ impl Layer {
 /// The U-Net's hidden layers, in execution order (`HIDDEN` in `training/model.py`).
 pub const HIDDEN: [&str; 6] = ["enc0", "enc1", "enc2", "bottleneck", "dec1", "dec0"];
 
-/// The U-Net's widths: the output channels of each of its [`HIDDEN`] layers, positive multiples
-/// of 16. A weights file's are its tensors' shapes; the committed network's are
+/// The U-Net's widths: the output channels of each of its [`HIDDEN`] layers, multiples of 16
+/// from 16 to 256. A weights file's are its tensors' shapes; the committed network's are
 /// [`Widths::COMMITTED`].
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct Widths(pub [u32; 6]);
@@ -88,13 +88,14 @@ impl Widths {
     /// `training/model.py` without `out`): each reads what the layers before it write.
     pub fn unet(self) -> [Layer; 6] {
         let [e0, e1, e2, b, d1, d0] = self.0;
+        let [enc0, enc1, enc2, bottleneck, dec1, dec0] = HIDDEN;
         [
-            Layer::hidden("enc0", FEATURES, 0, e0),
-            Layer::hidden("enc1", e0, 0, e1),
-            Layer::hidden("enc2", e1, 0, e2),
-            Layer::hidden("bottleneck", e2, 0, b),
-            Layer::hidden("dec1", b, e1, d1),
-            Layer::hidden("dec0", d1, e0, d0),
+            Layer::hidden(enc0, FEATURES, 0, e0),
+            Layer::hidden(enc1, e0, 0, e1),
+            Layer::hidden(enc2, e1, 0, e2),
+            Layer::hidden(bottleneck, e2, 0, b),
+            Layer::hidden(dec1, b, e1, d1),
+            Layer::hidden(dec0, d1, e0, d0),
         ]
     }
 }
