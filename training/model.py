@@ -44,19 +44,29 @@ HIDDEN = ("enc0", "enc1", "enc2", "bottleneck", "dec1", "dec0")
 WIDTHS = (16, 32, 64, 64, 32, 16)
 
 
+# What each hidden layer reads, in the order of its input channels (None: the input features); the
+# output layers (`out`, and `kernel_model.py`'s heads) read the last one's, `dec0`'s.
+SOURCES = {
+    "enc0": (None,),
+    "enc1": ("enc0",),
+    "enc2": ("enc1",),
+    "bottleneck": ("enc2",),
+    "dec1": ("bottleneck", "enc1"),
+    "dec0": ("dec1", "enc0"),
+}
+
+
+def sources(layer):
+    """What `layer` reads ([`SOURCES`], or `dec0` for an output layer)."""
+    return SOURCES.get(layer, ("dec0",))
+
+
 def unet_layers(widths=WIDTHS, outputs=4):
     """(name, input channels, output channels) of the convolutions, in execution order, for the
     hidden layers' `widths` and `outputs` channels of the output layer."""
-    e0, e1, e2, b, d1, d0 = widths
-    return [
-        ("enc0", FEATURES, e0),
-        ("enc1", e0, e1),
-        ("enc2", e1, e2),
-        ("bottleneck", e2, b),
-        ("dec1", b + e1, d1),
-        ("dec0", d1 + e0, d0),
-        ("out", d0, outputs),
-    ]
+    width = dict(zip(HIDDEN, widths))
+    inputs = lambda layer: sum(FEATURES if s is None else width[s] for s in sources(layer))  # noqa: E731
+    return [(name, inputs(name), width[name]) for name in HIDDEN] + [("out", inputs("out"), outputs)]
 
 
 def widths_of(tensors):

@@ -29,22 +29,19 @@ from data import add_fireflies, load_split, sample_batch
 from kernel_model import KernelDenoiser, kernel_layers
 from kernel_model import export_tensors as kernel_export_tensors
 from losses import DEFAULT_WEIGHTS, LOSSES, TERM_NAMES, display_ssim, log_tonemap, loss_fn, relmse, temporal_l1
-from model import DECODERS, FORMAT, HIDDEN, RECORD_SIZE, WIDTHS, RecurrentDenoiser, export_tensors, widths_of
+from model import (
+    DECODERS,
+    FORMAT,
+    HIDDEN,
+    RECORD_SIZE,
+    WIDTHS,
+    RecurrentDenoiser,
+    export_tensors,
+    sources,
+    widths_of,
+)
 
 MODELS = DECODERS
-
-# What each layer reads, in the order of its input channels (None: the input features).
-SOURCES = {
-    "enc0": (None,),
-    "enc1": ("enc0",),
-    "enc2": ("enc1",),
-    "bottleneck": ("enc2",),
-    "dec1": ("bottleneck", "enc1"),
-    "dec0": ("dec1", "enc0"),
-    "out": ("dec0",),
-    "out_half": ("dec0",),
-    "out_quarter": ("dec0",),
-}
 
 
 def build_model(name, widths=WIDTHS):
@@ -73,17 +70,17 @@ def narrow(tensors, widths):
     wider = [name for name in HIDDEN if want[name] > have[name]]
     if wider:
         raise ValueError(f"layers {wider} are wider than the file's ({have})")
-    layers = [name for name in SOURCES if f"{name}.weight" in tensors]
+    layers = [name.removesuffix(".weight") for name in tensors if name.endswith(".weight")]
 
     def offset(layer, source):
-        sources = SOURCES[layer]
-        return sum(have[s] for s in sources[: sources.index(source)] if s is not None)
+        read = sources(layer)
+        return sum(have[s] for s in read[: read.index(source)] if s is not None)
 
     kept = {}
     for name in HIDDEN:
         norms = torch.zeros(have[name])
         for layer in layers:
-            if name in SOURCES[layer]:
+            if name in sources(layer):
                 at = offset(layer, name)
                 norms += tensors[f"{layer}.weight"][:, at : at + have[name]].float().pow(2).sum((0, 2, 3))
         kept[name] = torch.topk(norms, want[name]).indices.sort().values
@@ -93,7 +90,7 @@ def narrow(tensors, widths):
         if layer in kept:
             w, b = w[kept[layer]], b[kept[layer]]
         columns = [
-            torch.arange(w.shape[1]) if s is None else offset(layer, s) + kept[s] for s in SOURCES[layer]
+            torch.arange(w.shape[1]) if s is None else offset(layer, s) + kept[s] for s in sources(layer)
         ]
         out[f"{layer}.weight"] = w[:, torch.cat(columns)].contiguous()
         out[f"{layer}.bias"] = b.contiguous()
@@ -108,8 +105,9 @@ def load_weights(model, path):
     `emission_motion` metadata, when there, sets the model's. A file of a wider network starts a
     narrower model from the channels its layers weigh most (`narrow`)."""
     tensors = load_file(path)
-    if all(f"{name}.weight" in tensors for name in HIDDEN) and widths_of(tensors) != model.widths:
-        print(f"--init: {path}'s widths {widths_of(tensors)} narrowed to {model.widths}", flush=True)
+    widths = widths_of(tensors) if all(f"{name}.weight" in tensors for name in HIDDEN) else model.widths
+    if widths != model.widths:
+        print(f"--init: {path}'s widths {widths} narrowed to {model.widths}", flush=True)
         tensors = narrow(tensors, model.widths)
     with safe_open(path, "pt") as f:
         motion = (f.metadata() or {}).get("emission_motion")
