@@ -393,7 +393,7 @@ fn dataset_writes_records_and_references_with_an_index() {
 }
 
 #[test]
-fn sequence_evaluates_other_learned_weights_beside_the_committed_ones() {
+fn sequence_evaluates_other_learned_weights_and_a_second_reference() {
     let dir = temp("sequence-weights");
     let alternative = concat!(
         env!("CARGO_MANIFEST_DIR"),
@@ -411,6 +411,7 @@ fn sequence_evaluates_other_learned_weights_beside_the_committed_ones() {
         "4",
         "--also-neural-weights",
         alternative,
+        "--second-reference",
         "--out",
         dir.to_str().unwrap(),
     ]);
@@ -435,6 +436,13 @@ fn sequence_evaluates_other_learned_weights_beside_the_committed_ones() {
             "{expected}: {times:?}"
         );
     }
+    // The reference again with another seed: evaluated, and its own noise, so not 0.
+    let second_rel_mse: f64 = csv
+        .lines()
+        .find(|line| line.starts_with("second-reference,mean,"))
+        .and_then(|line| line.split(',').nth(2)?.parse().ok())
+        .expect("second-reference's mean in metrics.csv");
+    assert!(second_rel_mse > 0.0, "{second_rel_mse}");
     let chart = std::fs::read_to_string(dir.join("stability.svg")).unwrap();
     for expected in ["none", "svgf", "neural", method, "temporal instability"] {
         assert!(
@@ -558,7 +566,7 @@ fn evaluate_without_method_folders_names_the_expected_ones() {
     assert_fails_at_once(
         &["evaluate", dir.to_str().unwrap()],
         "no method folders to evaluate against reference/ (expected one or more of none/, \
-         spatial/, svgf/, neural/, oidn/)",
+         spatial/, svgf/, neural/, oidn/, second-reference/)",
     );
     assert!(!dir.join("metrics.csv").exists());
     std::fs::remove_dir_all(&dir).unwrap();

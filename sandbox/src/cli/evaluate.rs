@@ -3,7 +3,7 @@
 
 use super::instability_maps;
 use super::render_options::exposure;
-use super::sequence::{frame_path, Method};
+use super::sequence::{frame_path, Method, SECOND_REFERENCE};
 use super::stability;
 use anyhow::Context as _;
 use clap::Args;
@@ -123,8 +123,8 @@ pub fn evaluate_folder(dir: &Path, display: &PngEncoding, maps: bool) -> anyhow:
 }
 
 /// The method folders of `dir` (the sequence's methods, then the learned denoiser's other weights'
-/// `neural-*` in name order, then [`EXTERNAL_METHODS`]) that exist; an error naming the expected
-/// folders when there is none.
+/// `neural-*` in name order, then [`EXTERNAL_METHODS`], then [`SECOND_REFERENCE`]) that exist; an
+/// error naming the expected folders when there is none.
 fn method_folders(dir: &Path) -> anyhow::Result<Vec<String>> {
     anyhow::ensure!(dir.is_dir(), "{}: no such folder", dir.display());
     let extra_neural = format!("{}-", Method::Neural.name());
@@ -139,6 +139,7 @@ fn method_folders(dir: &Path) -> anyhow::Result<Vec<String>> {
         .into_iter()
         .chain(other_weights)
         .chain(EXTERNAL_METHODS.map(str::to_owned))
+        .chain([SECOND_REFERENCE.to_owned()])
         .collect();
     let present: Vec<String> = expected
         .iter()

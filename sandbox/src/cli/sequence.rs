@@ -49,7 +49,16 @@ pub struct SequenceArgs {
     /// `--neural-weights`).
     #[arg(long, value_name = "FILE")]
     also_neural_weights: Vec<PathBuf>,
+    /// Also render the reference again with another seed, into `second-reference/`, evaluated as
+    /// one more method: its error against `reference/` is the reference's own noise, a floor under
+    /// what any method can measure against it.
+    #[arg(long)]
+    second_reference: bool,
 }
+
+/// The folder and method name of the reference rendered again with another seed
+/// (`--second-reference`).
+pub const SECOND_REFERENCE: &str = "second-reference";
 
 /// The method name of learned-denoiser weights given with `--also-neural-weights`.
 pub fn extra_neural_method(weights: &Path) -> String {
@@ -148,6 +157,21 @@ pub fn run(args: &SequenceArgs) -> anyhow::Result<()> {
         reference_settings,
         reference_frames,
     )?;
+    if args.second_reference {
+        let settings = Settings {
+            seed: reference_settings.seed.wrapping_add(1),
+            ..reference_settings
+        };
+        render(
+            &ctx,
+            &scene,
+            args,
+            &cameras,
+            SECOND_REFERENCE,
+            settings,
+            reference_frames,
+        )?;
+    }
     let extra: Vec<(String, NetworkWeights)> = args
         .also_neural_weights
         .iter()
