@@ -8,7 +8,8 @@
 # OUT_DIR/neural_times.json (BENCH=0 skips the timing) and OUT_DIR/metrics_<scene>.csv. WEIGHTS,
 # a weights file to use instead of the committed ones; ALSO, more weights files (space-separated),
 # each evaluated as one more method `neural-<file stem>` on the same frames; SECOND_REFERENCE set, the
-# reference rendered again with another seed as one more method (the reference's own noise).
+# reference rendered again with another seed as one more method (the reference's own noise);
+# OPTIONS, more options of `lucid sequence` (e.g. --edge-emission).
 set -euo pipefail
 out=${1:?usage: training/evaluate_gpu.sh OUT_DIR}
 lucid=$(realpath "${LUCID:-target/release/lucid}")
@@ -22,7 +23,7 @@ fi
 for scene in ${SCENES:-classroom caustics}; do
   dir=/tmp/heldout-$scene
   "$lucid" sequence --scene "$scene" --size 1920x1080 --frames "$frames" --reference-spp 1024 \
-    --out "$dir" --no-evaluate ${SECOND_REFERENCE:+--second-reference} ${WEIGHTS:+--neural-weights "$(realpath "$WEIGHTS")"} \
+    --out "$dir" --no-evaluate ${SECOND_REFERENCE:+--second-reference} ${OPTIONS:-} ${WEIGHTS:+--neural-weights "$(realpath "$WEIGHTS")"} \
     $(for w in ${ALSO:-}; do echo "--also-neural-weights $(realpath "$w")"; done)
   if python3 -c "import pyoidn" 2>/dev/null; then
     python3 "$(dirname "$0")/oidn_baseline.py" "$dir"

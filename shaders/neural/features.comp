@@ -8,7 +8,8 @@
 // standard deviation of its luminance. Also writes this frame's surface (depth, normal), running
 // means and second moments for the next frame, and the first hits' albedo and log(1 + emission)
 // averaged over time with those of the same taps that saw the same object (`antialias_surface`;
-// the object id kept in the emission's alpha), which output.comp re-modulates by.
+// the object id kept in the emission's alpha; the emission supersampled at emitters' edges weighs
+// more as it moves, edge_emission.glsl), which output.comp re-modulates by.
 // Reads the frame's inputs from the light transport's and the G-buffer's images (inputs.glsl).
 // With POOLED_RADIANCE (the kernel-predicting decoder, training/kernel_model.py, `KernelOutput`),
 // also the demodulated radiance (negative values clamped) 2x2 average-pooled once and twice, in
@@ -18,6 +19,7 @@
 #include "common/math.glsl"
 #define INPUTS_BINDING 16
 #include "neural/inputs.glsl"
+#include "edge_emission/edge_emission.glsl"
 #include "neural/tensor.glsl"
 
 // An 8x8 tile of pixels a workgroup: its 4x4 pixels of half and 2x2 of quarter resolution are
@@ -177,7 +179,12 @@ void main() {
     vec3 warped_emission = vec3(0.0);
     float weight_sum = 0.0;
     float surface_weight = 0.0;
+    float emission_weight = 0.0;
     float object_id = surface_object(pixel);
+    // The emission supersampled at an emitter's edge covers the pixel whichever object its centre
+    // sees, so its history is taken from the taps of either side.
+    vec4 traced_emission = imageLoad(u_emission, pixel);
+    bool edge = supersampled(traced_emission);
     if (params.history_valid != 0u) {
         vec2 prev_pos = vec2(pixel) + motion.xy;
         vec2 base = floor(prev_pos);
@@ -205,8 +212,11 @@ void main() {
                 vec4 e = imageLoad(u_prev_emission_mean, ivec2(q));
                 if (e.a == object_id) {
                     warped_albedo += w * imageLoad(u_prev_albedo_mean, ivec2(q)).rgb;
-                    warped_emission += w * e.rgb;
                     surface_weight += w;
+                }
+                if (e.a == object_id || edge) {
+                    warped_emission += w * e.rgb;
+                    emission_weight += w;
                 }
             }
         }
@@ -249,12 +259,15 @@ void main() {
     vec3 albedo_mean = albedo;
     vec3 emission = log_emission(pixel);
     vec3 emission_mean = emission;
+    float alpha = max(1.0 / n, SURFACE_ALPHA);
     if (surface_weight >= MIN_WEIGHT) {
         warped_albedo /= surface_weight;
-        warped_emission /= surface_weight;
-        float alpha = max(1.0 / n, SURFACE_ALPHA);
         albedo_mean = warped_albedo + (albedo - warped_albedo) * alpha;
+    }
+    if (emission_weight >= MIN_WEIGHT) {
+        warped_emission /= emission_weight;
         float alpha_emission = max(alpha, min(length(motion.xy) * params.emission_motion, 1.0));
+        alpha_emission = max(alpha_emission, edge_emission_weight(traced_emission, motion.xy));
         // A pixel moving a pixel a frame or more keeps this frame's emission: no history to clamp.
         if (alpha_emission < 1.0) {
             vec3 low = emission;

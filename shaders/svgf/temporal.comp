@@ -5,11 +5,13 @@
 // them with an exponential moving average whose weight the temporal gradient raises where the
 // shading changed (A-SVGF). The first hit's albedo and emission, which the light-transport pass
 // wrote for its jittered samples, are averaged the same way: re-modulating with these means keeps
-// emitter and texture edges antialiased and steady under sub-pixel motion. Also writes this
+// emitter and texture edges antialiased and steady under sub-pixel motion (the emission the edge
+// pass supersampled weighs more as it moves, edge_emission.glsl). Also writes this
 // frame's surface record for the next frame.
 #include "common/math.glsl"
 #include "common/image_coords.glsl"
 #include "svgf/common.glsl"
+#include "edge_emission/edge_emission.glsl"
 
 layout(local_size_x = 8, local_size_y = 8) in;
 
@@ -123,7 +125,8 @@ void main() {
     vec3 color = illum;
     vec2 moments = vec2(lum, lum * lum);
     vec3 albedo = imageLoad(u_albedo, pixel).rgb;
-    vec3 emission = imageLoad(u_emission, pixel).rgb;
+    vec4 traced_emission = imageLoad(u_emission, pixel);
+    vec3 emission = traced_emission.rgb;
     float history = 1.0;
     if (weight_sum > 0.0) {
         prev_color /= weight_sum;
@@ -140,7 +143,8 @@ void main() {
         color = mix(prev_color, illum, a);
         float a_surface = mix(max(params.surface_alpha, 1.0 / (n + 1.0)), 1.0, lambda);
         albedo = mix(prev_albedo, albedo, a_surface);
-        emission = mix(prev_emission, emission, a_surface);
+        float a_emission = max(a_surface, edge_emission_weight(traced_emission, motion.xy));
+        emission = mix(prev_emission, emission, a_emission);
         moments = mix(prev_moments.xy, moments, am);
         history = min(n + 1.0, params.max_history);
     }

@@ -1,7 +1,9 @@
 //! Denoising: progressive accumulation while the view is still, SVGF, the learned recurrent
-//! denoiser, and the G-buffer they read.
+//! denoiser, the G-buffer they read and the emission they add back, supersampled at emitters'
+//! edges.
 
 pub mod accumulate;
+pub mod edge_emission;
 mod frame_denoiser;
 pub mod gbuffer;
 pub mod neural;

@@ -22,6 +22,7 @@ mod value_enum;
 pub use crate::samples_per_pixel::{SamplesPerPixel, ZeroSamplesPerPixel};
 pub use settings::{Algorithm, Denoiser, Settings};
 
+use crate::denoise::edge_emission;
 use crate::denoise::gbuffer::{self, GBuffer};
 use crate::denoise::{accumulate, neural, svgf};
 use crate::denoise::{DenoiseInputs, Denoised, FrameDenoiser, FrameInfo};
@@ -546,6 +547,13 @@ impl Renderer {
         };
         let denoised = match (self.denoiser.as_mut(), traced.surface) {
             (Some(denoiser), Some(surface)) if planned.is_some() => {
+                let surface = if self.settings.edge_emission {
+                    let spec = &self.spec;
+                    let images = (&gbuffer, surface);
+                    edge_emission::add_edge_emission(g, &scene, frame, images, spec, (w, h))
+                } else {
+                    surface
+                };
                 let inputs = DenoiseInputs {
                     radiance: traced.radiance,
                     surface,

@@ -154,6 +154,9 @@ pub struct Settings {
     pub denoiser: Denoiser,
     /// The SVGF denoiser's parameters.
     pub svgf: SvgfParams,
+    /// Supersample the emission the denoisers add back at emitters' edges
+    /// ([`crate::denoise::edge_emission`]).
+    pub edge_emission: bool,
 }
 
 impl Default for Settings {
@@ -171,6 +174,7 @@ impl Default for Settings {
             },
             denoiser: Denoiser::None,
             svgf: SvgfParams::default(),
+            edge_emission: false,
         }
     }
 }

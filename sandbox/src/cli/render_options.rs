@@ -59,6 +59,10 @@ pub struct RenderOptions {
     /// them, else portable).
     #[arg(long, value_enum)]
     pub neural_path: Option<InferencePath>,
+    /// Supersample the emission the denoiser adds back where an emitter's edge crosses a pixel (a
+    /// 4x4 grid of camera rays there): steadier lights and windows under camera motion.
+    #[arg(long)]
+    pub edge_emission: bool,
     /// Layout of the BVH nodes on the GPU (both find the same hits; for A/B timing).
     #[arg(long, value_enum, default_value_t = BvhLayout::default())]
     pub bvh: BvhLayout,
@@ -82,6 +86,7 @@ impl RenderOptions {
             accumulate,
             display: self.display(),
             denoiser: self.denoise.unwrap_or(Denoiser::None),
+            edge_emission: self.edge_emission,
             ..Settings::default()
         }
     }

@@ -64,6 +64,8 @@ pub const RECORD_OBJECT: u32 = RECORD_CHANNELS;
 
 /// The first channel of the first hit's albedo in a record (`RECORD_ALBEDO` in the shader).
 pub const RECORD_ALBEDO: u32 = 3;
+/// The first channel of the emission seen first in a record (`RECORD_EMISSION` in the shader).
+pub const RECORD_EMISSION: u32 = 6;
 /// The first channel of the G-buffer normal in a record (`RECORD_NORMAL` in the shader).
 pub const RECORD_NORMAL: u32 = 9;
 
