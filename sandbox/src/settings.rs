@@ -30,6 +30,8 @@ pub struct RenderSettings {
     pub max_depth: u32,
     /// The denoiser.
     pub denoiser: Denoiser,
+    /// Supersample the emission the denoiser adds back at emitters' edges.
+    pub edge_emission: bool,
     /// Whether samples accumulate over frames while nothing changes.
     pub accumulate: bool,
     /// The image shown: final, or an intermediate of the frame.
@@ -70,6 +72,7 @@ impl Default for RenderSettings {
             spp: SamplesPerPixel::ONE,
             max_depth: 8,
             denoiser: Denoiser::Svgf,
+            edge_emission: false,
             accumulate: true,
             view: lucid_passes::debug::debug_view::View::Final,
             svgf: lucid_passes::denoise::svgf::SvgfParams::default(),

@@ -4,7 +4,8 @@
 #ifndef LUCID_EDGE_EMISSION_GLSL
 #define LUCID_EDGE_EMISSION_GLSL
 
-const float SUPERSAMPLED = 0.0;
+// Negative: no light transport writes it, nor anything that fills the image from records.
+const float SUPERSAMPLED = -1.0;
 
 // Whether the edge pass supersampled this emission texel (rgb, alpha).
 bool supersampled(vec4 emission) {

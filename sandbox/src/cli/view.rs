@@ -39,6 +39,9 @@ pub struct ViewArgs {
     /// Denoiser (of the left half in a split view).
     #[arg(long, value_enum, default_value_t = Denoiser::Svgf)]
     denoise: Denoiser,
+    /// Supersample the emission the denoisers add back at emitters' edges (also a panel toggle).
+    #[arg(long)]
+    edge_emission: bool,
     /// Samples per pixel per frame.
     #[arg(long, default_value_t = SamplesPerPixel::ONE, value_parser = samples_per_pixel(1024))]
     spp: SamplesPerPixel,
@@ -75,6 +78,7 @@ pub fn run(args: &ViewArgs) -> anyhow::Result<()> {
             AlgoArg::Auto => Algorithm::PathTracing,
         },
         denoiser: args.denoise,
+        edge_emission: args.edge_emission,
         spp: args.spp,
         max_depth: args.max_depth,
         ..RenderSettings::default()

@@ -51,6 +51,7 @@ pub fn renderer_settings(base: &Settings, panel: &RenderSettings) -> Settings {
         max_depth: panel.max_depth.max(1),
         accumulate: panel.accumulate,
         denoiser: panel.denoiser,
+        edge_emission: panel.edge_emission,
         svgf: panel.svgf,
         ..*base
     }
@@ -124,5 +125,36 @@ impl FrameSource for RendererSource {
             gpu_ms: renderer_ms(self.renderer.executor().pass_timings()),
         };
         self.split.as_ref().map(|right| [left, right.stats()])
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use lucid_passes::renderer::{Algorithm, Denoiser, SamplesPerPixel};
+
+    #[test]
+    fn the_panels_settings_reach_the_renderer() {
+        let panel = RenderSettings {
+            algorithm: Algorithm::Bidirectional,
+            spp: SamplesPerPixel::new(3).unwrap(),
+            max_depth: 5,
+            denoiser: Denoiser::Neural,
+            edge_emission: true,
+            accumulate: false,
+            ..RenderSettings::default()
+        };
+        let base = Settings {
+            seed: 7,
+            ..Settings::default()
+        };
+        let settings = renderer_settings(&base, &panel);
+        assert_eq!(settings.algorithm, Algorithm::Bidirectional);
+        assert_eq!(settings.samples_per_pixel.get(), 3);
+        assert_eq!(settings.max_depth, 5);
+        assert_eq!(settings.denoiser, Denoiser::Neural);
+        assert!(settings.edge_emission);
+        assert!(!settings.accumulate);
+        assert_eq!(settings.seed, 7, "what the panels do not set stays");
     }
 }

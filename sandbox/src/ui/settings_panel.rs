@@ -123,6 +123,9 @@ fn renderer(ui: &mut egui::Ui, r: &mut RenderSettings) {
                 ui.selectable_value(&mut r.denoiser, d, d.label());
             }
         });
+    if r.denoiser != Denoiser::None {
+        ui.checkbox(&mut r.edge_emission, "supersample emitters' edges");
+    }
     if r.denoiser == Denoiser::Svgf {
         super::svgf_panel::svgf(ui, &mut r.svgf, r.algorithm.replays_paths());
     }
