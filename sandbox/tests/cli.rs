@@ -223,6 +223,43 @@ fn bench_times_passes_that_share_a_name_as_their_sum() {
 }
 
 #[test]
+fn bench_with_edge_emission_times_its_pass_and_says_so() {
+    let json = temp("bench-edge-emission.json");
+    let run = |edge: bool| {
+        let mut args = vec![
+            "bench",
+            "--scene",
+            "cornell-box",
+            "--denoise",
+            "neural",
+            "--size",
+            "32x32",
+            "--frames",
+            "2",
+            "--warmup",
+            "1",
+            "--json",
+            json.to_str().unwrap(),
+        ];
+        if edge {
+            args.push("--edge-emission");
+        }
+        let out = lucid(&args);
+        assert!(out.status.success(), "{}", stderr(&out));
+        let report: serde_json::Value =
+            serde_json::from_slice(&std::fs::read(&json).unwrap()).unwrap();
+        std::fs::remove_file(&json).unwrap();
+        report
+    };
+    for edge in [false, true] {
+        let report = run(edge);
+        assert_eq!(report["edge_emission"], edge, "{report}");
+        let passes = report["passes_ms"].as_object().expect("passes_ms");
+        assert_eq!(passes.contains_key("edge_emission"), edge, "{report}");
+    }
+}
+
+#[test]
 fn a_short_soak_keeps_memory_flat_without_validation_messages() {
     // 200 frames through every algorithm and denoiser (12 configurations of 5 frames: three cycles),
     // the camera and an object moving.
