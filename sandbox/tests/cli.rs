@@ -261,8 +261,8 @@ fn bench_with_edge_emission_times_its_pass_and_says_so() {
 
 #[test]
 fn a_short_soak_keeps_memory_flat_without_validation_messages() {
-    // 200 frames through every algorithm and denoiser (12 configurations of 5 frames: three cycles),
-    // the camera and an object moving.
+    // 200 frames through every algorithm and denoiser (12 configurations of 5 frames: three cycles;
+    // every other one with the edge pass), the camera and an object moving.
     let out = lucid(&[
         "soak",
         "--frames",

@@ -1,5 +1,6 @@
 //! `lucid soak`: many frames with everything changing — the camera along the scene's path, an
-//! object moving, the algorithm and the denoiser switching through every combination — sampling
+//! object moving, the algorithm and the denoiser switching through every combination, every other
+//! one with the emission supersampled at emitters' edges — sampling
 //! host memory (resident set) and GPU memory (the memory tracker) every few frames. Fails when
 //! either grows after the first full cycle of configurations, or when the validation layer says
 //! anything.
@@ -26,7 +27,8 @@ pub struct SoakArgs {
     /// Frames to render.
     #[arg(long, default_value_t = 10_000, value_parser = clap::value_parser!(u32).range(1..))]
     frames: u32,
-    /// Frames between configuration switches (algorithm x denoiser, in turn).
+    /// Frames between configuration switches (algorithm x denoiser, in turn; every other one with
+    /// the edge pass).
     #[arg(long, default_value_t = 100, value_parser = clap::value_parser!(u32).range(1..))]
     switch_every: u32,
     /// Frames between memory samples.
@@ -128,9 +130,13 @@ pub fn run(args: &SoakArgs) -> anyhow::Result<()> {
         .into_iter()
         .filter(|a| *a != Algorithm::Bidirectional || ctx.info().int64_atomics)
         .collect();
-    let configurations: Vec<(Algorithm, Denoiser)> = algorithms
+    // Every other configuration supersamples the emission at emitters' edges, so that each
+    // denoiser runs with and without it and the edge pass comes and goes.
+    let configurations: Vec<(Algorithm, Denoiser, bool)> = algorithms
         .iter()
         .flat_map(|&a| Denoiser::ALL.map(|d| (a, d)))
+        .enumerate()
+        .map(|(i, (a, d))| (a, d, i % 2 == 1))
         .collect();
     // The first cycle of configurations creates pipelines and histories; memory is compared from
     // the second on.
@@ -161,13 +167,20 @@ pub fn run(args: &SoakArgs) -> anyhow::Result<()> {
         if frame == timed_from {
             started = std::time::Instant::now();
         }
-        let (algorithm, denoiser) =
+        let (algorithm, denoiser, edge_emission) =
             configurations[(frame / args.switch_every) as usize % configurations.len()];
         let settings = renderer.settings();
-        if (settings.algorithm, settings.denoiser) != (algorithm, denoiser) {
+        let wanted = (algorithm, denoiser, edge_emission);
+        if (
+            settings.algorithm,
+            settings.denoiser,
+            settings.edge_emission,
+        ) != wanted
+        {
             renderer.set_settings(Settings {
                 algorithm,
                 denoiser,
+                edge_emission,
                 ..*settings
             });
         }
