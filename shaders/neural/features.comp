@@ -252,21 +252,23 @@ void main() {
     imageStore(u_robust, pixel, robust);
 
     // The first hits' albedo and log(1 + emission) averaged over time (`antialias_surface`) where
-    // taps of the same object were reprojected: the emission's weight at least the motion in
-    // pixels times emission_motion (0 unless the weights file says otherwise), its history
-    // clamped to the range of this frame's over the 3x3 neighbourhood.
+    // taps of the same object were reprojected (for an emission supersampled at an emitter's edge,
+    // taps of either object): the emission's weight at least the motion in pixels times
+    // emission_motion (0 unless the weights file says otherwise) and, supersampled, at least the
+    // motion in pixels (edge_emission.glsl), its history clamped to the range of this frame's over
+    // the 3x3 neighbourhood.
     vec3 albedo = input_albedo(pixel);
     vec3 albedo_mean = albedo;
     vec3 emission = log_emission(pixel);
     vec3 emission_mean = emission;
-    float alpha = max(1.0 / n, SURFACE_ALPHA);
+    float alpha_surface = max(1.0 / n, SURFACE_ALPHA);
     if (surface_weight >= MIN_WEIGHT) {
         warped_albedo /= surface_weight;
-        albedo_mean = warped_albedo + (albedo - warped_albedo) * alpha;
+        albedo_mean = warped_albedo + (albedo - warped_albedo) * alpha_surface;
     }
     if (emission_weight >= MIN_WEIGHT) {
         warped_emission /= emission_weight;
-        float alpha_emission = max(alpha, min(length(motion.xy) * params.emission_motion, 1.0));
+        float alpha_emission = max(alpha_surface, min(length(motion.xy) * params.emission_motion, 1.0));
         alpha_emission = max(alpha_emission, edge_emission_weight(traced_emission, motion.xy));
         // A pixel moving a pixel a frame or more keeps this frame's emission: no history to clamp.
         if (alpha_emission < 1.0) {
