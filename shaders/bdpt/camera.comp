@@ -60,7 +60,8 @@ vec3 connect_to_light(CameraVertex c, inout uint rng) {
     }
     vec3 wi = to_local(ls.wi, c.t, c.b, c.s.ns);
     float bsdf_pdf;
-    vec3 f = bsdf_eval(c.m, c.wo, wi, bsdf_pdf);
+    float rev_pdf;
+    vec3 f = bsdf_eval_both(c.m, c.wo, wi, bsdf_pdf, rev_pdf);
     if (max3(f) <= 0.0) {
         return vec3(0.0);
     }
@@ -68,8 +69,6 @@ vec3 connect_to_light(CameraVertex c, inout uint rng) {
     float emit_pdf;
     float cos_light;
     if (light_sample_emission(c.s.p, ls, emit_pdf, cos_light)) {
-        float rev_pdf;
-        bsdf_eval(c.m, wi, c.wo, rev_pdf);
         float cos_here = abs(dot(c.s.ng, ls.wi));
         // Area pdfs at the light: NEE's (a probability for delta lights) and, at this vertex, the
         // emitted subpath's.
@@ -100,7 +99,8 @@ vec3 connect_vertices(CameraVertex c, LightVertex v, uint slot) {
     vec3 dir = to_light / dist;
     vec3 wi = to_local(dir, c.t, c.b, c.s.ns);
     float camera_pdf;
-    vec3 fc = bsdf_eval(c.m, c.wo, wi, camera_pdf);
+    float camera_rev_pdf;
+    vec3 fc = bsdf_eval_both(c.m, c.wo, wi, camera_pdf, camera_rev_pdf);
     if (max3(fc) <= 0.0) {
         return vec3(0.0);
     }
@@ -114,15 +114,12 @@ vec3 connect_vertices(CameraVertex c, LightVertex v, uint slot) {
     vec3 to_camera = to_local(-dir, t, b, ns);
     vec3 wl = to_local(v.wi, t, b, ns);
     float light_rev_pdf;
-    vec3 fl = bsdf_eval(ml, to_camera, wl, light_rev_pdf);
+    float light_pdf;
+    vec3 fl = bsdf_eval_both(ml, to_camera, wl, light_rev_pdf, light_pdf);
     float cos_light_in = abs(dot(ng, v.wi));
     if (max3(fl) <= 0.0 || cos_light_in < 1e-6) {
         return vec3(0.0);
     }
-    float light_pdf;
-    bsdf_eval(ml, wl, to_camera, light_pdf);
-    float camera_rev_pdf;
-    bsdf_eval(c.m, wi, c.wo, camera_rev_pdf);
     float cos_light = abs(dot(ng, dir));
     float cos_camera = abs(dot(c.s.ng, dir));
     float w_light = mis(camera_pdf * cos_light / dist2) * (v.dvcm + v.dvc * mis(light_rev_pdf));

@@ -75,6 +75,11 @@ float ggx_visible_pdf(vec3 wo, vec3 h, float alpha) {
     return ggx_g1(wo, alpha) * max(0.0, dot(wo, h)) * ggx_d(h, alpha) / max(wo.z, 1e-8);
 }
 
+// Solid-angle pdf of the reflection about the visible normal h sampled for wo (upper hemisphere).
+float ggx_reflection_pdf(vec3 wo, vec3 h, float alpha) {
+    return ggx_visible_pdf(wo, h, alpha) / (4.0 * max(dot(wo, h), 1e-8));
+}
+
 vec3 fresnel_schlick(vec3 f0, float cos_theta) {
     float m = clamp(1.0 - cos_theta, 0.0, 1.0);
     float m5 = m * m * m * m * m;
@@ -106,6 +111,12 @@ vec3 diffuse_eval(BsdfParams m, vec3 wo, vec3 wi, out float pdf) {
     return m.color * INV_PI * abs(wi.z);
 }
 
+// diffuse_eval, and in rev_pdf the pdf of sampling wo from wi.
+vec3 diffuse_eval_both(BsdfParams m, vec3 wo, vec3 wi, out float pdf, out float rev_pdf) {
+    rev_pdf = wo.z * wi.z <= 0.0 ? 0.0 : abs(wo.z) * INV_PI;
+    return diffuse_eval(m, wo, wi, pdf);
+}
+
 bool diffuse_sample(BsdfParams m, vec3 wo, vec2 u, out BsdfSample s) {
     vec3 wi = sample_cosine_hemisphere(u);
     s.wi = wo.z < 0.0 ? -wi : wi;
@@ -117,8 +128,10 @@ bool diffuse_sample(BsdfParams m, vec3 wo, vec2 u, out BsdfSample s) {
 
 // ---- conductor ----
 
-vec3 conductor_eval(BsdfParams m, vec3 wo, vec3 wi, out float pdf) {
+// conductor_eval, and in rev_pdf the pdf of sampling wo from wi.
+vec3 conductor_eval_both(BsdfParams m, vec3 wo, vec3 wi, out float pdf, out float rev_pdf) {
     pdf = 0.0;
+    rev_pdf = 0.0;
     if (m.smooth_lobe || wo.z * wi.z <= 0.0) {
         return vec3(0.0);
     }
@@ -127,9 +140,15 @@ vec3 conductor_eval(BsdfParams m, vec3 wo, vec3 wi, out float pdf) {
     wi.z *= flip;
     vec3 h = normalize(wo + wi);
     float d = ggx_d(h, m.alpha);
-    pdf = ggx_visible_pdf(wo, h, m.alpha) / (4.0 * max(dot(wo, h), 1e-8));
+    pdf = ggx_reflection_pdf(wo, h, m.alpha);
+    rev_pdf = ggx_reflection_pdf(wi, h, m.alpha);
     vec3 f = fresnel_schlick(m.color, dot(wi, h));
     return f * d * ggx_g2(wo, wi, m.alpha) / (4.0 * wo.z);
+}
+
+vec3 conductor_eval(BsdfParams m, vec3 wo, vec3 wi, out float pdf) {
+    float rev_pdf;
+    return conductor_eval_both(m, wo, wi, pdf, rev_pdf);
 }
 
 bool conductor_sample(BsdfParams m, vec3 wo, vec2 u, out BsdfSample s) {
@@ -148,7 +167,7 @@ bool conductor_sample(BsdfParams m, vec3 wo, vec2 u, out BsdfSample s) {
     if (wi.z <= 0.0) {
         return false;
     }
-    s.pdf = ggx_visible_pdf(wo, h, m.alpha) / (4.0 * max(dot(wo, h), 1e-8));
+    s.pdf = ggx_reflection_pdf(wo, h, m.alpha);
     s.weight = fresnel_schlick(m.color, dot(wi, h)) * ggx_g2(wo, wi, m.alpha) / ggx_g1(wo, m.alpha);
     s.wi = vec3(wi.xy, wi.z * flip);
     return s.pdf > 0.0;
@@ -272,6 +291,12 @@ float metal_rough_specular_probability(BsdfParams m, float cos_o) {
     return clamp(specular / (specular + diffuse), 0.1, 0.9);
 }
 
+// The pdf of sampling wi from wo (both upper hemisphere, h their half vector; p_specular:
+// metal_rough_specular_probability at wo).
+float metal_rough_pdf_upper(BsdfParams m, vec3 wo, vec3 wi, vec3 h, float p_specular) {
+    return mix(wi.z * INV_PI, ggx_reflection_pdf(wo, h, m.alpha), p_specular);
+}
+
 // wo and wi in the upper hemisphere; p_specular: metal_rough_specular_probability at wo.
 vec3 metal_rough_eval_upper(BsdfParams m, vec3 wo, vec3 wi, float p_specular, out float pdf) {
     vec3 h = normalize(wo + wi);
@@ -280,9 +305,22 @@ vec3 metal_rough_eval_upper(BsdfParams m, vec3 wo, vec3 wi, float p_specular, ou
     vec3 f = mix(layer_f, m.color + (1.0 - m.color) * w, m.metallic);
     vec3 diffuse = ((1.0 - m.metallic) * (1.0 - max3(layer_f)) * INV_PI * wi.z) * m.color;
     vec3 specular = f * (ggx_d(h, m.alpha) * ggx_g2(wo, wi, m.alpha) / (4.0 * wo.z));
-    float specular_pdf = ggx_visible_pdf(wo, h, m.alpha) / (4.0 * max(dot(wo, h), 1e-8));
-    pdf = mix(wi.z * INV_PI, specular_pdf, p_specular);
+    pdf = metal_rough_pdf_upper(m, wo, wi, h, p_specular);
     return diffuse + specular;
+}
+
+// metal_rough_eval, and in rev_pdf the pdf of sampling wo from wi.
+vec3 metal_rough_eval_both(BsdfParams m, vec3 wo, vec3 wi, out float pdf, out float rev_pdf) {
+    pdf = 0.0;
+    rev_pdf = 0.0;
+    if (wo.z * wi.z <= 0.0) {
+        return vec3(0.0);
+    }
+    float flip = wo.z < 0.0 ? -1.0 : 1.0;
+    vec3 o = vec3(wo.xy, wo.z * flip);
+    vec3 i = vec3(wi.xy, wi.z * flip);
+    rev_pdf = metal_rough_pdf_upper(m, i, o, normalize(i + o), metal_rough_specular_probability(m, i.z));
+    return metal_rough_eval_upper(m, o, i, metal_rough_specular_probability(m, o.z), pdf);
 }
 
 vec3 metal_rough_eval(BsdfParams m, vec3 wo, vec3 wi, out float pdf) {
@@ -330,6 +368,27 @@ vec3 bsdf_eval(BsdfParams m, vec3 wo, vec3 wi, out float pdf) {
         return metal_rough_eval(m, wo, wi, pdf);
     }
     return diffuse_eval(m, wo, wi, pdf);
+}
+
+// bsdf_eval, and in rev_pdf the pdf of sampling wo from wi (bsdf_eval's pdf with the directions
+// swapped): what bidirectional MIS weights need, in one evaluation.
+vec3 bsdf_eval_both(BsdfParams m, vec3 wo, vec3 wi, out float pdf, out float rev_pdf) {
+    if (HAS_CONDUCTOR && m.kind == MATERIAL_CONDUCTOR) {
+        return conductor_eval_both(m, wo, wi, pdf, rev_pdf);
+    }
+    if (HAS_DIELECTRIC && m.kind == MATERIAL_DIELECTRIC) {
+        pdf = 0.0;
+        rev_pdf = 0.0;
+        if (!HAS_DIELECTRIC_ROUGH) {
+            return vec3(0.0);
+        }
+        dielectric_eval(m, wi, wo, rev_pdf);
+        return dielectric_eval(m, wo, wi, pdf);
+    }
+    if (HAS_METAL_ROUGH && m.kind == MATERIAL_METAL_ROUGH) {
+        return metal_rough_eval_both(m, wo, wi, pdf, rev_pdf);
+    }
+    return diffuse_eval_both(m, wo, wi, pdf, rev_pdf);
 }
 
 bool bsdf_sample(BsdfParams m, vec3 wo, vec3 u, out BsdfSample s) {
