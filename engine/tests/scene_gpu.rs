@@ -4,6 +4,7 @@
 
 use glam::{Affine3A, Vec2, Vec3, Vec4};
 use lucid_engine::bvh::{ray_sphere, ray_triangle, Aabb};
+use lucid_engine::capture::srgb_decode;
 use lucid_engine::scene::builtin::{self, BuildOptions};
 use lucid_engine::scene::gpu::bvh_pack::{Child, EMPTY};
 use lucid_engine::scene::gpu::{
@@ -237,11 +238,17 @@ fn textures_and_params_pack() {
     let g = GpuScene::new(&scene, &Bvh::build(&scene));
     assert_eq!(g.textures.len(), 1);
     assert_eq!(g.textures[0].format, texture_format::RGBA8_SRGB);
-    // Level 0 and its mip chain down to 1x1.
+    // The sRGB decoding table, then level 0 and its mip chain down to 1x1.
+    assert_eq!(g.textures[0].offset, 256);
     assert_eq!(
         g.texels.len(),
-        64 * 64 + 32 * 32 + 16 * 16 + 8 * 8 + 4 * 4 + 2 * 2 + 1
+        256 + 64 * 64 + 32 * 32 + 16 * 16 + 8 * 8 + 4 * 4 + 2 * 2 + 1
     );
+    for code in [0u8, 10, 11, 128, 255] {
+        let linear = f32::from_bits(g.texels[usize::from(code)]);
+        assert_eq!(linear, srgb_decode(f32::from(code) / 255.0), "code {code}");
+    }
+    assert_eq!(f32::from_bits(g.texels[255]), 1.0);
     assert_eq!(g.params.environment.kind, 1);
     assert_eq!(g.params.sun.radiance_enabled[3], 1.0);
     let cam = scene.camera;

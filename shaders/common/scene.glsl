@@ -168,10 +168,12 @@ vec4 fetch_texel(TextureRecord r, int x, int y, uvec2 wrap) {
         uint o = r.offset + (uint(y) * r.width + uint(x)) * 4u;
         return uintBitsToFloat(uvec4(b_texels.t[o], b_texels.t[o + 1u], b_texels.t[o + 2u], b_texels.t[o + 3u]));
     }
-    vec4 c = unpackUnorm4x8(b_texels.t[r.offset + uint(y) * r.width + uint(x)]);
+    uint word = b_texels.t[r.offset + uint(y) * r.width + uint(x)];
+    vec4 c = unpackUnorm4x8(word);
     if (r.format == TEXTURE_RGBA8_SRGB) {
-        bvec3 low = lessThanEqual(c.rgb, vec3(0.04045));
-        c.rgb = mix(pow((c.rgb + 0.055) / 1.055, vec3(2.4)), c.rgb / 12.92, low);
+        // The texel buffer opens with the linear value of every sRGB code (params::srgb_table).
+        c.rgb = uintBitsToFloat(uvec3(b_texels.t[word & 0xffu], b_texels.t[(word >> 8u) & 0xffu],
+                                      b_texels.t[(word >> 16u) & 0xffu]));
     }
     return c;
 }

@@ -237,7 +237,9 @@ pub struct GpuAliasEntry {
 
 /// Texture formats as stored in [`GpuTextureRecord::format`].
 pub mod texture_format {
-    /// One `u32` per texel, RGBA8 sRGB (`unpackUnorm4x8` then decode).
+    /// One `u32` per texel, RGBA8 sRGB: alpha by `unpackUnorm4x8`, the colour's bytes decoded
+    /// through the table the texel buffer then opens with (the linear value of each of the 256
+    /// codes as `f32` bits).
     pub const RGBA8_SRGB: u32 = 0;
     /// One `u32` per texel, RGBA8 linear.
     pub const RGBA8_LINEAR: u32 = 1;

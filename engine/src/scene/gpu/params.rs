@@ -87,9 +87,14 @@ pub fn materials(
 
 /// Flattens all textures into one texel buffer, each with its mip levels after level 0
 /// ([`crate::scene::Texture::mip_levels`]); returns it and where each texture's texels are
-/// (records with an identity transform, repeating).
+/// (records with an identity transform, repeating). When a texture is stored as sRGB, the buffer
+/// opens with [`srgb_table`].
 pub fn textures(scene: &Scene) -> (Vec<u32>, Vec<GpuTextureRecord>) {
-    let mut texels = Vec::new();
+    let srgb = scene
+        .textures
+        .iter()
+        .any(|t| t.srgb && matches!(t.texels, TexelData::Rgba8(_)));
+    let mut texels = if srgb { srgb_table() } else { Vec::new() };
     let mut records = Vec::with_capacity(scene.textures.len());
     let push = |data: &TexelData, texels: &mut Vec<u32>| match data {
         TexelData::Rgba8(d) => texels.extend(d.iter().map(|&p| u32::from_le_bytes(p))),
@@ -116,6 +121,15 @@ pub fn textures(scene: &Scene) -> (Vec<u32>, Vec<GpuTextureRecord>) {
         });
     }
     (texels, records)
+}
+
+/// The linear value of each 8-bit sRGB code as `f32` bits: the shaders decode an sRGB texel's
+/// colour channels by reading this table at its bytes (texel words 0-255 of the buffer), the same
+/// decoding as [`crate::capture::srgb_decode`] and cheaper than its power on the GPU.
+pub fn srgb_table() -> Vec<u32> {
+    (0..=u8::MAX)
+        .map(|code| crate::capture::srgb_decode(f32::from(code) / 255.0).to_bits())
+        .collect()
 }
 
 /// Index remappings from scene order to GPU order needed by the lights.
