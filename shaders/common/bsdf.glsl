@@ -324,13 +324,8 @@ vec3 metal_rough_eval_both(BsdfParams m, vec3 wo, vec3 wi, out float pdf, out fl
 }
 
 vec3 metal_rough_eval(BsdfParams m, vec3 wo, vec3 wi, out float pdf) {
-    pdf = 0.0;
-    if (wo.z * wi.z <= 0.0) {
-        return vec3(0.0);
-    }
-    float flip = wo.z < 0.0 ? -1.0 : 1.0;
-    vec3 o = vec3(wo.xy, wo.z * flip);
-    return metal_rough_eval_upper(m, o, vec3(wi.xy, wi.z * flip), metal_rough_specular_probability(m, o.z), pdf);
+    float rev_pdf;
+    return metal_rough_eval_both(m, wo, wi, pdf, rev_pdf);
 }
 
 bool metal_rough_sample(BsdfParams m, vec3 wo, vec3 u, out BsdfSample s) {
