@@ -128,7 +128,7 @@ bool diffuse_sample(BsdfParams m, vec3 wo, vec2 u, out BsdfSample s) {
 
 // ---- conductor ----
 
-// conductor_eval, and in rev_pdf the pdf of sampling wo from wi.
+// The rough conductor: value and pdf for wo -> wi, and in rev_pdf the pdf of sampling wo from wi.
 vec3 conductor_eval_both(BsdfParams m, vec3 wo, vec3 wi, out float pdf, out float rev_pdf) {
     pdf = 0.0;
     rev_pdf = 0.0;
@@ -144,11 +144,6 @@ vec3 conductor_eval_both(BsdfParams m, vec3 wo, vec3 wi, out float pdf, out floa
     rev_pdf = ggx_reflection_pdf(wi, h, m.alpha);
     vec3 f = fresnel_schlick(m.color, dot(wi, h));
     return f * d * ggx_g2(wo, wi, m.alpha) / (4.0 * wo.z);
-}
-
-vec3 conductor_eval(BsdfParams m, vec3 wo, vec3 wi, out float pdf) {
-    float rev_pdf;
-    return conductor_eval_both(m, wo, wi, pdf, rev_pdf);
 }
 
 bool conductor_sample(BsdfParams m, vec3 wo, vec2 u, out BsdfSample s) {
@@ -309,7 +304,8 @@ vec3 metal_rough_eval_upper(BsdfParams m, vec3 wo, vec3 wi, float p_specular, ou
     return diffuse + specular;
 }
 
-// metal_rough_eval, and in rev_pdf the pdf of sampling wo from wi.
+// glTF's metallic-roughness model: value and pdf for wo -> wi, and in rev_pdf the pdf of sampling
+// wo from wi.
 vec3 metal_rough_eval_both(BsdfParams m, vec3 wo, vec3 wi, out float pdf, out float rev_pdf) {
     pdf = 0.0;
     rev_pdf = 0.0;
@@ -321,11 +317,6 @@ vec3 metal_rough_eval_both(BsdfParams m, vec3 wo, vec3 wi, out float pdf, out fl
     vec3 i = vec3(wi.xy, wi.z * flip);
     rev_pdf = metal_rough_pdf_upper(m, i, o, normalize(i + o), metal_rough_specular_probability(m, i.z));
     return metal_rough_eval_upper(m, o, i, metal_rough_specular_probability(m, o.z), pdf);
-}
-
-vec3 metal_rough_eval(BsdfParams m, vec3 wo, vec3 wi, out float pdf) {
-    float rev_pdf;
-    return metal_rough_eval_both(m, wo, wi, pdf, rev_pdf);
 }
 
 bool metal_rough_sample(BsdfParams m, vec3 wo, vec3 u, out BsdfSample s) {
@@ -348,25 +339,9 @@ bool metal_rough_sample(BsdfParams m, vec3 wo, vec3 u, out BsdfSample s) {
 
 // ---- dispatch ----
 
-vec3 bsdf_eval(BsdfParams m, vec3 wo, vec3 wi, out float pdf) {
-    if (HAS_CONDUCTOR && m.kind == MATERIAL_CONDUCTOR) {
-        return conductor_eval(m, wo, wi, pdf);
-    }
-    if (HAS_DIELECTRIC && m.kind == MATERIAL_DIELECTRIC) {
-        if (!HAS_DIELECTRIC_ROUGH) {
-            pdf = 0.0;
-            return vec3(0.0);
-        }
-        return dielectric_eval(m, wo, wi, pdf);
-    }
-    if (HAS_METAL_ROUGH && m.kind == MATERIAL_METAL_ROUGH) {
-        return metal_rough_eval(m, wo, wi, pdf);
-    }
-    return diffuse_eval(m, wo, wi, pdf);
-}
-
-// bsdf_eval, and in rev_pdf the pdf of sampling wo from wi (bsdf_eval's pdf with the directions
-// swapped): what bidirectional MIS weights need, in one evaluation.
+// The BSDF's value for wo -> wi (cosine of wi included) and in pdf the pdf of sampling wi from
+// wo; in rev_pdf the pdf of sampling wo from wi: what bidirectional MIS weights need, in one
+// evaluation.
 vec3 bsdf_eval_both(BsdfParams m, vec3 wo, vec3 wi, out float pdf, out float rev_pdf) {
     if (HAS_CONDUCTOR && m.kind == MATERIAL_CONDUCTOR) {
         return conductor_eval_both(m, wo, wi, pdf, rev_pdf);
@@ -384,6 +359,11 @@ vec3 bsdf_eval_both(BsdfParams m, vec3 wo, vec3 wi, out float pdf, out float rev
         return metal_rough_eval_both(m, wo, wi, pdf, rev_pdf);
     }
     return diffuse_eval_both(m, wo, wi, pdf, rev_pdf);
+}
+
+vec3 bsdf_eval(BsdfParams m, vec3 wo, vec3 wi, out float pdf) {
+    float rev_pdf;
+    return bsdf_eval_both(m, wo, wi, pdf, rev_pdf);
 }
 
 bool bsdf_sample(BsdfParams m, vec3 wo, vec3 u, out BsdfSample s) {

@@ -7,7 +7,7 @@ use super::layout::{
 use crate::scene::{
     AliasTable, AlphaMode, Camera, Environment, EnvironmentDistribution, Instance,
     LightDistribution, LightSource, MaterialKind, Mesh, PunctualLight, Scene, Sun, TexelData,
-    TextureRef, WrapMode,
+    Texture, TextureRef, WrapMode,
 };
 use glam::{Vec3, Vec3A};
 
@@ -93,7 +93,7 @@ pub fn textures(scene: &Scene) -> (Vec<u32>, Vec<GpuTextureRecord>) {
     let srgb = scene
         .textures
         .iter()
-        .any(|t| t.srgb && matches!(t.texels, TexelData::Rgba8(_)));
+        .any(|t| format_of(t) == texture_format::RGBA8_SRGB);
     let mut texels = if srgb { srgb_table() } else { Vec::new() };
     let mut records = Vec::with_capacity(scene.textures.len());
     let push = |data: &TexelData, texels: &mut Vec<u32>| match data {
@@ -102,11 +102,7 @@ pub fn textures(scene: &Scene) -> (Vec<u32>, Vec<GpuTextureRecord>) {
     };
     for t in &scene.textures {
         let offset = texels.len() as u32;
-        let format = match &t.texels {
-            TexelData::Rgba8(_) if t.srgb => texture_format::RGBA8_SRGB,
-            TexelData::Rgba8(_) => texture_format::RGBA8_LINEAR,
-            TexelData::RgbaF32(_) => texture_format::RGBA32F,
-        };
+        let format = format_of(t);
         push(&t.texels, &mut texels);
         for level in t.mip_levels() {
             push(&level, &mut texels);
@@ -121,6 +117,15 @@ pub fn textures(scene: &Scene) -> (Vec<u32>, Vec<GpuTextureRecord>) {
         });
     }
     (texels, records)
+}
+
+/// How the GPU reads texture `t`'s texels ([`texture_format`]).
+fn format_of(t: &Texture) -> u32 {
+    match &t.texels {
+        TexelData::Rgba8(_) if t.srgb => texture_format::RGBA8_SRGB,
+        TexelData::Rgba8(_) => texture_format::RGBA8_LINEAR,
+        TexelData::RgbaF32(_) => texture_format::RGBA32F,
+    }
 }
 
 /// The linear value of each 8-bit sRGB code as `f32` bits: the shaders decode an sRGB texel's
