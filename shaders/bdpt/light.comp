@@ -4,8 +4,9 @@
 #extension GL_EXT_shader_explicit_arithmetic_types_int64 : require
 #extension GL_EXT_shader_atomic_int64 : require
 // The BDPT light pass: one light subpath per invocation, started on an emitter picked in proportion
-// to power and continued by BSDF sampling in importance transport (adjoint BSDF: no radiance
-// scaling at refraction, Veach's shading-normal correction). Every vertex on a non-delta surface
+// to power (the starts stratified over the invocations: emission_numbers) and continued by BSDF
+// sampling in importance transport (adjoint BSDF: no radiance scaling at refraction, Veach's
+// shading-normal correction). Every vertex on a non-delta surface
 // that can still be connected within max_depth goes to the light vertex cache, in the subpath's own
 // slots (so the cache's layout does not depend on thread timing), and every such vertex is
 // connected to the pinhole camera (light tracing, t = 1) and splatted into b_splat in fixed point
@@ -75,7 +76,11 @@ uint connect_to_camera(Surface s, BsdfParams m, vec3 t, vec3 b, vec3 wl, vec3 be
     if (any(isnan(value)) || any(isinf(value))) {
         return 1u;
     }
-    if (max3(value) <= 0.0 || counted_occluded(offset_origin(s.p, s.ng, dir), dir, dist * (1.0 - 1e-3))) {
+    // Traced from the camera to the vertex (lifted off its surface): rays from one origin walk the
+    // tree's nodes around the camera together.
+    vec3 to_vertex = offset_origin(s.p, s.ng, dir) - c.position_aperture.xyz;
+    float reach = length(to_vertex);
+    if (max3(value) <= 0.0 || counted_occluded(c.position_aperture.xyz, to_vertex / reach, reach)) {
         return 0u;
     }
     uvec2 pixel = min(uvec2(film.xy * vec2(size)), size - 1u);
@@ -84,6 +89,35 @@ uint connect_to_camera(Surface s, BsdfParams m, vec3 t, vec3 b, vec3 wl, vec3 be
     splat_add(i + 1u, value.g);
     splat_add(i + 2u, value.b);
     return 0u;
+}
+
+// Light subpaths start stratified: the five numbers that pick the light, the point on it and the
+// direction come from cell index * EMIT_CELLS / light_paths of a grid of 8^5 cells in Morton order,
+// jittered within the cell and shifted by one offset a frame (modulo 1). Each start stays uniform,
+// the frame's starts cover the grid evenly, and neighbouring invocations leave from nearby points in
+// nearby directions, so their first rays and camera connections walk the same nodes.
+const uint EMIT_CELL_BITS = 3u;
+const uint EMIT_CELLS = 1u << (5u * EMIT_CELL_BITS);
+
+// Coordinate `dim` (0-4) of Morton-ordered cell `cell`.
+float emit_stratum(uint cell, uint dim) {
+    uint c = 0u;
+    for (uint j = 0u; j < EMIT_CELL_BITS; ++j) {
+        c |= ((cell >> (5u * j + dim)) & 1u) << j;
+    }
+    return float(c);
+}
+
+// The emission's numbers for light subpath `index`: u picks the light and the point, v the direction.
+void emission_numbers(uint index, inout uint rng, out vec3 u, out vec2 v) {
+    uint frame_rng = rng_init(uvec2(0xffffffffu, LIGHT_STREAM), b_frame.f.frame_index, b_frame.f.seed);
+    uint cell = uint((uint64_t(index) * uint64_t(EMIT_CELLS)) / uint64_t(pc.light_paths));
+    const float scale = 1.0 / float(1u << EMIT_CELL_BITS);
+    u.x = fract((emit_stratum(cell, 0u) + rng_next(rng)) * scale + rng_next(frame_rng));
+    u.y = fract((emit_stratum(cell, 1u) + rng_next(rng)) * scale + rng_next(frame_rng));
+    u.z = fract((emit_stratum(cell, 2u) + rng_next(rng)) * scale + rng_next(frame_rng));
+    v.x = fract((emit_stratum(cell, 3u) + rng_next(rng)) * scale + rng_next(frame_rng));
+    v.y = fract((emit_stratum(cell, 4u) + rng_next(rng)) * scale + rng_next(frame_rng));
 }
 
 // Stores the subpath's next vertex in its slot `slot` of the cache.
@@ -116,8 +150,10 @@ void main() {
     uint first_slot = index * pc.path_vertices;
     uint stored = 0u;
     EmitSample e;
-    vec3 u_emit = vec3(rng_next(rng), rng_next2(rng));
-    if (!sample_emission(u_emit, rng_next2(rng), e)) {
+    vec3 u_emit;
+    vec2 v_emit;
+    emission_numbers(index, rng, u_emit, v_emit);
+    if (!sample_emission(u_emit, v_emit, e)) {
         b_lvc_lengths.n[index] = 0u;
         return;
     }

@@ -1,9 +1,11 @@
 //! Bidirectional path tracing with a light vertex cache (Davidovic et al. 2014, "Progressive Light
 //! Transport Simulation on the GPU"), in two passes:
 //!
-//! - **light** (`shaders/bdpt/light.comp`): light subpaths from emitters picked by power, each
-//!   stored vertex by vertex in its own slots of a light vertex cache and connected to the camera
-//!   (light tracing), whose contributions are splatted with 64-bit fixed-point atomics;
+//! - **light** (`shaders/bdpt/light.comp`): light subpaths from emitters picked by power (their
+//!   starts stratified, so that neighbouring invocations trace alike), each stored vertex by
+//!   vertex in its own slots of a light vertex cache and connected to the camera (light tracing,
+//!   its shadow rays leaving from the camera), whose contributions are splatted with 64-bit
+//!   fixed-point atomics;
 //! - **camera** (`shaders/bdpt/camera.comp`): camera subpaths with emission hits, next-event
 //!   estimation and connections to cached light vertices (a light subpath drawn uniformly, then
 //!   one of its vertices), all combined with SmallVCM's recursive MIS weights; adds the splats and
