@@ -80,9 +80,11 @@ vec3 connect_to_light(CameraVertex c, inout uint rng) {
     } else {
         w = mis_pair(ls.pdf, bsdf_pdf);
     }
-    vec3 origin = offset_origin(c.s.p, c.s.ng, ls.wi);
-    float t_max = ls.dist >= T_INFINITY ? T_INFINITY : ls.dist * (1.0 - 1e-3);
-    if (w <= 0.0 || counted_occluded(origin, ls.wi, t_max)) {
+    vec3 origin;
+    vec3 dir;
+    float t_max;
+    light_shadow_ray(c.s.p, c.s.ng, ls, origin, dir, t_max);
+    if (w <= 0.0 || counted_occluded(origin, dir, t_max)) {
         return vec3(0.0);
     }
     return f * ls.radiance * (w * ls.weight);

@@ -386,4 +386,20 @@ bool sample_light(vec3 p, vec4 u, out LightSample ls) {
     return true;
 }
 
+// The shadow ray testing light sample `ls` from the surface point p (geometric normal ng): the
+// segment from p lifted off its surface to 0.1% of the distance short of the light, traced from the
+// light's end when the light is at a finite distance (the rays towards one light then leave from a
+// small region and walk its surroundings together, and an occluder near the light ends them at
+// once), from the surface towards the sun and the environment.
+void light_shadow_ray(vec3 p, vec3 ng, LightSample ls, out vec3 origin, out vec3 dir, out float t_max) {
+    origin = offset_origin(p, ng, ls.wi);
+    dir = ls.wi;
+    t_max = T_INFINITY;
+    if (ls.dist < T_INFINITY) {
+        t_max = ls.dist * (1.0 - 1e-3);
+        origin += dir * t_max;
+        dir = -dir;
+    }
+}
+
 #endif

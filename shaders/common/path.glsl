@@ -99,9 +99,7 @@ bool path_light_sample(PathState st, Surface s, Shading sh, vec4 u_light, out Sh
     if (!(max3(f) > 0.0)) {
         return false;
     }
-    ray.origin = offset_origin(s.p, s.ng, ls.wi);
-    ray.dir = ls.wi;
-    ray.t_max = ls.dist >= T_INFINITY ? T_INFINITY : ls.dist * (1.0 - 1e-3);
+    light_shadow_ray(s.p, s.ng, ls, ray.origin, ray.dir, ray.t_max);
     float w = ls.delta ? 1.0 : power_heuristic(ls.pdf, bsdf_pdf);
     ray.radiance = st.beta * f * ls.radiance * (w * ls.weight);
     return true;
@@ -193,10 +191,12 @@ PathResult trace_path(vec3 o, vec3 d, inout uint rng, uint max_depth, uint rr_de
                 float bsdf_pdf;
                 vec3 f = bsdf_eval(m, wo, to_local(ls.wi, t, b, s.ns), bsdf_pdf);
                 if (max3(f) > 0.0) {
-                    vec3 origin = offset_origin(s.p, s.ng, ls.wi);
-                    float t_max = ls.dist >= T_INFINITY ? T_INFINITY : ls.dist * (1.0 - 1e-3);
+                    vec3 origin;
+                    vec3 dir;
+                    float t_max;
+                    light_shadow_ray(s.p, s.ng, ls, origin, dir, t_max);
                     rays += 1u;
-                    if (!trace_occluded(origin, ls.wi, t_max)) {
+                    if (!trace_occluded(origin, dir, t_max)) {
                         float w = ls.delta ? 1.0 : power_heuristic(ls.pdf, bsdf_pdf);
                         r.radiance += beta * f * ls.radiance * (w * ls.weight);
                     }
