@@ -128,7 +128,10 @@ vec3 connect_vertices(CameraVertex c, LightVertex v, uint slot) {
     float w_camera = mis(light_pdf * cos_camera / dist2) * (c.dvcm + c.dvc * mis(camera_rev_pdf));
     // The light side carries the adjoint BSDF's shading-normal correction.
     vec3 value = fc * fl * v.throughput * (cos_light / (cos_light_in * dist2 * (1.0 + w_light + w_camera)));
-    if (max3(value) <= 0.0 || counted_occluded(offset_origin(c.s.p, c.s.ng, dir), dir, dist * (1.0 - 1e-3))) {
+    // Traced from the light vertex's end: an occluder near the light, where light subpaths start,
+    // ends the walk at once.
+    float reach = dist * (1.0 - 1e-3);
+    if (max3(value) <= 0.0 || counted_occluded(offset_origin(c.s.p, c.s.ng, dir) + dir * reach, -dir, reach)) {
         return vec3(0.0);
     }
     return value;

@@ -486,17 +486,18 @@ impl Context {
                 .vk("vkCreateFence")?;
             let cmds = [vk::CommandBufferSubmitInfo::default().command_buffer(cmd)];
             let submit = [vk::SubmitInfo2::default().command_buffer_infos(&cmds)];
+            let limit = self.info().kind.wait_limit();
             let waited = self.submit(&submit, fence).and_then(|()| {
                 // SAFETY: fence was submitted above.
-                unsafe { device.wait_for_fences(&[fence], true, 60_000_000_000) }.map_err(|e| {
-                    match e {
+                unsafe { device.wait_for_fences(&[fence], true, limit.as_nanos() as u64) }.map_err(
+                    |e| match e {
                         vk::Result::TIMEOUT => EngineError::Timeout {
                             during: what.to_string(),
-                            seconds: 60,
+                            seconds: limit.as_secs(),
                         },
                         other => self.observe(crate::error::from_vk("vkWaitForFences", other)),
-                    }
-                })
+                    },
+                )
             });
             // SAFETY: the fence is no longer in use (waited, or the submit failed).
             unsafe { device.destroy_fence(fence, None) };

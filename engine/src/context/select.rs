@@ -28,6 +28,17 @@ pub enum DeviceKind {
     Other,
 }
 
+impl DeviceKind {
+    /// How long one wait for the device may last before it counts as hung: a minute on a GPU, ten
+    /// on a software implementation, which compiles a shader when it first dispatches it and
+    /// shares the processor with whatever else the machine runs (lavapipe's first frame of a large
+    /// kernel passed a minute on a two-core machine busy with a build).
+    pub fn wait_limit(self) -> std::time::Duration {
+        let minutes = if self == DeviceKind::Cpu { 10 } else { 1 };
+        std::time::Duration::from_secs(60 * minutes)
+    }
+}
+
 /// Chooses a device: the first usable one whose name contains `requested` (case-insensitive) if given,
 /// otherwise the most preferred kind (discrete first), ties broken by enumeration order.
 pub fn select_device(
@@ -79,6 +90,18 @@ pub fn select_device(
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn software_devices_may_take_longer_than_gpus() {
+        for gpu in [
+            DeviceKind::Discrete,
+            DeviceKind::Integrated,
+            DeviceKind::Virtual,
+        ] {
+            assert_eq!(gpu.wait_limit().as_secs(), 60);
+        }
+        assert_eq!(DeviceKind::Cpu.wait_limit().as_secs(), 600);
+    }
 
     fn candidate(name: &str, kind: DeviceKind, unusable: Option<&str>) -> DeviceCandidate {
         DeviceCandidate {

@@ -173,11 +173,17 @@ impl Executor {
         let info = vk::SemaphoreWaitInfo::default()
             .semaphores(&semaphores)
             .values(&values);
+        let limit = self.ctx.info().kind.wait_limit();
         // SAFETY: the timeline semaphore is valid.
-        unsafe { self.ctx.device().wait_semaphores(&info, 60_000_000_000) }.map_err(|e| match e {
+        unsafe {
+            self.ctx
+                .device()
+                .wait_semaphores(&info, limit.as_nanos() as u64)
+        }
+        .map_err(|e| match e {
             vk::Result::TIMEOUT => EngineError::Timeout {
                 during: during.to_string(),
-                seconds: 60,
+                seconds: limit.as_secs(),
             },
             vk::Result::ERROR_DEVICE_LOST => self.ctx.observe(EngineError::DeviceLost {
                 during: during.to_string(),
