@@ -130,8 +130,10 @@ vec3 connect_vertices(CameraVertex c, LightVertex v, uint slot) {
     vec3 value = fc * fl * v.throughput * (cos_light / (cos_light_in * dist2 * (1.0 + w_light + w_camera)));
     // Traced from the light vertex's end: an occluder near the light, where light subpaths start,
     // ends the walk at once.
+    vec3 origin = offset_origin(c.s.p, c.s.ng, dir);
     float reach = dist * (1.0 - 1e-3);
-    if (max3(value) <= 0.0 || counted_occluded(offset_origin(c.s.p, c.s.ng, dir) + dir * reach, -dir, reach)) {
+    reverse_segment(origin, dir, reach);
+    if (max3(value) <= 0.0 || counted_occluded(origin, dir, reach)) {
         return vec3(0.0);
     }
     return value;

@@ -6,12 +6,11 @@
 // The BDPT light pass: one light subpath per invocation, started on an emitter picked in proportion
 // to power (the starts stratified over the invocations: emission_numbers) and continued by BSDF
 // sampling in importance transport (adjoint BSDF: no radiance scaling at refraction, Veach's
-// shading-normal correction). Every vertex on a non-delta surface
-// that can still be connected within max_depth goes to the light vertex cache, in the subpath's own
-// slots (so the cache's layout does not depend on thread timing), and every such vertex is
-// connected to the pinhole camera (light tracing, t = 1) and splatted into b_splat in fixed point
-// (integer sums do not depend on the order either); the camera pass scales the splats by pixels /
-// light subpaths.
+// shading-normal correction). Every vertex on a non-delta surface that can still be connected
+// within max_depth goes to the light vertex cache, in the subpath's own slots (so the cache's
+// layout does not depend on thread timing), and every such vertex is connected to the pinhole
+// camera (light tracing, t = 1) and splatted into b_splat in fixed point (integer sums do not
+// depend on the order either); the camera pass scales the splats by pixels / light subpaths.
 #include "common/math.glsl"
 #include "common/rng.glsl"
 #include "common/scene.glsl"

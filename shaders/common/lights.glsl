@@ -397,8 +397,7 @@ void light_shadow_ray(vec3 p, vec3 ng, LightSample ls, out vec3 origin, out vec3
     t_max = T_INFINITY;
     if (ls.dist < T_INFINITY) {
         t_max = ls.dist * (1.0 - 1e-3);
-        origin += dir * t_max;
-        dir = -dir;
+        reverse_segment(origin, dir, t_max);
     }
 }
 

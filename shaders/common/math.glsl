@@ -69,4 +69,11 @@ vec3 offset_origin(vec3 p, vec3 ng, vec3 dir) {
     return p + ng * (dot(ng, dir) >= 0.0 ? scale : -scale);
 }
 
+// Turns the ray from `origin` along unit `dir` for `reach` into the same segment walked from its
+// far end (a shadow ray's occlusion does not depend on the direction it is traced in).
+void reverse_segment(inout vec3 origin, inout vec3 dir, float reach) {
+    origin += dir * reach;
+    dir = -dir;
+}
+
 #endif
