@@ -6,7 +6,7 @@
 # then trains every variant of $VARIANTS at once on the one GPU (one background train.py each, the
 # same --minutes: by default what $BUDGET leaves after the dataset and $RESERVE = 90 seconds for
 # start-up, validation and export, at most 6), waits for them and writes into OUT_DIR:
-#   compare.json          per variant: final validation relMSE, SSIM, temporal instability, steps,
+#   compare.json          per variant: final validation relMSE, SSIM, FLIP, temporal instability, steps,
 #                         seconds, parameters, FLOPs per pixel (and the ratios to the first variant)
 #   variants.tar.gz       per variant: weights (<name>.safetensors), log (<name>.json) and output
 #                         (<name>.log)
@@ -98,7 +98,7 @@ import json, sys
 from pathlib import Path
 
 work, dest, minutes, elapsed, names = Path(sys.argv[1]), sys.argv[2], float(sys.argv[3]), int(sys.argv[4]), sys.argv[5:]
-keys = ("relmse", "ssim", "temporal")
+keys = ("relmse", "ssim", "flip", "temporal")
 rows = []
 for name in names:
     log = work / f"{name}.json"
@@ -128,7 +128,7 @@ summary = {
     "minutes": minutes,
     "seconds_before_export": elapsed,
     "note": "variants trained at the same time on one GPU; validation from no history over whole "
-    "validation sequences; relMSE and SSIM as lucid evaluate computes them, temporal = mean |frame "
+    "validation sequences; relMSE, SSIM and FLIP as lucid evaluate computes them, temporal = mean |frame "
     "difference of output - reference's| in log space",
     "variants": rows,
 }

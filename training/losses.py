@@ -6,6 +6,8 @@ Predictions and references are linear radiance, [B, T, 3, H, W] (a window of fra
   in log space (Chaitanya et al. 2017).
 - `l1msssim`: 0.16 L1 + 0.84 (1 - MS-SSIM) on display-mapped images (Zhao et al. 2017, "Loss
   functions for image restoration with neural networks"), plus the same temporal term in log space.
+- `l1gradflip`: `l1grad`'s three terms plus FLIP (`flip.py`) on the display-mapped frames, the
+  metric the held-out evaluation reports, weighted 0.5.
 
 Both weight later frames of a window more (the recurrence has warmed up).
 """
@@ -13,9 +15,15 @@ Both weight later frames of a window more (the recurrence has warmed up).
 import torch
 import torch.nn.functional as F
 
-LOSSES = ("l1grad", "l1msssim")
-DEFAULT_WEIGHTS = {"l1grad": (0.8, 0.1, 0.1), "l1msssim": (0.16, 0.84, 0.1)}
-TERM_NAMES = {"l1grad": ("spatial", "gradient", "temporal"), "l1msssim": ("l1", "msssim", "temporal")}
+from flip import Flip
+
+LOSSES = ("l1grad", "l1msssim", "l1gradflip")
+DEFAULT_WEIGHTS = {"l1grad": (0.8, 0.1, 0.1), "l1msssim": (0.16, 0.84, 0.1), "l1gradflip": (0.8, 0.1, 0.1, 0.5)}
+TERM_NAMES = {
+    "l1grad": ("spatial", "gradient", "temporal"),
+    "l1msssim": ("l1", "msssim", "temporal"),
+    "l1gradflip": ("spatial", "gradient", "temporal", "flip"),
+}
 
 # SSIM as `lucid evaluate` computes it (engine/src/metrics/ssim.rs): 11-tap Gaussian, sigma 1.5,
 # K1 = 0.01, K2 = 0.03, dynamic range 1.
@@ -49,6 +57,22 @@ def display(x, clamp=True):
     instead of being cut at 1, so bright pixels keep a gradient."""
     t = aces(x.clamp_min(0.0))
     return srgb_encode(t.clamp(0.0, 1.0) if clamp else t)
+
+
+def display_linear(x):
+    """Linear radiance to linear display light in [0, 1] (ACES, no sRGB encoding): what `lucid
+    evaluate` gives FLIP."""
+    return aces(x.clamp_min(0.0)).clamp(0.0, 1.0)
+
+
+_FLIPS = {}
+
+
+def flip(pred, ref):
+    """FLIP of each display-mapped frame of [N, 3, H, W] linear radiance against its reference: [N]."""
+    if pred.device not in _FLIPS:
+        _FLIPS[pred.device] = Flip(pred.device)
+    return _FLIPS[pred.device](display_linear(pred), display_linear(ref))
 
 
 def _frame_weights(t, device):
@@ -161,9 +185,19 @@ def l1msssim(pred, ref, weights, scales=3):
     return sum(w * x for w, x in zip(weights, terms)), terms
 
 
+def l1gradflip(pred, ref, weights):
+    """Weighted sum and terms: `l1grad`'s three, then FLIP of the display-mapped frames (later
+    frames weighted more)."""
+    _, terms = l1grad(pred, ref, weights[:3])
+    b, t = pred.shape[:2]
+    per_frame = flip(pred.flatten(0, 1), ref.flatten(0, 1)).view(b, t)
+    terms = (*terms, (_frame_weights(t, pred.device).view(1, t) * per_frame).mean())
+    return sum(w * x for w, x in zip(weights, terms)), terms
+
+
 def loss_fn(name):
     """The loss function called `name` (one of `LOSSES`): f(pred, ref, weights) -> (loss, terms)."""
-    return {"l1grad": l1grad, "l1msssim": l1msssim}[name]
+    return {"l1grad": l1grad, "l1msssim": l1msssim, "l1gradflip": l1gradflip}[name]
 
 
 def relmse(pred, ref):

@@ -1,7 +1,7 @@
 """Trains the recurrent denoiser on `lucid dataset` output and exports its weights.
 
     python3 train.py --data DIR --minutes 6 --out weights.safetensors --log train.json [--init W]
-        [--model direct|kernel] [--loss l1grad|l1msssim] [--burn-in K [--burn-in-min J]]
+        [--model direct|kernel] [--loss l1grad|l1msssim|l1gradflip] [--burn-in K [--burn-in-min J]]
         [--widths E0,E1,E2,B,D1,D0] [--fireflies RATE]
 
 `--model kernel` trains `kernel_model.KernelDenoiser` (both export as `lucid-rae-v3`, the decoder
@@ -28,7 +28,7 @@ from safetensors.torch import load_file, save_file
 from data import add_fireflies, load_split, sample_batch
 from kernel_model import KernelDenoiser, kernel_layers
 from kernel_model import export_tensors as kernel_export_tensors
-from losses import DEFAULT_WEIGHTS, LOSSES, TERM_NAMES, display_ssim, log_tonemap, loss_fn, relmse, temporal_l1
+from losses import DEFAULT_WEIGHTS, LOSSES, TERM_NAMES, display_ssim, flip, log_tonemap, loss_fn, relmse, temporal_l1
 from model import (
     DECODERS,
     FORMAT,
@@ -158,21 +158,23 @@ def model_cost(model, device, size=64):
 
 @torch.no_grad()
 def validate(model, sequences):
-    """Over whole validation sequences, from no history: mean relMSE, mean SSIM (per frame, as
-    `lucid evaluate` computes it: luminance of the ACES + sRGB display images) and temporal
-    instability (mean |frame difference| of output minus reference's, in log space)."""
+    """Over whole validation sequences, from no history: mean relMSE, mean SSIM and FLIP (per frame,
+    as `lucid evaluate` computes them: SSIM on the luminance of the ACES + sRGB display images, FLIP
+    on the ACES-mapped ones) and temporal instability (mean |frame difference| of output minus
+    reference's, in log space)."""
     model.eval()
-    rel, ssim, inst = [], [], []
+    rel, ssim, flips, inst = [], [], [], []
     for s in sequences:
         rec = s["record"].float().unsqueeze(0)
         ref = s["reference"].float().unsqueeze(0)
         out = model(rec, objects=s["objects"].unsqueeze(0))
         rel.append(relmse(out, ref).item())
         ssim.append(display_ssim(out[0], ref[0]).mean().item())
+        flips.append(flip(out[0], ref[0]).mean().item())
         inst.append(temporal_l1(log_tonemap(out), log_tonemap(ref)).item())
     model.train()
     n = len(sequences)
-    return {"relmse": sum(rel) / n, "ssim": sum(ssim) / n, "temporal": sum(inst) / n}
+    return {"relmse": sum(rel) / n, "ssim": sum(ssim) / n, "flip": sum(flips) / n, "temporal": sum(inst) / n}
 
 
 def run_window(model, rec, objects, burn_in):
@@ -221,7 +223,8 @@ def main():
     ap.add_argument(
         "--weights",
         help="the loss terms' weights, comma-separated: l1grad spatial,gradient,temporal (default "
-        "0.8,0.1,0.1); l1msssim l1,msssim,temporal (default 0.16,0.84,0.1)",
+        "0.8,0.1,0.1); l1msssim l1,msssim,temporal (default 0.16,0.84,0.1); l1gradflip spatial,gradient,"
+        "temporal,flip (default 0.8,0.1,0.1,0.5)",
     )
     ap.add_argument("--val-every", type=int, default=250, help="validate every this many steps")
     ap.add_argument("--seed", type=int, default=0)
@@ -250,8 +253,8 @@ def main():
     print(json.dumps({"model": args.model, "loss": args.loss, "device": dev, **cost}), flush=True)
     opt = torch.optim.Adam(model.parameters(), lr=args.lr)
     ws = [float(v) for v in args.weights.split(",")] if args.weights else list(DEFAULT_WEIGHTS[args.loss])
-    if len(ws) != 3:
-        raise SystemExit("--weights takes three numbers")
+    if len(ws) != len(TERM_NAMES[args.loss]):
+        raise SystemExit(f"--weights takes {len(TERM_NAMES[args.loss])} numbers for --loss {args.loss}")
     compute_loss = loss_fn(args.loss)
     autocast = (lambda: torch.autocast("cuda", dtype=torch.bfloat16)) if dev == "cuda" else contextlib.nullcontext
     gen = torch.Generator().manual_seed(args.seed)
@@ -306,6 +309,7 @@ def main():
         "init": args.init or "",
         "validation_relmse": f"{final['relmse']:.5f}",
         "validation_ssim": f"{final['ssim']:.5f}",
+        "validation_flip": f"{final['flip']:.5f}",
         "validation_temporal": f"{final['temporal']:.5f}",
     }
     save_file(tensors, args.out, metadata=meta)
