@@ -610,7 +610,7 @@ fn evaluate_without_method_folders_names_the_expected_ones() {
 }
 
 #[test]
-fn evaluate_maps_where_each_method_flickers() {
+fn evaluate_maps_where_each_method_flickers_and_differs() {
     let dir = temp("evaluate-maps");
     // 16x16 frames: a still reference, grey 1 but for a 2x2 block of 3 (2.9x the mean); `none`
     // flickers by 0.5 on that block only, `svgf` is the reference.
@@ -653,9 +653,23 @@ fn evaluate_maps_where_each_method_flickers() {
         let (corner, elsewhere) = (rgb.get_pixel(0, 0), rgb.get_pixel(8, 8));
         assert_eq!(corner == elsewhere, method == "svgf", "{method}");
     }
+    for method in ["none", "svgf"] {
+        let png = image::open(dir.join("maps").join(format!("{method}.flip.png"))).unwrap();
+        // `none` differs around the block (FLIP's filters spread it a few pixels), `svgf` nowhere.
+        let rgb = png.to_rgb8();
+        let (corner, far) = (rgb.get_pixel(0, 0), rgb.get_pixel(15, 15));
+        assert_eq!(corner == far, method == "svgf", "{method}");
+    }
     let csv = std::fs::read_to_string(dir.join("maps").join("by_brightness.csv")).unwrap();
+    assert!(
+        csv.starts_with("method,from,to,pixels,instability_share,instability,flip_share,flip\n"),
+        "{csv}"
+    );
     assert!(csv.contains("none,2,8,0.015625,1.000000,"), "{csv}");
-    assert!(csv.contains("svgf,2,8,0.015625,0.000000,0.000000"), "{csv}");
+    assert!(
+        csv.contains("svgf,2,8,0.015625,0.000000,0.000000,0.000000,0.000000"),
+        "{csv}"
+    );
     std::fs::remove_dir_all(&dir).unwrap();
 }
 

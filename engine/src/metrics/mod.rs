@@ -10,7 +10,9 @@
 mod check;
 mod error;
 mod flip;
+mod flip_map;
 mod instability_map;
+mod pixel_map;
 mod pixelwise;
 mod plane;
 mod sequence;
@@ -22,7 +24,9 @@ pub use error::MetricsError;
 pub use flip::{
     flip, hdr_flip, FlipReference, FlipResult, HdrFlipParams, DEFAULT_PIXELS_PER_DEGREE,
 };
-pub use instability_map::{instability_map, BrightnessBand, InstabilityMap};
+pub use flip_map::flip_map;
+pub use instability_map::instability_map;
+pub use pixel_map::{BrightnessBand, PixelMap};
 pub use pixelwise::{max_abs_error, mean_per_channel, mse, psnr, rel_mse, DEFAULT_REL_MSE_EPSILON};
 pub use sequence::{
     evaluate_frame, evaluate_sequence, evaluate_sequences, FrameMetrics, PreparedReference,

@@ -1,7 +1,7 @@
 //! `lucid evaluate`: metrics of rendered sequences against their reference, per frame, as CSV and
 //! an SVG plot.
 
-use super::instability_maps;
+use super::maps;
 use super::render_options::exposure;
 use super::sequence::{frame_path, Method, SECOND_REFERENCE};
 use super::stability;
@@ -23,9 +23,10 @@ pub struct EvaluateArgs {
     /// Exposure in stops of the display mapping SSIM and FLIP compare.
     #[arg(long, default_value_t = 0.0, allow_negative_numbers = true, value_parser = exposure())]
     exposure: f32,
-    /// Also map where each method flickers: `maps/<method>.png` (per-pixel temporal instability,
-    /// one colour scale for all) and `maps/by_brightness.csv` (its share by the reference's
-    /// brightness).
+    /// Also map where each method flickers and where it differs: `maps/<method>.png` (per-pixel
+    /// temporal instability, one colour scale for all), `maps/<method>.flip.png` (per-pixel FLIP
+    /// averaged over the frames, likewise) and `maps/by_brightness.csv` (their shares by the
+    /// reference's brightness).
     #[arg(long)]
     maps: bool,
 }
@@ -57,7 +58,7 @@ const COLUMNS: [(&str, Metric); 5] = [
 
 /// Evaluates every method folder of `dir` against `dir/reference`, writing `metrics.csv` and
 /// `metrics.svg` there (and `stability.svg`/`.png` where methods have GPU times, and with `maps`
-/// the instability maps, `instability_maps.rs`) and printing the means.
+/// the instability and FLIP maps, `maps.rs`) and printing the means.
 pub fn evaluate_folder(dir: &Path, display: &PngEncoding, maps: bool) -> anyhow::Result<()> {
     let methods = method_folders(dir)?;
     let reference = load_frames(&dir.join("reference"))?;
@@ -95,23 +96,23 @@ pub fn evaluate_folder(dir: &Path, display: &PngEncoding, maps: bool) -> anyhow:
     }
     println!("-> {} and {}", csv.display(), svg.display());
     if maps {
-        let (maps, folder) = instability_maps::write(dir, &methods, &frames, &reference)?;
+        let (maps, folder) = maps::write(dir, &methods, &frames, &reference, display)?;
+        let bright = maps::BRIGHTNESS_EDGES[2];
         for m in &maps {
-            let bright: f64 = m
-                .bands
-                .iter()
-                .filter(|b| b.from >= instability_maps::BRIGHTNESS_EDGES[2])
-                .map(|b| b.instability)
-                .sum();
             println!(
-                "{:>8}: temporal instability {:.4}, {:.0}% of it from pixels over {}x the mean brightness",
+                "{:>8}: temporal instability {:.4}, {:.0}% of it from pixels over {bright}x the mean \
+                 brightness; FLIP {:.4}, {:.0}% of it from them",
                 m.method,
-                m.map.mean(),
-                100.0 * bright,
-                instability_maps::BRIGHTNESS_EDGES[2]
+                m.instability.map.mean(),
+                100.0 * m.instability.share_from(bright),
+                m.flip.map.mean(),
+                100.0 * m.flip.share_from(bright),
             );
         }
-        println!("-> {} (where each method flickers)", folder.display());
+        println!(
+            "-> {} (where each method flickers and where it differs)",
+            folder.display()
+        );
     }
     if let Some(chart) = chart {
         println!(
