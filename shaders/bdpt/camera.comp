@@ -25,7 +25,7 @@
 #include "bdpt/bdpt.glsl"
 #include "common/transport_outputs.glsl"
 
-layout(local_size_x = 8, local_size_y = 8) in;
+layout(local_size_x = 16, local_size_y = 8) in;
 
 layout(set = 0, binding = 16, rgba32f) uniform image2D u_radiance;
 layout(set = 0, binding = 17, rgba32f) uniform writeonly image2D u_demodulated;
