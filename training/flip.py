@@ -82,16 +82,24 @@ def _taps(radius, f, device):
     return f(x)
 
 
+def _rows(x, kernel):
+    """Correlates each row of each channel of [N, C, H, W] with the 1-D `kernel` (odd length),
+    replicating the borders."""
+    r = kernel.numel() // 2
+    k = kernel.to(x.dtype).view(1, 1, 1, -1).expand(x.shape[1], 1, 1, -1)
+    return F.conv2d(F.pad(x, (r, r, 0, 0), mode="replicate"), k, groups=x.shape[1])
+
+
+def _columns(x, kernel):
+    """`_rows` along the columns."""
+    r = kernel.numel() // 2
+    k = kernel.to(x.dtype).view(1, 1, -1, 1).expand(x.shape[1], 1, -1, 1)
+    return F.conv2d(F.pad(x, (0, 0, r, r), mode="replicate"), k, groups=x.shape[1])
+
+
 def _separable(x, rows, columns):
-    """Correlates each channel of [N, C, H, W] with `rows` along x then `columns` along y (1-D
-    kernels, odd length), replicating the borders."""
-    c = x.shape[1]
-    rows = rows.to(x.dtype)
-    columns = columns.to(x.dtype)
-    r = rows.numel() // 2
-    x = F.conv2d(F.pad(x, (r, r, 0, 0), mode="replicate"), rows.view(1, 1, 1, -1).expand(c, 1, 1, -1), groups=c)
-    r = columns.numel() // 2
-    return F.conv2d(F.pad(x, (0, 0, r, r), mode="replicate"), columns.view(1, 1, -1, 1).expand(c, 1, -1, 1), groups=c)
+    """`rows` along x, then `columns` along y."""
+    return _columns(_rows(x, rows), columns)
 
 
 class Flip:
@@ -105,8 +113,11 @@ class Flip:
         def profile(b):
             return _taps(radius, lambda i: torch.exp(-(math.pi**2) * (i / ppd) ** 2 / b), device)
 
-        self.achromatic = profile(_CSF_A_B) / profile(_CSF_A_B).sum()
-        self.red_green = profile(_CSF_RG_B) / profile(_CSF_RG_B).sum()
+        def normalized(k):
+            return k / k.sum()
+
+        self.achromatic = normalized(profile(_CSF_A_B))
+        self.red_green = normalized(profile(_CSF_RG_B))
         terms = [(a * math.sqrt(math.pi / b), profile(b)) for a, b in _CSF_BY]
         total = sum(c * k.sum() ** 2 for c, k in terms)
         self.blue_yellow = [k * (c / total).sqrt() for c, k in terms]
@@ -122,8 +133,7 @@ class Flip:
             negative = -k.clamp_max(0.0).sum()
             return torch.where(k > 0, k / positive, torch.where(k < 0, k / negative, torch.zeros_like(k)))
 
-        smooth = _taps(feature_radius, gaussian, device)
-        self.smooth = smooth / smooth.sum()
+        self.smooth = normalized(_taps(feature_radius, gaussian, device))
         self.edge = balanced(_taps(feature_radius, lambda x: -x * gaussian(x), device))
         self.point = balanced(_taps(feature_radius, lambda x: (x * x / (sigma * sigma) - 1.0) * gaussian(x), device))
         green = hunt_lab(torch.tensor([0.0, 1.0, 0.0], dtype=torch.float64).view(1, 3, 1, 1))
@@ -143,11 +153,11 @@ class Flip:
         )
 
     def _responses(self, luminance):
-        smooth_rows = _separable(luminance, self.smooth, torch.ones(1, device=luminance.device))
+        smooth_rows = _rows(luminance, self.smooth)
 
         def magnitude(profile):
             along_x = _separable(luminance, profile, self.smooth)
-            along_y = _separable(smooth_rows, torch.ones(1, device=luminance.device), profile)
+            along_y = _columns(smooth_rows, profile)
             return (along_x**2 + along_y**2 + _EPS * _EPS).sqrt()
 
         return magnitude(self.edge), magnitude(self.point)

@@ -51,18 +51,17 @@ def srgb_encode(x):
     return torch.where(x <= 0.0031308, 12.92 * x, 1.055 * x.clamp_min(0.0031308) ** (1.0 / 2.4) - 0.055)
 
 
-def display(x, clamp=True):
-    """Linear radiance to display values: ACES then sRGB, what `lucid evaluate` compares SSIM on.
-    With `clamp=False` (the loss) values above white keep ACES's slowly rising curve (up to 1.03)
-    instead of being cut at 1, so bright pixels keep a gradient."""
-    t = aces(x.clamp_min(0.0))
-    return srgb_encode(t.clamp(0.0, 1.0) if clamp else t)
-
-
 def display_linear(x):
     """Linear radiance to linear display light in [0, 1] (ACES, no sRGB encoding): what `lucid
     evaluate` gives FLIP."""
     return aces(x.clamp_min(0.0)).clamp(0.0, 1.0)
+
+
+def display(x, clamp=True):
+    """Linear radiance to display values: ACES then sRGB, what `lucid evaluate` compares SSIM on.
+    With `clamp=False` (the loss) values above white keep ACES's slowly rising curve (up to 1.03)
+    instead of being cut at 1, so bright pixels keep a gradient."""
+    return srgb_encode(display_linear(x) if clamp else aces(x.clamp_min(0.0)))
 
 
 _FLIPS = {}
