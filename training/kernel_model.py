@@ -45,14 +45,32 @@ TAPS = KERNEL * KERNEL
 EXTRA = unet_layers()[-1][2] - 3
 
 
-def heads(features):
+# The kernel heads' names, finest first; a network has the first `scales` of them (3 by default).
+HEAD_NAMES = ("out", "out_half", "out_quarter", "out_eighth")
+SCALES = 3
+
+
+def heads(features, scales=SCALES, history=False):
     """(name, input channels, output channels, resolution divisor) of the kernel heads on
-    `features` channels of decoder features."""
+    `features` channels of decoder features: each predicts its 25 kernel logits, every one but the
+    coarsest the weight `a` of the next coarser scale, the finest the model's other outputs, and
+    with `history` each coarser one the weight `h` of the warped output at its scale."""
+    if not 2 <= scales <= len(HEAD_NAMES):
+        raise ValueError(f"{scales} scales: the kernel decoder has 2 to {len(HEAD_NAMES)}")
     return [
-        ("out", features, TAPS + 1 + EXTRA, 1),
-        ("out_half", features, TAPS + 1, 2),
-        ("out_quarter", features, TAPS, 4),
+        (name, features, TAPS + (s < scales - 1) + (EXTRA if s == 0 else int(history)), 2**s)
+        for s, name in enumerate(HEAD_NAMES[:scales])
     ]
+
+
+def history_channel(s, scales):
+    """The channel of scale `s`'s head (s >= 1) that holds its history weight's logit."""
+    return TAPS + (s < scales - 1)
+
+
+def scales_of(names):
+    """How many scales a weights file's tensor `names` hold."""
+    return max(s + 1 for s, name in enumerate(HEAD_NAMES) if f"{name}.weight" in names)
 
 
 def apply_kernel(x, logits):
@@ -82,38 +100,57 @@ class KernelOutput(nn.Module):
     radiance in channels 0-2, then the other output channels), the radiance here being the
     multi-scale kernel-filtered input."""
 
-    def __init__(self, features):
+    def __init__(self, features, scales=SCALES, history=False):
         super().__init__()
+        self.scales = scales
+        self.history = history
         self.heads = nn.ModuleDict(
-            {name: nn.Conv2d(cin, cout, 3, padding=1) for name, cin, cout, _ in heads(features)}
+            {name: nn.Conv2d(cin, cout, 3, padding=1) for name, cin, cout, _ in heads(features, scales, history)}
         )
 
-    def forward(self, d0, radiance, fp16):
-        radiance = radiance.float().clamp_min(0.0)
-        o0 = half(self.heads["out"](d0), fp16)
-        r1 = pool(radiance)
-        r2 = pool(r1)
-        f1 = half(pool(d0), fp16)
-        f2 = half(pool(f1), fp16)
-        o1 = half(self.heads["out_half"](f1), fp16)
-        o2 = half(self.heads["out_quarter"](f2), fp16)
-        y2 = apply_kernel(half(torch.log1p(r2), fp16), o2)
-        y1 = apply_kernel(half(torch.log1p(r1), fp16), o1[:, :TAPS])
-        y1 = combine(y1, y2, torch.sigmoid(o1[:, TAPS : TAPS + 1].float()))
-        y0 = apply_kernel(half(torch.log1p(radiance), fp16), o0[:, :TAPS])
-        y0 = combine(y0, y1, torch.sigmoid(o0[:, TAPS : TAPS + 1].float()))
-        return torch.cat([y0, o0[:, TAPS + 1 :].float()], 1)
+    def forward(self, d0, radiance, fp16, warped, mask):
+        radiance = [radiance.float().clamp_min(0.0)]
+        features = [d0]
+        # The warped output (log radiance) and its mask pooled alike: at each coarser scale the
+        # mean of the valid pixels' history and the share of pixels that have one.
+        masked = [warped.float() * mask.float()]
+        share = [mask.float()]
+        for _ in range(1, self.scales):
+            radiance.append(pool(radiance[-1]))
+            features.append(half(pool(features[-1]), fp16))
+            masked.append(pool(masked[-1]))
+            share.append(pool(share[-1]))
+        logits = [half(head(f), fp16) for head, f in zip(self.heads.values(), features)]
+        y = None
+        for s in reversed(range(self.scales)):
+            o = logits[s]
+            filtered = apply_kernel(half(torch.log1p(radiance[s]), fp16), o[:, :TAPS])
+            if self.history and s > 0:
+                c = history_channel(s, self.scales)
+                h = share[s] * torch.sigmoid(o[:, c : c + 1].float())
+                history = masked[s] / share[s].clamp_min(1e-6)
+                filtered = filtered + h * (history - filtered)
+            y = filtered if y is None else combine(filtered, y, torch.sigmoid(o[:, TAPS : TAPS + 1].float()))
+        return torch.cat([y, logits[0][:, TAPS + 1 :].float()], 1)
 
 
 class KernelDenoiser(RecurrentDenoiser):
     """`RecurrentDenoiser` with the kernel-predicting output layer; same `step`, `forward`, state."""
 
-    def __init__(self, widths=WIDTHS):
+    def __init__(self, widths=WIDTHS, scales=SCALES, history=False):
         super().__init__(widths)
-        self.convs["out"] = KernelOutput(self.widths[-1])
+        self.convs["out"] = KernelOutput(self.widths[-1], scales, history)
 
-    def predict(self, d0, rec, accum, fp16_storage):
-        return self.convs["out"](d0, rec["demodulated"], fp16_storage)
+    @property
+    def scales(self):
+        return self.convs["out"].scales
+
+    @property
+    def history(self):
+        return self.convs["out"].history
+
+    def predict(self, d0, rec, accum, fp16_storage, warped, mask):
+        return self.convs["out"](d0, rec["demodulated"], fp16_storage, warped, mask)
 
     def named_convs(self):
         """Every convolution under its export name."""
@@ -121,16 +158,20 @@ class KernelDenoiser(RecurrentDenoiser):
         convs.update(self.convs["out"].heads.items())
         return convs
 
-    # Multiply-adds per full-resolution pixel outside the convolutions: the three 5x5 filters on
-    # 3 channels (full, 1/4 and 1/16 of the pixels) and the two compositing steps.
-    EXTRA_MACS_PER_PIXEL = 3 * TAPS * (1 + 1 / 4 + 1 / 16) + 3 * 2 * (1 + 1 / 4)
+    @property
+    def EXTRA_MACS_PER_PIXEL(self):
+        """Multiply-adds per full-resolution pixel outside the convolutions: a 5x5 filter on 3
+        channels at each scale (1, 1/4, 1/16... of the pixels) and a compositing step into each
+        but the coarsest."""
+        shares = [4.0**-s for s in range(self.scales)]
+        return 3 * TAPS * sum(shares) + 3 * 2 * sum(shares[:-1])
 
 
-def kernel_layers(widths=WIDTHS):
+def kernel_layers(widths=WIDTHS, scales=SCALES, history=False):
     """(name, input channels, output channels) of every exported layer of a network of `widths`,
-    in execution order."""
+    `scales` and `history`, in execution order."""
     layers = [(n, cin, cout) for n, cin, cout in unet_layers(widths) if n != "out"]
-    return layers + [(n, cin, cout) for n, cin, cout, _ in heads(widths[-1])]
+    return layers + [(n, cin, cout) for n, cin, cout, _ in heads(widths[-1], scales, history)]
 
 
 def export_tensors(model):

@@ -1,37 +1,69 @@
 #version 460
-// The kernel-predicting decoder's half and quarter scales (kernel.glsl): the log radiance
-// features.comp pooled to this scale, filtered by this scale's head, float32 rgb. The full scale is
-// filtered where output.comp composites it. At the coarsest scale (DETAIL), writes the difference
-// it adds to the next finer scale (training/kernel_model.py, `combine`: fine + a * (up(coarse) -
-// up(pool(fine))), with `up` bilinear and linear), upsampled in output.comp:
-//   detail = filtered - pool(finer filtered).
+// The kernel-predicting decoder's coarser scales (kernel.glsl; training/kernel_model.py,
+// `KernelOutput`): the log radiance features.comp pooled to this scale, filtered by this scale's
+// head, float32 rgb. With HISTORY, the filtered radiance then moves towards the warped output the
+// features pass pooled to this scale: filtered + h * (history - filtered), with h = share *
+// sigmoid(channel HISTORY_CHANNEL of the head) and the history the mean of the pooled pixels that
+// have one (share, their part of the pooled pixels). The full scale is filtered where output.comp
+// composites it.
+// Scales are composited coarse to fine (`combine`: fine + a * (up(coarse) - up(pool(fine))), `up`
+// bilinear and linear, `a` the sigmoid of the finer head's channel 25), as differences:
+//   detail = filtered [+ sigmoid(a) * up(coarser detail) (COARSER)] - pool(finer filtered) (DETAIL),
+// which the next finer scale upsamples (output.comp for the half scale's).
 #include "neural/tensor.glsl"
 #include "neural/kernel.glsl"
+#include "neural/upsample.glsl"
 
 layout(local_size_x = 8, local_size_y = 8) in;
 
 layout(constant_id = 0) const uint LOGIT_CHANNELS = 28;  // the head's output channels, padded to 4
 layout(constant_id = 1) const bool DETAIL = false;
+layout(constant_id = 2) const bool HISTORY = false;
+layout(constant_id = 3) const uint HISTORY_CHANNEL = 25;
+layout(constant_id = 4) const bool COARSER = false;
+
+// The head's channel that weighs the next coarser scale.
+const uint BLEND_CHANNEL = 25u;
 
 layout(set = 0, binding = 0, std430) readonly buffer Logits { uvec2 v[]; } b_logits;
 layout(set = 0, binding = 1, std430) readonly buffer Radiance { vec4 v[]; } b_radiance;
 layout(set = 0, binding = 2, std430) writeonly buffer Out { vec4 v[]; } b_out;
 // The next finer scale's filtered radiance (DETAIL).
 layout(set = 0, binding = 3, std430) readonly buffer Finer { vec4 v[]; } b_finer;
+// The masked warped output pooled to this scale (rgb) and its share (a) (HISTORY).
+layout(set = 0, binding = 4, std430) readonly buffer History { vec4 v[]; } b_history;
+// The next coarser scale's detail (COARSER).
+layout(set = 0, binding = 5, std430) readonly buffer Coarser { vec4 v[]; } b_coarser;
 
 layout(push_constant) uniform Params {
     uint width;  // this scale's size
     uint height;
     uint finer_width;
     uint finer_height;
+    uint coarser_width;
+    uint coarser_height;
 } params;
 
 vec4 kernel_logits(ivec2 pixel, uint c4) {
     return unpack_channels(b_logits.v[tensor_index(pixel, params.width, LOGIT_CHANNELS / 4u, c4)]);
 }
 
+float logit(ivec2 pixel, uint channel) {
+    return kernel_logits(pixel, channel / 4u)[channel % 4u];
+}
+
 vec3 kernel_radiance(ivec2 q) {
     return b_radiance.v[q.y * int(params.width) + q.x].rgb;
+}
+
+// The next coarser scale's detail bilinearly upsampled to `pixel` of this scale.
+vec3 upsampled_coarser(ivec2 pixel, ivec2 size) {
+    ivec2 coarse = ivec2(params.coarser_width, params.coarser_height);
+    ivec2 i0, i1;
+    vec2 f;
+    bilinear_taps(pixel, size, coarse, i0, i1, f);
+    return bilinear_mix(b_coarser.v[i0.y * coarse.x + i0.x].rgb, b_coarser.v[i0.y * coarse.x + i1.x].rgb,
+                        b_coarser.v[i1.y * coarse.x + i0.x].rgb, b_coarser.v[i1.y * coarse.x + i1.x].rgb, f);
 }
 
 void main() {
@@ -41,6 +73,14 @@ void main() {
         return;
     }
     vec3 filtered = apply_kernel(pixel, size);
+    if (HISTORY) {
+        vec4 history = b_history.v[pixel.y * size.x + pixel.x];
+        float h = history.a / (1.0 + exp(-logit(pixel, HISTORY_CHANNEL)));
+        filtered += h * (history.rgb / max(history.a, 1e-6) - filtered);
+    }
+    if (COARSER) {
+        filtered += upsampled_coarser(pixel, size) / (1.0 + exp(-logit(pixel, BLEND_CHANNEL)));
+    }
     if (DETAIL) {
         ivec2 finer = ivec2(params.finer_width, params.finer_height);
         vec3 pooled = vec3(0.0);

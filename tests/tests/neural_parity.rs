@@ -10,7 +10,11 @@
 //! history clamp) is checked too; the fourth (the same frames) is of a network of other widths
 //! (`references/neural_narrow_weights.safetensors`: the twelfth session's 32-channel weights
 //! narrowed by `training/train.py`'s `narrow` to 16 channels out of `dec0`, the committed network
-//! having 16 out of `enc0` too); `the_emission_stays_on_its_object` checks what that average is
+//! having 16 out of `enc0` too); the fifth (the first's frames) is of a kernel decoder of four
+//! scales whose coarser scales blend the warped output in (`references/neural_scales_weights.safetensors`:
+//! the nineteenth session's `--scales 4 --history 1` fine-tuning, `training/README.md`), so the
+//! eighth-resolution scale, the compositing between coarser scales and the pooled history are
+//! checked too; `the_emission_stays_on_its_object` checks what that average is
 //! for over more frames. The running means of the noisy radiance and their
 //! second moments (reprojected in the second frame) are also compared directly, so they are checked
 //! whatever weight the network gives them. Every inference path the device runs is checked
@@ -23,7 +27,8 @@ use half::f16;
 use lucid_engine::graph::{Access, RenderGraph};
 use lucid_engine::memory::ImageDesc;
 use lucid_passes::denoise::neural::{
-    self, Decoder, FrameInputs, InferencePath, Network, NetworkWeights, RECORD_CHANNELS,
+    self, Decoder, FrameInputs, InferencePath, KernelScales, Network, NetworkWeights,
+    RECORD_CHANNELS,
 };
 use safetensors::SafeTensors;
 
@@ -88,8 +93,9 @@ fn fixture(name: &'static str, weights: NetworkWeights) -> Fixture {
     }
 }
 
-/// The committed weights' fixture, the other decoder's, the emitters' and a narrower network's.
-fn fixtures() -> [Fixture; 4] {
+/// The committed weights' fixture, the other decoder's, the emitters', a narrower network's and one
+/// of four scales with history.
+fn fixtures() -> [Fixture; 5] {
     let load = |file: &str| {
         NetworkWeights::load(std::path::Path::new(&references(file)))
             .unwrap_or_else(|e| panic!("load {file}: {e}"))
@@ -108,6 +114,10 @@ fn fixtures() -> [Fixture; 4] {
             "neural_parity_narrow.safetensors",
             load("neural_narrow_weights.safetensors"),
         ),
+        fixture(
+            "neural_parity_scales.safetensors",
+            load("neural_scales_weights.safetensors"),
+        ),
     ];
     let decoders = fixtures.each_ref().map(|f| f.weights.decoder());
     assert!(
@@ -118,6 +128,13 @@ fn fixtures() -> [Fixture; 4] {
     assert!(
         widths.iter().any(|w| *w != widths[0]),
         "the fixtures cover networks of other widths: {widths:?}"
+    );
+    let scales = fixtures.each_ref().map(|f| f.weights.scales());
+    assert!(
+        scales.iter().any(|s| s.count == 4 && s.history)
+            && scales.contains(&KernelScales::COMMITTED),
+        "the fixtures cover kernel decoders of three and four scales, with and without history: \
+         {scales:?}"
     );
     fixtures
 }

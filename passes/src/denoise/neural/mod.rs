@@ -40,8 +40,8 @@ mod weights;
 
 pub use network::{InferencePath, Network};
 pub use weights::{
-    Decoder, Layer, NetworkWeights, WeightsError, Widths, BUILTIN, EMISSION_MOTION, FEATURES,
-    FORMAT, HIDDEN, KERNEL_TAPS,
+    Decoder, KernelScales, Layer, NetworkWeights, WeightsError, Widths, BUILTIN, EMISSION_MOTION,
+    FEATURES, FORMAT, HIDDEN, KERNEL_HEADS, KERNEL_TAPS,
 };
 
 use crate::denoise::gbuffer::GBuffer;
@@ -330,7 +330,6 @@ pub fn add_neural(
     inputs.read(&mut p);
     p.read("u_prev_output", prev[0])
         .read("u_ids", inputs.ids)
-        .specialize("POOLED_RADIANCE", kernel)
         .push_with(move |ctx| FeaturesParams {
             width,
             height,
@@ -343,18 +342,36 @@ pub fn add_neural(
     let robust = p.history("u_prev_robust", "u_robust", robust_history);
     let albedo = p.history("u_prev_albedo_mean", "u_albedo_mean", albedo_history);
     let emission = p.history("u_prev_emission_mean", "u_emission_mean", emission_history);
-    // The kernel decoder's radiance pooled to half and quarter resolution (16 bytes unwritten for
-    // the direct decoder).
-    let half = half_size(full);
-    let quarter = half_size(half);
-    let mut pooled_radiance = |binding: &str, size: (u32, u32)| {
-        let bytes = if kernel { vec4_bytes(size) } else { 16 };
-        p.create_buffer(binding, "neural.pooled_radiance", bytes)
-    };
-    let pooled_radiance = [
-        pooled_radiance("b_radiance_half", half),
-        pooled_radiance("b_radiance_quarter", quarter),
-    ];
+    // The kernel decoder's radiance, and with history its masked warped output, pooled to each
+    // coarser scale (16 bytes unwritten where not).
+    let scales = network.scales;
+    let levels = if kernel { scales.count - 1 } else { 0 };
+    let history = kernel && scales.history;
+    p.specialize("POOLED_LEVELS", levels)
+        .specialize("POOLED_HISTORY", history);
+    let mut level_size = full;
+    let mut pooled = Vec::new();
+    for (level, scale) in ["half", "quarter", "eighth"].into_iter().enumerate() {
+        level_size = half_size(level_size);
+        let wanted = (level as u32) < levels;
+        let bytes = |on: bool| if on { vec4_bytes(level_size) } else { 16 };
+        let radiance = p.create_buffer(
+            &format!("b_radiance_{scale}"),
+            "neural.pooled_radiance",
+            bytes(wanted),
+        );
+        let history_buffer = p.create_buffer(
+            &format!("b_history_{scale}"),
+            "neural.pooled_history",
+            bytes(wanted && history),
+        );
+        if wanted {
+            pooled.push(PooledScale {
+                radiance,
+                history: history.then_some(history_buffer),
+            });
+        }
+    }
     let features = Tensor {
         buffer: p.create_buffer(
             "b_features",
@@ -374,21 +391,33 @@ pub fn add_neural(
     let (e2, _) = conv(g, 2, p1.expect("pooled"), None, 0);
     let (bottleneck, _) = conv(g, 3, e2, None, 0);
     let (d1, _) = conv(g, 4, bottleneck, Some(e1), 0);
-    let (d0, [d0_half, d0_quarter]) = conv(g, 5, d1, Some(e0), if kernel { 2 } else { 0 });
+    let (d0, [d0_half, d0_quarter]) = conv(g, 5, d1, Some(e0), levels.min(2));
     let (net, _) = conv(g, 6, d0, None, 0);
-    // The kernel decoder's half scale (its head's output and filtered radiance) and the quarter
-    // scale's detail; the output pass filters the full scale and composites.
-    let scales = d0_half.zip(d0_quarter).map(|(f1, f2)| {
-        let (half_net, _) = conv(g, 7, f1, None, 0);
-        let (quarter_net, _) = conv(g, 8, f2, None, 0);
-        let [half_filtered, quarter_detail] =
-            add_kernel_scales(g, pooled_radiance, [half_net, quarter_net]);
-        (half_net, half_filtered, quarter_detail)
+    // The kernel decoder's coarser scales: the decoder features pooled to each (the eighth from
+    // the quarter), each scale's head, then its filtered radiance; the output pass filters the
+    // full scale and composites it with the half scale's filtered radiance and the quarter
+    // scale's detail.
+    let d0_eighth = d0_quarter
+        .filter(|_| levels >= 3)
+        .map(|quarter| add_pool(g, quarter, "neural.dec0.pool_eighth"));
+    let coarse_features: Vec<Tensor> = [d0_half, d0_quarter, d0_eighth]
+        .into_iter()
+        .flatten()
+        .take(levels as usize)
+        .collect();
+    let coarse = (!coarse_features.is_empty()).then(|| {
+        let heads: Vec<Tensor> = coarse_features
+            .into_iter()
+            .enumerate()
+            .map(|(level, features)| conv(g, 7 + level, features, None, 0).0)
+            .collect();
+        let (half_filtered, quarter_detail) = add_kernel_scales(g, &pooled, &heads, scales);
+        (heads[0], half_filtered, quarter_detail)
     });
 
     let mut p = g.compute_pass(&format!("{prefix}.output"), &OUTPUT);
     // The direct decoder has no scales: its output is bound in their place (not read).
-    let (half_net, half_filtered, quarter_detail) = scales.unwrap_or((net, net.buffer, net.buffer));
+    let (half_net, half_filtered, quarter_detail) = coarse.unwrap_or((net, net.buffer, net.buffer));
     p.read("b_features", features.buffer)
         .read("b_net", net.buffer)
         .read("b_half_logits", half_net.buffer)
@@ -415,36 +444,73 @@ pub fn add_neural(
     }
 }
 
-/// Adds the kernel decoder's coarser scales (`training/kernel_model.py`, `KernelOutput`) from its
-/// half and quarter heads' outputs and the log radiance the features pass pooled to their
-/// resolutions: each scale's log radiance filtered by its per-pixel kernels
-/// (`kernel_filter.comp`), the quarter scale as the difference it adds to the half scale. Returns
-/// the half scale's filtered radiance and the quarter scale's difference, which the output pass
-/// composites with the full scale it filters.
+/// What the features pass pooled to one of the kernel decoder's coarser scales: the log radiance,
+/// and with history the masked warped output and its share.
+struct PooledScale {
+    radiance: BufferHandle,
+    history: Option<BufferHandle>,
+}
+
+/// Adds the kernel decoder's coarser scales (`training/kernel_model.py`, `KernelOutput`) from their
+/// heads' outputs (`heads`, half resolution first) and what the features pass pooled to them: each
+/// scale's log radiance filtered by its per-pixel kernels (`kernel_filter.comp`), with history
+/// moved towards the pooled warped output; the coarsest as the difference it adds to the next finer
+/// scale, and each between the coarsest and the half as its own difference with the coarser ones'
+/// composited in. Returns the half scale's filtered radiance and the quarter scale's difference,
+/// which the output pass composites with the full scale it filters.
 fn add_kernel_scales(
     g: &mut RenderGraph,
-    radiance: [BufferHandle; 2],
-    heads: [Tensor; 2],
-) -> [BufferHandle; 2] {
-    let filter = |g: &mut RenderGraph, level: usize, finer: Option<BufferHandle>| {
-        let size = heads[level].size;
-        let finer_size = heads[0].size;
-        let name = format!("neural.kernel_filter.{}", ["half", "quarter"][level]);
+    pooled: &[PooledScale],
+    heads: &[Tensor],
+    scales: KernelScales,
+) -> (BufferHandle, BufferHandle) {
+    const NAMES: [&str; 3] = ["half", "quarter", "eighth"];
+    // Scale `index` (0 the half) filtered; a difference from `finer`, with `coarser`'s composited.
+    let filter = |g: &mut RenderGraph,
+                  index: usize,
+                  finer: Option<BufferHandle>,
+                  coarser: Option<BufferHandle>| {
+        let head = heads[index];
+        let finer_size = if index == 0 {
+            head.size
+        } else {
+            heads[index - 1].size
+        };
+        let coarser_size = heads.get(index + 1).map_or(head.size, |h| h.size);
+        let kind = if finer.is_some() { "detail" } else { "filter" };
+        let name = format!("neural.kernel_{kind}.{}", NAMES[index]);
+        let radiance = pooled[index].radiance;
         let mut p = g.compute_pass(&name, &KERNEL_FILTER);
-        p.read("b_logits", heads[level].buffer)
-            .read("b_radiance", radiance[level])
-            // Without a finer scale the radiance is bound in its place (not read).
-            .read("b_finer", finer.unwrap_or(radiance[level]))
-            .specialize("LOGIT_CHANNELS", heads[level].channels)
+        // Buffers a pass does not read are bound as the radiance (not read).
+        p.read("b_logits", head.buffer)
+            .read("b_radiance", radiance)
+            .read("b_finer", finer.unwrap_or(radiance))
+            .read("b_history", pooled[index].history.unwrap_or(radiance))
+            .read("b_coarser", coarser.unwrap_or(radiance))
+            .specialize("LOGIT_CHANNELS", head.channels)
             .specialize("DETAIL", finer.is_some())
-            .push(&[size.0, size.1, finer_size.0, finer_size.1]);
-        let out = p.create_buffer("b_out", "neural.kernel_filtered", vec4_bytes(size));
-        p.dispatch([size.0, size.1, 1]);
+            .specialize("HISTORY", scales.history)
+            .specialize("HISTORY_CHANNEL", scales.history_channel(index as u32 + 1))
+            .specialize("COARSER", coarser.is_some())
+            .push(&[
+                head.size.0,
+                head.size.1,
+                finer_size.0,
+                finer_size.1,
+                coarser_size.0,
+                coarser_size.1,
+            ]);
+        let out = p.create_buffer("b_out", "neural.kernel_filtered", vec4_bytes(head.size));
+        p.dispatch([head.size.0, head.size.1, 1]);
         out
     };
-    let half = filter(g, 0, None);
-    let quarter = filter(g, 1, Some(half));
-    [half, quarter]
+    let coarsest = heads.len() - 1;
+    let filtered: Vec<BufferHandle> = (0..coarsest).map(|i| filter(g, i, None, None)).collect();
+    let mut detail = filter(g, coarsest, Some(filtered[coarsest - 1]), None);
+    for index in (1..coarsest).rev() {
+        detail = filter(g, index, Some(filtered[index - 1]), Some(detail));
+    }
+    (filtered[0], detail)
 }
 
 /// Bytes of a float32 vec4 per pixel at `size`.

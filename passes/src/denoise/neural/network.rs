@@ -1,6 +1,6 @@
 //! The network's weights on the GPU and the way its convolutions run there.
 
-use super::weights::{Decoder, Layer, NetworkWeights};
+use super::weights::{Decoder, KernelScales, Layer, NetworkWeights};
 use lucid_engine::memory::Buffer;
 use lucid_engine::{Context, EngineError, Result};
 use std::sync::Arc;
@@ -70,6 +70,8 @@ impl InferencePath {
 #[derive(Clone)]
 pub struct Network {
     pub(super) decoder: Decoder,
+    /// [`NetworkWeights::scales`].
+    pub(super) scales: KernelScales,
     /// [`NetworkWeights::emission_motion`].
     pub(super) emission_motion: f32,
     /// The layers, in execution order ([`Decoder::layers`]).
@@ -110,6 +112,7 @@ impl Network {
         };
         Ok(Self {
             decoder: weights.decoder(),
+            scales: weights.scales(),
             emission_motion: weights.emission_motion(),
             layers: weights.layers().to_vec(),
             buffer,

@@ -100,14 +100,56 @@ impl Widths {
     }
 }
 
+/// The kernel decoder's heads, finest first ([`KernelScales::count`] of them; `HEAD_NAMES` in
+/// `training/kernel_model.py`).
+pub const KERNEL_HEADS: [&str; 4] = ["out", "out_half", "out_quarter", "out_eighth"];
+
+/// The kernel decoder's scales, from its weights' tensors: how many (full resolution and each
+/// coarser one half the previous, 3 or 4), and whether the coarser ones blend the warped output in
+/// (`KernelOutput` in `training/kernel_model.py`, `history`).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct KernelScales {
+    /// Scales, full resolution first: 3 (to quarter resolution) or 4 (to an eighth).
+    pub count: u32,
+    /// Whether each coarser scale's head predicts a weight `h` of the warped output pooled to it.
+    pub history: bool,
+}
+
+impl KernelScales {
+    /// The committed network's: three scales, no history at the coarser ones.
+    pub const COMMITTED: KernelScales = KernelScales {
+        count: 3,
+        history: false,
+    };
+
+    /// Output channels of head `level` (0 the full resolution's): its kernel's 25 logits, the
+    /// weight `a` of the next coarser scale (all but the coarsest), the history weight `h` (the
+    /// coarser scales, with history) and at full resolution the blend weight.
+    pub fn head_channels(self, level: u32) -> u32 {
+        let coarser = u32::from(level + 1 < self.count);
+        let extra = if level == 0 {
+            1
+        } else {
+            u32::from(self.history)
+        };
+        KERNEL_TAPS + coarser + extra
+    }
+
+    /// The channel of head `level` (1 or more) that holds its history weight's logit.
+    pub fn history_channel(self, level: u32) -> u32 {
+        KERNEL_TAPS + u32::from(level + 1 < self.count)
+    }
+}
+
 /// What the network's last layers predict (the weights file's `decoder` metadata; measured
 /// against each other in `training/README.md`).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum Decoder {
     /// Log radiance and a blend weight per pixel (`training/model.py`): one output layer.
     Direct,
-    /// Per-pixel 5x5 kernels filtering the noisy radiance at full, half and quarter resolution,
-    /// composited coarse to fine (`training/kernel_model.py`): three output layers, one a scale.
+    /// Per-pixel 5x5 kernels filtering the noisy radiance at full, half, quarter (and eighth)
+    /// resolution, composited coarse to fine (`training/kernel_model.py`): one output layer a
+    /// scale ([`KernelScales`]).
     Kernel,
 }
 
@@ -126,18 +168,19 @@ impl Decoder {
             .find(|d| d.name() == name)
     }
 
-    /// Every layer of a network of `widths` with this decoder, in execution order:
-    /// [`Widths::unet`], then the output layers on the last decoder features (the kernel
-    /// decoder's at full, half and quarter resolution).
-    pub fn layers(self, widths: Widths) -> Vec<Layer> {
+    /// Every layer of a network of `widths` with this decoder (the kernel decoder's of `scales`),
+    /// in execution order: [`Widths::unet`], then the output layers on the last decoder features
+    /// (the kernel decoder's finest first).
+    pub fn layers(self, widths: Widths, scales: KernelScales) -> Vec<Layer> {
         let features = widths.0[5];
         let outputs = match self {
             Decoder::Direct => vec![Layer::output("out", features, 4)],
-            Decoder::Kernel => vec![
-                Layer::output("out", features, KERNEL_TAPS + 2),
-                Layer::output("out_half", features, KERNEL_TAPS + 1),
-                Layer::output("out_quarter", features, KERNEL_TAPS),
-            ],
+            Decoder::Kernel => (0..scales.count)
+                .map(|level| {
+                    let name = KERNEL_HEADS[level as usize];
+                    Layer::output(name, features, scales.head_channels(level))
+                })
+                .collect(),
         };
         widths.unet().into_iter().chain(outputs).collect()
     }
@@ -216,6 +259,7 @@ pub const EMISSION_MOTION: f32 = 0.0;
 #[derive(Clone, Debug, PartialEq)]
 pub struct NetworkWeights {
     decoder: Decoder,
+    scales: KernelScales,
     emission_motion: f32,
     widths: Widths,
     layers: Vec<Layer>,
@@ -283,7 +327,8 @@ impl NetworkWeights {
         };
         let tensors = SafeTensors::deserialize(bytes).map_err(|e| format_error(e.to_string()))?;
         let widths = read_widths(&tensors, file)?;
-        let layers = decoder.layers(widths);
+        let scales = read_scales(&tensors);
+        let layers = decoder.layers(widths, scales);
         let mut packed = Vec::with_capacity(layers.iter().map(Layer::packed_len).sum());
         let mut offsets = Vec::with_capacity(layers.len());
         for layer in &layers {
@@ -310,6 +355,7 @@ impl NetworkWeights {
         }
         Ok(Self {
             decoder,
+            scales,
             emission_motion,
             widths,
             layers,
@@ -323,6 +369,11 @@ impl NetworkWeights {
         self.decoder
     }
 
+    /// The kernel decoder's scales (for the direct decoder [`KernelScales::COMMITTED`], unused).
+    pub fn scales(&self) -> KernelScales {
+        self.scales
+    }
+
     /// The least weight of this frame's emission per pixel of motion in its average over time
     /// (the file's `emission_motion` metadata, else [`EMISSION_MOTION`]).
     pub fn emission_motion(&self) -> f32 {
@@ -334,7 +385,8 @@ impl NetworkWeights {
         self.widths
     }
 
-    /// The layers, in execution order ([`Decoder::layers`] of [`NetworkWeights::widths`]).
+    /// The layers, in execution order ([`Decoder::layers`] of [`NetworkWeights::widths`] and
+    /// [`NetworkWeights::scales`]).
     pub fn layers(&self) -> &[Layer] {
         &self.layers
     }
@@ -375,6 +427,22 @@ fn read_widths(tensors: &SafeTensors<'_>, file: &str) -> Result<Widths, WeightsE
             })?;
     }
     Ok(Widths(widths))
+}
+
+/// The kernel decoder's scales: four where the file has an eighth-resolution head, else three;
+/// history where the coarsest head has a channel besides its kernel's. The heads' shapes are
+/// checked as they are read.
+fn read_scales(tensors: &SafeTensors<'_>) -> KernelScales {
+    let count = if tensors.tensor("out_eighth.weight").is_ok() {
+        4
+    } else {
+        3
+    };
+    let coarsest = format!("{}.weight", KERNEL_HEADS[count as usize - 1]);
+    let history = tensors
+        .tensor(&coarsest)
+        .is_ok_and(|view| view.shape().first() == Some(&(KERNEL_TAPS as usize + 1)));
+    KernelScales { count, history }
 }
 
 /// The float32 values of tensor `name`, which must have `shape` and be finite.
@@ -424,6 +492,17 @@ mod tests {
         file_with_metadata(format, decoder, Widths::COMMITTED, &[], edit)
     }
 
+    /// A kernel decoder's weights file of `scales`, every tensor 0.5.
+    fn file_of_scales(scales: KernelScales) -> Vec<u8> {
+        file_with_layers(
+            FORMAT,
+            Decoder::Kernel,
+            &Decoder::Kernel.layers(Widths::COMMITTED, scales),
+            &[],
+            |_, _, _| true,
+        )
+    }
+
     /// [`file_for`] of a network of `widths` with more metadata entries.
     fn file_with_metadata(
         format: &str,
@@ -432,8 +511,20 @@ mod tests {
         extra: &[(&str, &str)],
         edit: impl Fn(&str, &mut Vec<usize>, &mut Vec<f32>) -> bool,
     ) -> Vec<u8> {
+        let layers = decoder.layers(widths, KernelScales::COMMITTED);
+        file_with_layers(format, decoder, &layers, extra, edit)
+    }
+
+    /// [`file_with_metadata`] with the tensors of `layers`.
+    fn file_with_layers(
+        format: &str,
+        decoder: Decoder,
+        layers: &[Layer],
+        extra: &[(&str, &str)],
+        edit: impl Fn(&str, &mut Vec<usize>, &mut Vec<f32>) -> bool,
+    ) -> Vec<u8> {
         let mut tensors = Vec::new();
-        for layer in decoder.layers(widths) {
+        for layer in layers {
             let (cin, cout) = (layer.inputs() as usize, layer.out as usize);
             for (kind, shape) in [("weight", vec![cout, cin, 3, 3]), ("bias", vec![cout])] {
                 let name = format!("{}.{kind}", layer.name);
@@ -486,8 +577,57 @@ mod tests {
             let good = file_for(FORMAT, decoder, |_, _, _| true);
             let loaded = NetworkWeights::from_bytes(&good, "w").expect("loads");
             assert_eq!(loaded.decoder(), decoder);
-            assert_eq!(loaded.layers(), decoder.layers(Widths::COMMITTED));
+            let layers = decoder.layers(Widths::COMMITTED, KernelScales::COMMITTED);
+            assert_eq!(loaded.layers(), layers);
         }
+    }
+
+    #[test]
+    fn the_scales_come_from_the_heads() {
+        assert_eq!(NetworkWeights::builtin().scales(), KernelScales::COMMITTED);
+        for count in [3, 4] {
+            for history in [false, true] {
+                let scales = KernelScales { count, history };
+                let weights =
+                    NetworkWeights::from_bytes(&file_of_scales(scales), "w").expect("loads");
+                assert_eq!(weights.scales(), scales);
+                let heads: Vec<_> = weights.layers()[6..]
+                    .iter()
+                    .map(|l| (l.name, l.out))
+                    .collect();
+                let coarse = 25 + u32::from(history);
+                let mut expected = vec![("out", 27), ("out_half", coarse + 1)];
+                if count == 4 {
+                    expected.push(("out_quarter", coarse + 1));
+                }
+                expected.push((KERNEL_HEADS[count as usize - 1], coarse));
+                assert_eq!(heads, expected, "{scales:?}");
+            }
+        }
+        let scales = KernelScales {
+            count: 4,
+            history: true,
+        };
+        assert_eq!([1, 2, 3].map(|l| scales.history_channel(l)), [26, 26, 25]);
+        // An eighth head that reads other channels than dec0 writes is refused, naming it.
+        let bytes = file_with_layers(
+            FORMAT,
+            Decoder::Kernel,
+            &Decoder::Kernel.layers(Widths::COMMITTED, scales),
+            &[],
+            |name, shape, values| {
+                if name == "out_eighth.weight" {
+                    shape[1] = 32;
+                    values.resize(shape.iter().product(), 0.5);
+                }
+                true
+            },
+        );
+        let message = error(&bytes);
+        assert!(
+            message.contains("out_eighth.weight") && message.contains("expected [26, 16, 3, 3]"),
+            "{message}"
+        );
     }
 
     #[test]
@@ -523,7 +663,10 @@ mod tests {
         let bytes = file_with_metadata(FORMAT, Decoder::Kernel, slim, &[], |_, _, _| true);
         let weights = NetworkWeights::from_bytes(&bytes, "w").expect("loads");
         assert_eq!(weights.widths(), slim);
-        assert_eq!(weights.layers(), Decoder::Kernel.layers(slim));
+        assert_eq!(
+            weights.layers(),
+            Decoder::Kernel.layers(slim, KernelScales::COMMITTED)
+        );
         let dec0 = weights.layers()[5];
         assert_eq!((dec0.in0, dec0.in1, dec0.out), (32, 32, 16));
         assert!(weights.layers()[6..].iter().all(|head| head.in0 == 16));
