@@ -7,14 +7,14 @@ U-Net convolutions of `model.unet_layers` up to `dec0`, the temporal blend with 
 the recurrent state. The output layer `out` is replaced by `KernelOutput`:
 
 - **Three scales** (Vogels et al. 2018, "Denoising with kernel prediction and asymmetric loss
-  functions"): the demodulated radiance at full resolution, average-pooled 2x2 (half) and 4x4
-  (quarter), each as log(1 + radiance) (pooled in linear space, then the log), so that the
-  coarser scales gather 4 and 16 samples per pixel of a 1-sample frame.
+  functions"; `scales`, four with an eighth): the demodulated radiance at full resolution,
+  average-pooled 2x2 (half) and 4x4 (quarter), each as log(1 + radiance) (pooled in linear space,
+  then the log), so that the coarser scales gather 4 and 16 samples per pixel of a 1-sample frame.
 - **Kernels from pooled decoder features**: the last decoder features (`dec0`, full resolution)
-  go through three 3x3 convolution heads: `out` on them at full resolution, `out_half` on them
-  average-pooled to half resolution, `out_quarter` on them pooled again to quarter resolution. Each
-  head predicts the 25 weights of a 5x5 kernel per pixel (softmax, so the filter is a weighted
-  mean; borders replicate), applied to the log radiance of its scale.
+  go through a 3x3 convolution head a scale: `out` on them at full resolution, `out_half` on them
+  average-pooled to half resolution, `out_quarter` on them pooled again to quarter resolution (and
+  `out_eighth`). Each head predicts the 25 weights of a 5x5 kernel per pixel (softmax, so the
+  filter is a weighted mean; borders replicate), applied to the log radiance of its scale.
 - **Coarse-to-fine**: `fine' = fine - a * U(D(fine)) + a * U(coarse)` with D the 2x2 average, U
   bilinear upsampling and `a = sigmoid(.)` a per-pixel weight predicted by the finer scale's head
   (`out_half` for quarter into half, `out` for half into full): the coarse result replaces the
@@ -27,7 +27,7 @@ the recurrent state. The output layer `out` is replaced by `KernelOutput`:
   defines them.
 
 Export (`export_tensors`): the layers of `model.unet_layers` under their names (`out` with its
-25 + 1 + (outputs - 3) channels) plus `out_half` and `out_quarter`, float32.
+25 + 1 + (outputs - 3) channels) plus the coarser heads (`heads`), float32.
 
 With `fp16_storage` the heads' outputs are rounded to half precision, as the shaders store them;
 the filtered scales stay float32, as the shaders keep them.
@@ -50,22 +50,16 @@ HEAD_NAMES = ("out", "out_half", "out_quarter", "out_eighth")
 SCALES = 3
 
 
-def heads(features, scales=SCALES, history=False):
+def heads(features, scales=SCALES):
     """(name, input channels, output channels, resolution divisor) of the kernel heads on
     `features` channels of decoder features: each predicts its 25 kernel logits, every one but the
-    coarsest the weight `a` of the next coarser scale, the finest the model's other outputs, and
-    with `history` each coarser one the weight `h` of the warped output at its scale."""
-    if not 2 <= scales <= len(HEAD_NAMES):
-        raise ValueError(f"{scales} scales: the kernel decoder has 2 to {len(HEAD_NAMES)}")
+    coarsest the weight `a` of the next coarser scale, and the finest the model's other outputs."""
+    if not 3 <= scales <= len(HEAD_NAMES):
+        raise ValueError(f"{scales} scales: the kernel decoder has 3 to {len(HEAD_NAMES)}")
     return [
-        (name, features, TAPS + (s < scales - 1) + (EXTRA if s == 0 else int(history)), 2**s)
+        (name, features, TAPS + (s < scales - 1) + (EXTRA if s == 0 else 0), 2**s)
         for s, name in enumerate(HEAD_NAMES[:scales])
     ]
-
-
-def history_channel(s, scales):
-    """The channel of scale `s`'s head (s >= 1) that holds its history weight's logit."""
-    return TAPS + (s < scales - 1)
 
 
 def scales_of(names):
@@ -100,36 +94,23 @@ class KernelOutput(nn.Module):
     radiance in channels 0-2, then the other output channels), the radiance here being the
     multi-scale kernel-filtered input."""
 
-    def __init__(self, features, scales=SCALES, history=False):
+    def __init__(self, features, scales=SCALES):
         super().__init__()
         self.scales = scales
-        self.history = history
         self.heads = nn.ModuleDict(
-            {name: nn.Conv2d(cin, cout, 3, padding=1) for name, cin, cout, _ in heads(features, scales, history)}
+            {name: nn.Conv2d(cin, cout, 3, padding=1) for name, cin, cout, _ in heads(features, scales)}
         )
 
-    def forward(self, d0, radiance, fp16, warped, mask):
+    def forward(self, d0, radiance, fp16):
         radiance = [radiance.float().clamp_min(0.0)]
         features = [d0]
-        # The warped output (log radiance) and its mask pooled alike: at each coarser scale the
-        # mean of the valid pixels' history and the share of pixels that have one.
-        masked = [warped.float() * mask.float()]
-        share = [mask.float()]
         for _ in range(1, self.scales):
             radiance.append(pool(radiance[-1]))
             features.append(half(pool(features[-1]), fp16))
-            masked.append(pool(masked[-1]))
-            share.append(pool(share[-1]))
         logits = [half(head(f), fp16) for head, f in zip(self.heads.values(), features)]
         y = None
-        for s in reversed(range(self.scales)):
-            o = logits[s]
-            filtered = apply_kernel(half(torch.log1p(radiance[s]), fp16), o[:, :TAPS])
-            if self.history and s > 0:
-                c = history_channel(s, self.scales)
-                h = share[s] * torch.sigmoid(o[:, c : c + 1].float())
-                history = masked[s] / share[s].clamp_min(1e-6)
-                filtered = filtered + h * (history - filtered)
+        for r, o in reversed(list(zip(radiance, logits))):
+            filtered = apply_kernel(half(torch.log1p(r), fp16), o[:, :TAPS])
             y = filtered if y is None else combine(filtered, y, torch.sigmoid(o[:, TAPS : TAPS + 1].float()))
         return torch.cat([y, logits[0][:, TAPS + 1 :].float()], 1)
 
@@ -137,20 +118,16 @@ class KernelOutput(nn.Module):
 class KernelDenoiser(RecurrentDenoiser):
     """`RecurrentDenoiser` with the kernel-predicting output layer; same `step`, `forward`, state."""
 
-    def __init__(self, widths=WIDTHS, scales=SCALES, history=False):
+    def __init__(self, widths=WIDTHS, scales=SCALES):
         super().__init__(widths)
-        self.convs["out"] = KernelOutput(self.widths[-1], scales, history)
+        self.convs["out"] = KernelOutput(self.widths[-1], scales)
 
     @property
     def scales(self):
         return self.convs["out"].scales
 
-    @property
-    def history(self):
-        return self.convs["out"].history
-
-    def predict(self, d0, rec, accum, fp16_storage, warped, mask):
-        return self.convs["out"](d0, rec["demodulated"], fp16_storage, warped, mask)
+    def predict(self, d0, rec, accum, fp16_storage):
+        return self.convs["out"](d0, rec["demodulated"], fp16_storage)
 
     def named_convs(self):
         """Every convolution under its export name."""
@@ -167,11 +144,11 @@ class KernelDenoiser(RecurrentDenoiser):
         return 3 * TAPS * sum(shares) + 3 * 2 * sum(shares[:-1])
 
 
-def kernel_layers(widths=WIDTHS, scales=SCALES, history=False):
-    """(name, input channels, output channels) of every exported layer of a network of `widths`,
-    `scales` and `history`, in execution order."""
+def kernel_layers(widths=WIDTHS, scales=SCALES):
+    """(name, input channels, output channels) of every exported layer of a network of `widths`
+    and `scales`, in execution order."""
     layers = [(n, cin, cout) for n, cin, cout in unet_layers(widths) if n != "out"]
-    return layers + [(n, cin, cout) for n, cin, cout, _ in heads(widths[-1], scales, history)]
+    return layers + [(n, cin, cout) for n, cin, cout, _ in heads(widths[-1], scales)]
 
 
 def export_tensors(model):

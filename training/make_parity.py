@@ -27,7 +27,7 @@ from safetensors.torch import load_file, save_file
 
 from data import dataset_folders
 from model import OBJECT_BITS, RECORD_SIZE
-from train import build_model, file_history, file_scales, file_widths, load_weights
+from train import build_model, file_scales, file_widths, load_weights
 
 W, H = 32, 24
 
@@ -90,9 +90,7 @@ def main():
     ap.add_argument("--out", required=True)
     args = ap.parse_args()
     decoder = safe_open_metadata(args.weights).get("decoder", "direct")
-    model = build_model(
-        decoder, file_widths(args.weights), file_scales(args.weights), file_history(args.weights)
-    )
+    model = build_model(decoder, file_widths(args.weights), file_scales(args.weights))
     load_weights(model, args.weights)
     objects = None
     if args.data:

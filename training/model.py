@@ -358,7 +358,7 @@ class RecurrentDenoiser(nn.Module):
         b = r(c["bottleneck"](e2))
         d1 = r(c["dec1"](torch.cat([up(b), e1], 1)))
         d0 = r(c["dec0"](torch.cat([up(d1), e0], 1)))
-        o = half(self.predict(d0, rec, accum, fp16_storage, warped, mask), fp16_storage)
+        o = half(self.predict(d0, rec, accum, fp16_storage), fp16_storage)
         blend = mask * torch.sigmoid(o[:, 3:4])
         log_out = (o[:, 0:3] * (1.0 - blend) + warped * blend).clamp_min(0.0)
         log_out = half(log_out, fp16_storage)
@@ -375,11 +375,10 @@ class RecurrentDenoiser(nn.Module):
         }
         return radiance, state
 
-    def predict(self, d0, rec, accum, fp16_storage, warped, mask):
+    def predict(self, d0, rec, accum, fp16_storage):
         """The output layer on the last decoder features `d0` [B,widths[-1],H,W]: log radiance (3) and the
-        blend weight's logit (1). `rec` (the frame's record, split), `accum` (its running mean
-        and length) and the warped output with its mask serve output layers that filter the
-        radiance (`kernel_model.py`)."""
+        blend weight's logit (1). `rec` (the frame's record, split) and `accum` (its running mean
+        and length) serve output layers that filter the radiance (`kernel_model.py`)."""
         return self.convs["out"](d0)
 
     def forward(self, records, fp16_storage=False, objects=None):

@@ -42,14 +42,14 @@ from model import (
 )
 
 MODELS = DECODERS
-# The bias of a head's new weight channels (a new coarser scale's `a`, a history weight `h`) when
-# weights without them start a model with them (load_weights): sigmoid(-3), almost unused.
-NEW_CHANNEL_BIAS = -3.0
+# The bias of a new coarser scale's weight `a` in the head that composites it, when weights of
+# fewer scales start a model of more (load_weights): sigmoid(-3), almost unused.
+NEW_SCALE_BIAS = -3.0
 
 
-def build_model(name, widths=WIDTHS, scales=SCALES, history=False):
-    """The `name`d decoder's model of `widths` (`scales` and `history` for the kernel decoder)."""
-    return KernelDenoiser(widths, scales, history) if name == "kernel" else RecurrentDenoiser(widths)
+def build_model(name, widths=WIDTHS, scales=SCALES):
+    """The `name`d decoder's model of `widths` (`scales` for the kernel decoder)."""
+    return KernelDenoiser(widths, scales) if name == "kernel" else RecurrentDenoiser(widths)
 
 
 def file_widths(path):
@@ -62,14 +62,6 @@ def file_scales(path):
     """The kernel decoder's scales in a weights file train.py wrote."""
     with safe_open(path, "pt") as f:
         return scales_of(set(f.keys()))
-
-
-def file_history(path):
-    """Whether a kernel decoder's weights file train.py wrote blends the warped output in at its
-    coarser scales (its coarsest head has a channel besides the kernel's)."""
-    with safe_open(path, "pt") as f:
-        coarsest = HEAD_NAMES[scales_of(set(f.keys())) - 1]
-        return coarsest != "out" and f.get_slice(f"{coarsest}.weight").get_shape()[0] == TAPS + 1
 
 
 def named_convs(model):
@@ -122,9 +114,8 @@ def load_weights(model, path):
     fewer inputs, starts the first layer with the new inputs' weights at zero. The file's
     `emission_motion` metadata, when there, sets the model's. A file of a wider network starts a
     narrower model from the channels its layers weigh most (`narrow`). A file of fewer kernel scales
-    or without the coarser scales' history weights starts a model with them: the heads' new
-    channels (`a` of the new scale, `h`) start at sigmoid(NEW_CHANNEL_BIAS) everywhere, so that
-    what they weigh starts almost unused."""
+    starts a model of more: its coarsest head gains the weight `a` of the new scale, at
+    sigmoid(NEW_SCALE_BIAS) everywhere, so that the new scale starts almost unused."""
     tensors = load_file(path)
     widths = widths_of(tensors) if all(f"{name}.weight" in tensors for name in HIDDEN) else model.widths
     if widths != model.widths:
@@ -140,10 +131,9 @@ def load_weights(model, path):
             w, b = tensors.get(f"{name}.weight"), tensors.get(f"{name}.bias")
             if name == "enc0" and w is not None and w.shape[1] < conv.weight.shape[1]:
                 w = torch.cat([w, w.new_zeros(w.shape[0], conv.weight.shape[1] - w.shape[1], 3, 3)], 1)
-            missing = conv.weight.shape[0] - (0 if w is None else w.shape[0])
-            if name in HEAD_NAMES and w is not None and 0 < missing <= 2 and w.shape[1:] == conv.weight.shape[1:]:
-                w = torch.cat([w, w.new_zeros(missing, *w.shape[1:])])
-                b = torch.cat([b, b.new_full((missing,), NEW_CHANNEL_BIAS)])
+            if name in HEAD_NAMES and w is not None and w.shape[0] == TAPS == conv.weight.shape[0] - 1:
+                w = torch.cat([w, w.new_zeros(1, *w.shape[1:])])
+                b = torch.cat([b, b.new_full((1,), NEW_SCALE_BIAS)])
             if w is None or b is None or w.shape != conv.weight.shape or b.shape != conv.bias.shape:
                 skipped.append(name)
                 continue
@@ -240,12 +230,6 @@ def main():
         help="the kernel decoder's scales, full resolution and each coarser one half the previous",
     )
     ap.add_argument(
-        "--history",
-        type=int,
-        default=0,
-        help="1: the kernel decoder's coarser scales blend the warped output in, each by its own weight",
-    )
-    ap.add_argument(
         "--widths",
         default=",".join(str(w) for w in WIDTHS),
         help=f"the U-Net's widths, comma-separated: output channels of {', '.join(HIDDEN)}",
@@ -283,7 +267,7 @@ def main():
     widths = tuple(int(w) for w in args.widths.split(","))
     if len(widths) != len(HIDDEN) or any(w <= 0 or w % 16 for w in widths):
         raise SystemExit(f"--widths takes {len(HIDDEN)} multiples of 16")
-    model = build_model(args.model, widths, args.scales, bool(args.history)).to(dev)
+    model = build_model(args.model, widths, args.scales).to(dev)
     if args.init:
         load_weights(model, args.init)
     cost = model_cost(model, dev)
@@ -327,7 +311,7 @@ def main():
     train_seconds = time.time() - start
     final = validate(model, val)
     if isinstance(model, KernelDenoiser):
-        layers, tensors = kernel_layers(model.widths, model.scales, model.history), kernel_export_tensors(model)
+        layers, tensors = kernel_layers(model.widths, model.scales), kernel_export_tensors(model)
     else:
         layers, tensors = model.layers, export_tensors(model)
     fmt = FORMAT

@@ -15,10 +15,7 @@
 // training/kernel_model.py, `KernelOutput`), also the demodulated radiance (negative values
 // clamped) 2x2 average-pooled that many times, in linear space, then log(1 + x) rounded to half
 // precision, as kernel_filter.comp filters it at the half, quarter (and eighth) scales; odd edges
-// repeat the last pixel of each level, as pool.comp does. With POOLED_HISTORY (a kernel decoder
-// whose coarser scales blend the warped output in), also the warped output as stored (half
-// precision) times the mask, and the mask, pooled alike in float32: per pixel of each level the
-// mean of the masked history (rgb) and the share of pixels that have one (a).
+// repeat the last pixel of each level, as pool.comp does.
 #include "common/image_coords.glsl"
 #include "common/math.glsl"
 #define INPUTS_BINDING 16
@@ -31,7 +28,6 @@
 layout(local_size_x = 8, local_size_y = 8) in;
 
 layout(constant_id = 0) const uint POOLED_LEVELS = 0;
-layout(constant_id = 1) const bool POOLED_HISTORY = false;
 
 layout(set = 0, binding = 0, rgba16f) uniform readonly image2D u_prev_output;
 layout(set = 0, binding = 1, rgba32f) uniform readonly image2D u_prev_surface;
@@ -53,11 +49,7 @@ layout(set = 0, binding = 14, std430) writeonly buffer RadianceHalf { vec4 v[]; 
 layout(set = 0, binding = 15, std430) writeonly buffer RadianceQuarter {
     vec4 v[];
 } b_radiance_quarter;
-layout(set = 0, binding = 25, std430) writeonly buffer RadianceEighth { vec4 v[]; } b_radiance_eighth;
-// The pooled masked history and its share (POOLED_HISTORY), a pixel of each level.
-layout(set = 0, binding = 23, std430) writeonly buffer HistoryHalf { vec4 v[]; } b_history_half;
-layout(set = 0, binding = 24, std430) writeonly buffer HistoryQuarter { vec4 v[]; } b_history_quarter;
-layout(set = 0, binding = 26, std430) writeonly buffer HistoryEighth { vec4 v[]; } b_history_eighth;
+layout(set = 0, binding = 23, std430) writeonly buffer RadianceEighth { vec4 v[]; } b_radiance_eighth;
 // The G-buffer's ids: object (x), material, primitive, hit flag.
 layout(set = 0, binding = 22, rgba32ui) uniform readonly uimage2D u_ids;
 
@@ -104,9 +96,6 @@ uvec2 size() {
 shared vec3 s_radiance[8][8];
 shared vec3 s_radiance_half[4][4];
 shared vec3 s_radiance_quarter[2][2];
-shared vec4 s_history[8][8];
-shared vec4 s_history_half[4][4];
-shared vec4 s_history_quarter[2][2];
 // log(1 + emission) over the workgroup's tile and a one-pixel margin (the 3x3 neighbourhoods that
 // clamp the emission's history), each pixel's computed once (unset outside the image).
 shared vec3 s_log_emission[10][10];
@@ -136,12 +125,10 @@ vec4 log_pooled(vec3 mean) {
 }
 
 // Writes the workgroup's pixels of `radiance` (this invocation's, clamped to 0) 2x2 average-pooled
-// POOLED_LEVELS times, and with POOLED_HISTORY those of `history` (the masked warped output and
-// the mask). Every invocation of the workgroup calls it (barriers).
-void pool_scales(vec3 radiance, vec4 history) {
+// POOLED_LEVELS times. Every invocation of the workgroup calls it (barriers).
+void pool_radiance(vec3 radiance) {
     uvec2 local = gl_LocalInvocationID.xy;
     s_radiance[local.y][local.x] = radiance;
-    s_history[local.y][local.x] = history;
     barrier();
     ivec2 tile = ivec2(gl_WorkGroupID.xy);
     ivec2 last = ivec2(size()) - 1;
@@ -149,39 +136,25 @@ void pool_scales(vec3 radiance, vec4 history) {
     ivec2 half_pixel = tile * 4 + ivec2(local);
     if (all(lessThan(local, uvec2(4u))) && pixel_in_bounds(half_pixel, half_size)) {
         vec3 sum = vec3(0.0);
-        vec4 history_sum = vec4(0.0);
         for (int i = 0; i < 4; ++i) {
             ivec2 q = min(half_pixel * 2 + ivec2(i & 1, i >> 1), last) - tile * 8;
             sum += s_radiance[q.y][q.x];
-            history_sum += s_history[q.y][q.x];
         }
         vec3 mean = 0.25 * sum;
         s_radiance_half[local.y][local.x] = mean;
-        s_history_half[local.y][local.x] = 0.25 * history_sum;
-        uint at = half_pixel.y * half_size.x + half_pixel.x;
-        b_radiance_half.v[at] = log_pooled(mean);
-        if (POOLED_HISTORY) {
-            b_history_half.v[at] = 0.25 * history_sum;
-        }
+        b_radiance_half.v[half_pixel.y * half_size.x + half_pixel.x] = log_pooled(mean);
     }
     barrier();
     ivec2 quarter_size = (half_size + 1) / 2;
     ivec2 quarter_pixel = tile * 2 + ivec2(local);
     if (all(lessThan(local, uvec2(2u))) && pixel_in_bounds(quarter_pixel, quarter_size)) {
         vec3 mean = vec3(0.0);
-        vec4 history_mean = vec4(0.0);
         for (int i = 0; i < 4; ++i) {
             ivec2 q = min(quarter_pixel * 2 + ivec2(i & 1, i >> 1), half_size - 1) - tile * 4;
             mean += 0.25 * s_radiance_half[q.y][q.x];
-            history_mean += 0.25 * s_history_half[q.y][q.x];
         }
         s_radiance_quarter[local.y][local.x] = mean;
-        s_history_quarter[local.y][local.x] = history_mean;
-        uint at = quarter_pixel.y * quarter_size.x + quarter_pixel.x;
-        b_radiance_quarter.v[at] = log_pooled(mean);
-        if (POOLED_HISTORY) {
-            b_history_quarter.v[at] = history_mean;
-        }
+        b_radiance_quarter.v[quarter_pixel.y * quarter_size.x + quarter_pixel.x] = log_pooled(mean);
     }
     if (POOLED_LEVELS < 3u) {
         return;
@@ -190,23 +163,25 @@ void pool_scales(vec3 radiance, vec4 history) {
     ivec2 eighth_size = (quarter_size + 1) / 2;
     if (gl_LocalInvocationIndex == 0u && pixel_in_bounds(tile, eighth_size)) {
         vec3 mean = vec3(0.0);
-        vec4 history_mean = vec4(0.0);
         for (int i = 0; i < 4; ++i) {
             ivec2 q = min(tile * 2 + ivec2(i & 1, i >> 1), quarter_size - 1) - tile * 2;
             mean += 0.25 * s_radiance_quarter[q.y][q.x];
-            history_mean += 0.25 * s_history_quarter[q.y][q.x];
         }
-        uint at = tile.y * eighth_size.x + tile.x;
-        b_radiance_eighth.v[at] = log_pooled(mean);
-        if (POOLED_HISTORY) {
-            b_history_eighth.v[at] = history_mean;
-        }
+        b_radiance_eighth.v[tile.y * eighth_size.x + tile.x] = log_pooled(mean);
     }
 }
 
-// Writes the pixel's features, surface, running means and averaged albedo and emission; returns
-// its warped output as stored (half precision) times the mask, and the mask.
-vec4 write_features(ivec2 pixel, vec3 demodulated) {
+void main() {
+    ivec2 pixel = ivec2(gl_GlobalInvocationID.xy);
+    bool inside = pixel_in_bounds(pixel, ivec2(size()));
+    vec3 demodulated = inside ? max(input_demodulated(pixel), vec3(0.0)) : vec3(0.0);
+    if (POOLED_LEVELS > 0u) {
+        pool_radiance(demodulated);
+    }
+    load_log_emission();
+    if (!inside) {
+        return;
+    }
     vec4 normal_roughness = input_normal_roughness(pixel);
     vec3 normal = normal_roughness.xyz;
     float depth = input_depth(pixel);
@@ -352,16 +327,4 @@ vec4 write_features(ivec2 pixel, vec3 demodulated) {
     b_features.v[at + 3u] = pack_channels(vec4(warped.gb, mask, log_mean.r));
     b_features.v[at + 4u] = pack_channels(vec4(log_mean.gb, n / N_MAX, log_std));
     b_features.v[at + 5u] = pack_channels(vec4(log_robust, sqrt(robust_variance)));
-    return vec4(unpack_channels(pack_channels(vec4(warped, 0.0))).rgb * mask, mask);
-}
-
-void main() {
-    ivec2 pixel = ivec2(gl_GlobalInvocationID.xy);
-    bool inside = pixel_in_bounds(pixel, ivec2(size()));
-    vec3 demodulated = inside ? max(input_demodulated(pixel), vec3(0.0)) : vec3(0.0);
-    load_log_emission();
-    vec4 history = inside ? write_features(pixel, demodulated) : vec4(0.0);
-    if (POOLED_LEVELS > 0u) {
-        pool_scales(demodulated, history);
-    }
 }

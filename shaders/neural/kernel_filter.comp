@@ -1,11 +1,7 @@
 #version 460
 // The kernel-predicting decoder's coarser scales (kernel.glsl; training/kernel_model.py,
 // `KernelOutput`): the log radiance features.comp pooled to this scale, filtered by this scale's
-// head, float32 rgb. With HISTORY, the filtered radiance then moves towards the warped output the
-// features pass pooled to this scale: filtered + h * (history - filtered), with h = share *
-// sigmoid(channel HISTORY_CHANNEL of the head) and the history the mean of the pooled pixels that
-// have one (share, their part of the pooled pixels). The full scale is filtered where output.comp
-// composites it.
+// head, float32 rgb. The full scale is filtered where output.comp composites it.
 // Scales are composited coarse to fine (`combine`: fine + a * (up(coarse) - up(pool(fine))), `up`
 // bilinear and linear, `a` the sigmoid of the finer head's channel 25), as differences:
 //   detail = filtered [+ sigmoid(a) * up(coarser detail) (COARSER)] - pool(finer filtered) (DETAIL),
@@ -18,9 +14,7 @@ layout(local_size_x = 8, local_size_y = 8) in;
 
 layout(constant_id = 0) const uint LOGIT_CHANNELS = 28;  // the head's output channels, padded to 4
 layout(constant_id = 1) const bool DETAIL = false;
-layout(constant_id = 2) const bool HISTORY = false;
-layout(constant_id = 3) const uint HISTORY_CHANNEL = 25;
-layout(constant_id = 4) const bool COARSER = false;
+layout(constant_id = 2) const bool COARSER = false;
 
 // The head's channel that weighs the next coarser scale.
 const uint BLEND_CHANNEL = 25u;
@@ -30,10 +24,8 @@ layout(set = 0, binding = 1, std430) readonly buffer Radiance { vec4 v[]; } b_ra
 layout(set = 0, binding = 2, std430) writeonly buffer Out { vec4 v[]; } b_out;
 // The next finer scale's filtered radiance (DETAIL).
 layout(set = 0, binding = 3, std430) readonly buffer Finer { vec4 v[]; } b_finer;
-// The masked warped output pooled to this scale (rgb) and its share (a) (HISTORY).
-layout(set = 0, binding = 4, std430) readonly buffer History { vec4 v[]; } b_history;
 // The next coarser scale's detail (COARSER).
-layout(set = 0, binding = 5, std430) readonly buffer Coarser { vec4 v[]; } b_coarser;
+layout(set = 0, binding = 4, std430) readonly buffer Coarser { vec4 v[]; } b_coarser;
 
 layout(push_constant) uniform Params {
     uint width;  // this scale's size
@@ -46,10 +38,6 @@ layout(push_constant) uniform Params {
 
 vec4 kernel_logits(ivec2 pixel, uint c4) {
     return unpack_channels(b_logits.v[tensor_index(pixel, params.width, LOGIT_CHANNELS / 4u, c4)]);
-}
-
-float logit(ivec2 pixel, uint channel) {
-    return kernel_logits(pixel, channel / 4u)[channel % 4u];
 }
 
 vec3 kernel_radiance(ivec2 q) {
@@ -73,13 +61,9 @@ void main() {
         return;
     }
     vec3 filtered = apply_kernel(pixel, size);
-    if (HISTORY) {
-        vec4 history = b_history.v[pixel.y * size.x + pixel.x];
-        float h = history.a / (1.0 + exp(-logit(pixel, HISTORY_CHANNEL)));
-        filtered += h * (history.rgb / max(history.a, 1e-6) - filtered);
-    }
     if (COARSER) {
-        filtered += upsampled_coarser(pixel, size) / (1.0 + exp(-logit(pixel, BLEND_CHANNEL)));
+        float a = kernel_logits(pixel, BLEND_CHANNEL / 4u)[BLEND_CHANNEL % 4u];
+        filtered += upsampled_coarser(pixel, size) / (1.0 + exp(-a));
     }
     if (DETAIL) {
         ivec2 finer = ivec2(params.finer_width, params.finer_height);

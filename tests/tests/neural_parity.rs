@@ -11,10 +11,9 @@
 //! (`references/neural_narrow_weights.safetensors`: the twelfth session's 32-channel weights
 //! narrowed by `training/train.py`'s `narrow` to 16 channels out of `dec0`, the committed network
 //! having 16 out of `enc0` too); the fifth (the first's frames) is of a kernel decoder of four
-//! scales whose coarser scales blend the warped output in (`references/neural_scales_weights.safetensors`:
-//! the nineteenth session's `--scales 4 --history 1` fine-tuning, `training/README.md`), so the
-//! eighth-resolution scale, the compositing between coarser scales and the pooled history are
-//! checked too; `the_emission_stays_on_its_object` checks what that average is
+//! scales (`references/neural_scales_weights.safetensors`: the nineteenth session's `--scales 4`
+//! fine-tuning, `training/README.md`), so the eighth-resolution scale and the compositing between
+//! coarser scales are checked too; `the_emission_stays_on_its_object` checks what that average is
 //! for over more frames. The running means of the noisy radiance and their
 //! second moments (reprojected in the second frame) are also compared directly, so they are checked
 //! whatever weight the network gives them. Every inference path the device runs is checked
@@ -27,7 +26,7 @@ use half::f16;
 use lucid_engine::graph::{Access, RenderGraph};
 use lucid_engine::memory::ImageDesc;
 use lucid_passes::denoise::neural::{
-    self, Decoder, FrameInputs, InferencePath, KernelScales, Network, NetworkWeights,
+    self, Decoder, FrameInputs, InferencePath, Network, NetworkWeights, KERNEL_SCALES,
     RECORD_CHANNELS,
 };
 use safetensors::SafeTensors;
@@ -94,7 +93,7 @@ fn fixture(name: &'static str, weights: NetworkWeights) -> Fixture {
 }
 
 /// The committed weights' fixture, the other decoder's, the emitters', a narrower network's and one
-/// of four scales with history.
+/// of four scales.
 fn fixtures() -> [Fixture; 5] {
     let load = |file: &str| {
         NetworkWeights::load(std::path::Path::new(&references(file)))
@@ -131,10 +130,8 @@ fn fixtures() -> [Fixture; 5] {
     );
     let scales = fixtures.each_ref().map(|f| f.weights.scales());
     assert!(
-        scales.iter().any(|s| s.count == 4 && s.history)
-            && scales.contains(&KernelScales::COMMITTED),
-        "the fixtures cover kernel decoders of three and four scales, with and without history: \
-         {scales:?}"
+        scales.contains(&4) && scales.contains(&KERNEL_SCALES),
+        "the fixtures cover kernel decoders of three and four scales: {scales:?}"
     );
     fixtures
 }

@@ -11,15 +11,16 @@
 //!    reprojection mask, and two running means of the noisy radiance reprojected with the same
 //!    taps (as SVGF accumulates it: log mean, history length, log standard deviation of luminance;
 //!    and of the radiance range-compressed against fireflies): 24 half-precision channels; for the
-//!    kernel decoder also the radiance pooled to half and quarter resolution.
+//!    kernel decoder also the radiance pooled to each of its coarser scales.
 //! 3. **Network**: 3x3 convolutions at full, half and quarter resolution with skip connections
 //!    ([`Widths::unet`]: the widths are the weights file's), fused bias and ReLU, average pooling down and nearest upsampling up (read in
 //!    place by the next convolution); on the tensor cores where the device has them, else portable
 //!    compute ([`InferencePath`]).
 //! 4. **Decoder** ([`Decoder`]): either one output layer predicting log radiance directly, or
-//!    three predicting per-pixel 5x5 kernels that filter the noisy log radiance at full, half and
-//!    quarter resolution, composited coarse to fine (`shaders/neural/kernel*`; the full scale is
-//!    filtered and composited in the output pass, `output.comp`).
+//!    one a scale ([`KERNEL_HEADS`], three or four as the weights have them) predicting per-pixel
+//!    5x5 kernels that filter the noisy log radiance at full, half, quarter (and eighth)
+//!    resolution, composited coarse to fine (`shaders/neural/kernel*`; the full scale is filtered
+//!    and composited in the output pass, `output.comp`).
 //! 5. **Output**: the predicted log radiance blended with the reprojected history by a learned
 //!    per-pixel weight (only where the mask allows), kept as the next frame's history, and
 //!    re-modulated by the first hits' albedo plus emission averaged over time (reprojected with
@@ -40,8 +41,8 @@ mod weights;
 
 pub use network::{InferencePath, Network};
 pub use weights::{
-    Decoder, KernelScales, Layer, NetworkWeights, WeightsError, Widths, BUILTIN, EMISSION_MOTION,
-    FEATURES, FORMAT, HIDDEN, KERNEL_HEADS, KERNEL_TAPS,
+    Decoder, Layer, NetworkWeights, WeightsError, Widths, BUILTIN, EMISSION_MOTION, FEATURES,
+    FORMAT, HIDDEN, KERNEL_HEADS, KERNEL_SCALES, KERNEL_TAPS,
 };
 
 use crate::denoise::gbuffer::GBuffer;
@@ -342,34 +343,22 @@ pub fn add_neural(
     let robust = p.history("u_prev_robust", "u_robust", robust_history);
     let albedo = p.history("u_prev_albedo_mean", "u_albedo_mean", albedo_history);
     let emission = p.history("u_prev_emission_mean", "u_emission_mean", emission_history);
-    // The kernel decoder's radiance, and with history its masked warped output, pooled to each
-    // coarser scale (16 bytes unwritten where not).
-    let scales = network.scales;
-    let levels = if kernel { scales.count - 1 } else { 0 };
-    let history = kernel && scales.history;
-    p.specialize("POOLED_LEVELS", levels)
-        .specialize("POOLED_HISTORY", history);
+    // The kernel decoder's radiance pooled to each coarser scale (16 bytes unwritten where not).
+    let levels = if kernel { network.scales - 1 } else { 0 };
+    p.specialize("POOLED_LEVELS", levels);
     let mut level_size = full;
-    let mut pooled = Vec::new();
+    let mut pooled_radiance = Vec::new();
     for (level, scale) in ["half", "quarter", "eighth"].into_iter().enumerate() {
         level_size = half_size(level_size);
         let wanted = (level as u32) < levels;
-        let bytes = |on: bool| if on { vec4_bytes(level_size) } else { 16 };
-        let radiance = p.create_buffer(
+        let bytes = if wanted { vec4_bytes(level_size) } else { 16 };
+        let buffer = p.create_buffer(
             &format!("b_radiance_{scale}"),
             "neural.pooled_radiance",
-            bytes(wanted),
-        );
-        let history_buffer = p.create_buffer(
-            &format!("b_history_{scale}"),
-            "neural.pooled_history",
-            bytes(wanted && history),
+            bytes,
         );
         if wanted {
-            pooled.push(PooledScale {
-                radiance,
-                history: history.then_some(history_buffer),
-            });
+            pooled_radiance.push(buffer);
         }
     }
     let features = Tensor {
@@ -411,7 +400,7 @@ pub fn add_neural(
             .enumerate()
             .map(|(level, features)| conv(g, 7 + level, features, None, 0).0)
             .collect();
-        let (half_filtered, quarter_detail) = add_kernel_scales(g, &pooled, &heads, scales);
+        let (half_filtered, quarter_detail) = add_kernel_scales(g, &pooled_radiance, &heads);
         (heads[0], half_filtered, quarter_detail)
     });
 
@@ -444,25 +433,17 @@ pub fn add_neural(
     }
 }
 
-/// What the features pass pooled to one of the kernel decoder's coarser scales: the log radiance,
-/// and with history the masked warped output and its share.
-struct PooledScale {
-    radiance: BufferHandle,
-    history: Option<BufferHandle>,
-}
-
 /// Adds the kernel decoder's coarser scales (`training/kernel_model.py`, `KernelOutput`) from their
-/// heads' outputs (`heads`, half resolution first) and what the features pass pooled to them: each
-/// scale's log radiance filtered by its per-pixel kernels (`kernel_filter.comp`), with history
-/// moved towards the pooled warped output; the coarsest as the difference it adds to the next finer
-/// scale, and each between the coarsest and the half as its own difference with the coarser ones'
-/// composited in. Returns the half scale's filtered radiance and the quarter scale's difference,
-/// which the output pass composites with the full scale it filters.
+/// heads' outputs (`heads`, half resolution first) and the log radiance the features pass pooled
+/// to them (`radiance`): each scale's log radiance filtered by its per-pixel kernels
+/// (`kernel_filter.comp`); the coarsest as the difference it adds to the next finer scale, and each
+/// between the coarsest and the half as its own difference with the coarser ones' composited in.
+/// Returns the half scale's filtered radiance and the quarter scale's difference, which the output
+/// pass composites with the full scale it filters.
 fn add_kernel_scales(
     g: &mut RenderGraph,
-    pooled: &[PooledScale],
+    radiance: &[BufferHandle],
     heads: &[Tensor],
-    scales: KernelScales,
 ) -> (BufferHandle, BufferHandle) {
     const NAMES: [&str; 3] = ["half", "quarter", "eighth"];
     // Scale `index` (0 the half) filtered; a difference from `finer`, with `coarser`'s composited.
@@ -479,18 +460,15 @@ fn add_kernel_scales(
         let coarser_size = heads.get(index + 1).map_or(head.size, |h| h.size);
         let kind = if finer.is_some() { "detail" } else { "filter" };
         let name = format!("neural.kernel_{kind}.{}", NAMES[index]);
-        let radiance = pooled[index].radiance;
+        let radiance = radiance[index];
         let mut p = g.compute_pass(&name, &KERNEL_FILTER);
         // Buffers a pass does not read are bound as the radiance (not read).
         p.read("b_logits", head.buffer)
             .read("b_radiance", radiance)
             .read("b_finer", finer.unwrap_or(radiance))
-            .read("b_history", pooled[index].history.unwrap_or(radiance))
             .read("b_coarser", coarser.unwrap_or(radiance))
             .specialize("LOGIT_CHANNELS", head.channels)
             .specialize("DETAIL", finer.is_some())
-            .specialize("HISTORY", scales.history)
-            .specialize("HISTORY_CHANNEL", scales.history_channel(index as u32 + 1))
             .specialize("COARSER", coarser.is_some())
             .push(&[
                 head.size.0,

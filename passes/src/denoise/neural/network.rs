@@ -1,6 +1,6 @@
 //! The network's weights on the GPU and the way its convolutions run there.
 
-use super::weights::{Decoder, KernelScales, Layer, NetworkWeights};
+use super::weights::{Decoder, Layer, NetworkWeights};
 use lucid_engine::memory::Buffer;
 use lucid_engine::{Context, EngineError, Result};
 use std::sync::Arc;
@@ -71,7 +71,7 @@ impl InferencePath {
 pub struct Network {
     pub(super) decoder: Decoder,
     /// [`NetworkWeights::scales`].
-    pub(super) scales: KernelScales,
+    pub(super) scales: u32,
     /// [`NetworkWeights::emission_motion`].
     pub(super) emission_motion: f32,
     /// The layers, in execution order ([`Decoder::layers`]).

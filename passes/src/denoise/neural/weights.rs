@@ -100,45 +100,18 @@ impl Widths {
     }
 }
 
-/// The kernel decoder's heads, finest first ([`KernelScales::count`] of them; `HEAD_NAMES` in
-/// `training/kernel_model.py`).
+/// The kernel decoder's heads, finest first, one a scale (`HEAD_NAMES` in
+/// `training/kernel_model.py`): full resolution and each coarser one half the previous.
 pub const KERNEL_HEADS: [&str; 4] = ["out", "out_half", "out_quarter", "out_eighth"];
 
-/// The kernel decoder's scales, from its weights' tensors: how many (full resolution and each
-/// coarser one half the previous, 3 or 4), and whether the coarser ones blend the warped output in
-/// (`KernelOutput` in `training/kernel_model.py`, `history`).
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub struct KernelScales {
-    /// Scales, full resolution first: 3 (to quarter resolution) or 4 (to an eighth).
-    pub count: u32,
-    /// Whether each coarser scale's head predicts a weight `h` of the warped output pooled to it.
-    pub history: bool,
-}
+/// The committed network's kernel scales (`SCALES` in `training/kernel_model.py`).
+pub const KERNEL_SCALES: u32 = 3;
 
-impl KernelScales {
-    /// The committed network's: three scales, no history at the coarser ones.
-    pub const COMMITTED: KernelScales = KernelScales {
-        count: 3,
-        history: false,
-    };
-
-    /// Output channels of head `level` (0 the full resolution's): its kernel's 25 logits, the
-    /// weight `a` of the next coarser scale (all but the coarsest), the history weight `h` (the
-    /// coarser scales, with history) and at full resolution the blend weight.
-    pub fn head_channels(self, level: u32) -> u32 {
-        let coarser = u32::from(level + 1 < self.count);
-        let extra = if level == 0 {
-            1
-        } else {
-            u32::from(self.history)
-        };
-        KERNEL_TAPS + coarser + extra
-    }
-
-    /// The channel of head `level` (1 or more) that holds its history weight's logit.
-    pub fn history_channel(self, level: u32) -> u32 {
-        KERNEL_TAPS + u32::from(level + 1 < self.count)
-    }
+/// Output channels of the kernel decoder's head `level` (0 the full resolution's) in a network of
+/// `scales`: its kernel's 25 logits, the weight `a` of the next coarser scale (all but the
+/// coarsest) and at full resolution the blend weight.
+fn head_channels(level: u32, scales: u32) -> u32 {
+    KERNEL_TAPS + u32::from(level + 1 < scales) + u32::from(level == 0)
 }
 
 /// What the network's last layers predict (the weights file's `decoder` metadata; measured
@@ -149,7 +122,7 @@ pub enum Decoder {
     Direct,
     /// Per-pixel 5x5 kernels filtering the noisy radiance at full, half, quarter (and eighth)
     /// resolution, composited coarse to fine (`training/kernel_model.py`): one output layer a
-    /// scale ([`KernelScales`]).
+    /// scale ([`KERNEL_HEADS`]).
     Kernel,
 }
 
@@ -168,17 +141,17 @@ impl Decoder {
             .find(|d| d.name() == name)
     }
 
-    /// Every layer of a network of `widths` with this decoder (the kernel decoder's of `scales`),
-    /// in execution order: [`Widths::unet`], then the output layers on the last decoder features
-    /// (the kernel decoder's finest first).
-    pub fn layers(self, widths: Widths, scales: KernelScales) -> Vec<Layer> {
+    /// Every layer of a network of `widths` with this decoder (the kernel decoder's of `scales`,
+    /// 3 or 4), in execution order: [`Widths::unet`], then the output layers on the last decoder
+    /// features (the kernel decoder's finest first, [`KERNEL_HEADS`]).
+    pub fn layers(self, widths: Widths, scales: u32) -> Vec<Layer> {
         let features = widths.0[5];
         let outputs = match self {
             Decoder::Direct => vec![Layer::output("out", features, 4)],
-            Decoder::Kernel => (0..scales.count)
+            Decoder::Kernel => (0..scales)
                 .map(|level| {
                     let name = KERNEL_HEADS[level as usize];
-                    Layer::output(name, features, scales.head_channels(level))
+                    Layer::output(name, features, head_channels(level, scales))
                 })
                 .collect(),
         };
@@ -259,7 +232,7 @@ pub const EMISSION_MOTION: f32 = 0.0;
 #[derive(Clone, Debug, PartialEq)]
 pub struct NetworkWeights {
     decoder: Decoder,
-    scales: KernelScales,
+    scales: u32,
     emission_motion: f32,
     widths: Widths,
     layers: Vec<Layer>,
@@ -369,8 +342,8 @@ impl NetworkWeights {
         self.decoder
     }
 
-    /// The kernel decoder's scales (for the direct decoder [`KernelScales::COMMITTED`], unused).
-    pub fn scales(&self) -> KernelScales {
+    /// The kernel decoder's scales, 3 or 4 (for the direct decoder [`KERNEL_SCALES`], unused).
+    pub fn scales(&self) -> u32 {
         self.scales
     }
 
@@ -429,20 +402,14 @@ fn read_widths(tensors: &SafeTensors<'_>, file: &str) -> Result<Widths, WeightsE
     Ok(Widths(widths))
 }
 
-/// The kernel decoder's scales: four where the file has an eighth-resolution head, else three;
-/// history where the coarsest head has a channel besides its kernel's. The heads' shapes are
-/// checked as they are read.
-fn read_scales(tensors: &SafeTensors<'_>) -> KernelScales {
-    let count = if tensors.tensor("out_eighth.weight").is_ok() {
+/// The kernel decoder's scales: four where the file has an eighth-resolution head, else three (the
+/// heads' shapes are checked as they are read).
+fn read_scales(tensors: &SafeTensors<'_>) -> u32 {
+    if tensors.tensor("out_eighth.weight").is_ok() {
         4
     } else {
-        3
-    };
-    let coarsest = format!("{}.weight", KERNEL_HEADS[count as usize - 1]);
-    let history = tensors
-        .tensor(&coarsest)
-        .is_ok_and(|view| view.shape().first() == Some(&(KERNEL_TAPS as usize + 1)));
-    KernelScales { count, history }
+        KERNEL_SCALES
+    }
 }
 
 /// The float32 values of tensor `name`, which must have `shape` and be finite.
@@ -493,7 +460,7 @@ mod tests {
     }
 
     /// A kernel decoder's weights file of `scales`, every tensor 0.5.
-    fn file_of_scales(scales: KernelScales) -> Vec<u8> {
+    fn file_of_scales(scales: u32) -> Vec<u8> {
         file_with_layers(
             FORMAT,
             Decoder::Kernel,
@@ -511,7 +478,7 @@ mod tests {
         extra: &[(&str, &str)],
         edit: impl Fn(&str, &mut Vec<usize>, &mut Vec<f32>) -> bool,
     ) -> Vec<u8> {
-        let layers = decoder.layers(widths, KernelScales::COMMITTED);
+        let layers = decoder.layers(widths, KERNEL_SCALES);
         file_with_layers(format, decoder, &layers, extra, edit)
     }
 
@@ -577,43 +544,39 @@ mod tests {
             let good = file_for(FORMAT, decoder, |_, _, _| true);
             let loaded = NetworkWeights::from_bytes(&good, "w").expect("loads");
             assert_eq!(loaded.decoder(), decoder);
-            let layers = decoder.layers(Widths::COMMITTED, KernelScales::COMMITTED);
+            let layers = decoder.layers(Widths::COMMITTED, KERNEL_SCALES);
             assert_eq!(loaded.layers(), layers);
         }
     }
 
     #[test]
     fn the_scales_come_from_the_heads() {
-        assert_eq!(NetworkWeights::builtin().scales(), KernelScales::COMMITTED);
-        for count in [3, 4] {
-            for history in [false, true] {
-                let scales = KernelScales { count, history };
-                let weights =
-                    NetworkWeights::from_bytes(&file_of_scales(scales), "w").expect("loads");
-                assert_eq!(weights.scales(), scales);
-                let heads: Vec<_> = weights.layers()[6..]
-                    .iter()
-                    .map(|l| (l.name, l.out))
-                    .collect();
-                let coarse = 25 + u32::from(history);
-                let mut expected = vec![("out", 27), ("out_half", coarse + 1)];
-                if count == 4 {
-                    expected.push(("out_quarter", coarse + 1));
-                }
-                expected.push((KERNEL_HEADS[count as usize - 1], coarse));
-                assert_eq!(heads, expected, "{scales:?}");
-            }
+        assert_eq!(NetworkWeights::builtin().scales(), KERNEL_SCALES);
+        for (scales, heads) in [
+            (3, vec![("out", 27), ("out_half", 26), ("out_quarter", 25)]),
+            (
+                4,
+                vec![
+                    ("out", 27),
+                    ("out_half", 26),
+                    ("out_quarter", 26),
+                    ("out_eighth", 25),
+                ],
+            ),
+        ] {
+            let weights = NetworkWeights::from_bytes(&file_of_scales(scales), "w").expect("loads");
+            assert_eq!(weights.scales(), scales);
+            let found: Vec<_> = weights.layers()[6..]
+                .iter()
+                .map(|l| (l.name, l.out))
+                .collect();
+            assert_eq!(found, heads, "{scales} scales");
         }
-        let scales = KernelScales {
-            count: 4,
-            history: true,
-        };
-        assert_eq!([1, 2, 3].map(|l| scales.history_channel(l)), [26, 26, 25]);
         // An eighth head that reads other channels than dec0 writes is refused, naming it.
         let bytes = file_with_layers(
             FORMAT,
             Decoder::Kernel,
-            &Decoder::Kernel.layers(Widths::COMMITTED, scales),
+            &Decoder::Kernel.layers(Widths::COMMITTED, 4),
             &[],
             |name, shape, values| {
                 if name == "out_eighth.weight" {
@@ -625,7 +588,7 @@ mod tests {
         );
         let message = error(&bytes);
         assert!(
-            message.contains("out_eighth.weight") && message.contains("expected [26, 16, 3, 3]"),
+            message.contains("out_eighth.weight") && message.contains("expected [25, 16, 3, 3]"),
             "{message}"
         );
     }
@@ -665,7 +628,7 @@ mod tests {
         assert_eq!(weights.widths(), slim);
         assert_eq!(
             weights.layers(),
-            Decoder::Kernel.layers(slim, KernelScales::COMMITTED)
+            Decoder::Kernel.layers(slim, KERNEL_SCALES)
         );
         let dec0 = weights.layers()[5];
         assert_eq!((dec0.in0, dec0.in1, dec0.out), (32, 32, 16));
