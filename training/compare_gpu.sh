@@ -98,7 +98,7 @@ import json, sys
 from pathlib import Path
 
 work, dest, minutes, elapsed, names = Path(sys.argv[1]), sys.argv[2], float(sys.argv[3]), int(sys.argv[4]), sys.argv[5:]
-keys = ("relmse", "ssim", "flip", "temporal")
+keys = ("relmse", "ssim", "flip", "temporal", "blotch")
 rows = []
 for name in names:
     log = work / f"{name}.json"
@@ -111,7 +111,8 @@ for name in names:
         "name": name, "ok": True, "model": a["model"], "loss": a["loss"], "loss_weights": r["loss_weights"],
         "burn_in": a["burn_in"], "seed": a["seed"], "widths": a.get("widths"), "fireflies": a.get("fireflies"),
         "format": r["format"],
-        **{k: r["final"][k] for k in keys},
+        **{k: r["final"].get(k) for k in keys},
+        **({"watch": r["final"]["watch"]} if "watch" in r["final"] else {}),
         "steps": r["steps"], "train_seconds": r["train_seconds"], "total_seconds": r["total_seconds"],
         "parameters": r["parameters"], "macs_per_pixel": r["macs_per_pixel"], "flops_per_pixel": r["flops_per_pixel"],
         "device": r["device"], "weights": f"{name}.safetensors",
@@ -121,15 +122,20 @@ if base:
     for row in rows[1:]:
         if row["ok"]:
             row["vs_" + base["name"]] = {
-                k: round(row[k] / base[k], 4) if base[k] else None
+                k: round(row[k] / base[k], 4) if base[k] and row[k] is not None else None
                 for k in keys + ("steps", "parameters", "flops_per_pixel")
             }
+            if "watch" in row and "watch" in base:
+                row["vs_" + base["name"]]["watch"] = {
+                    k: round(row["watch"][k] / base["watch"][k], 4) if base["watch"][k] else None for k in keys
+                }
 summary = {
     "minutes": minutes,
     "seconds_before_export": elapsed,
     "note": "variants trained at the same time on one GPU; validation from no history over whole "
     "validation sequences; relMSE, SSIM and FLIP as lucid evaluate computes them, temporal = mean |frame "
-    "difference of output - reference's| in log space",
+    "difference of output - reference's| in log space, blotch = the worst 8x8 block's excess brightness "
+    "per frame over the reference mean's; watch = the same over the training sequences of TRAIN_ARGS' --watch",
     "variants": rows,
 }
 Path(dest).write_text(json.dumps(summary, indent=1))

@@ -28,7 +28,8 @@ def dataset_folders(root):
 def load_split(root, split, device):
     """The sequences of `split` ("train", "validation" or "study") as a list of dicts with
     `record`, `reference` (float16 on `device`), `objects` ([T,1,H,W] float32 on `device`, as
-    `model.RecurrentDenoiser.step` takes them; zero where the dataset has none) and `name`."""
+    `model.RecurrentDenoiser.step` takes them; zero where the dataset has none), `name` and
+    `scene`."""
     out = []
     for folder in dataset_folders(root):
         index = json.loads((folder / "index.json").read_text())
@@ -44,7 +45,15 @@ def load_split(root, split, device):
             if objects is None:
                 objects = torch.zeros(record.shape[0], record.shape[2], record.shape[3], dtype=torch.int32)
             objects = objects.unsqueeze(1).float().to(device)
-            out.append({"name": name, "record": record.to(device), "reference": reference.to(device), "objects": objects})
+            out.append(
+                {
+                    "name": name,
+                    "scene": entry.get("scene", ""),
+                    "record": record.to(device),
+                    "reference": reference.to(device),
+                    "objects": objects,
+                }
+            )
     if not out:
         raise ValueError(f"{root}: no '{split}' sequences")
     return out

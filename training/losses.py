@@ -203,3 +203,17 @@ def relmse(pred, ref):
     """Relative MSE with epsilon 0.01, as `lucid evaluate` computes it."""
     return ((pred - ref) ** 2 / (ref**2 + 1e-2)).mean()
 
+
+# Side of the blocks `worst_block_excess` compares (`BLOCK` in tests/tests/svgf_fireflies.rs).
+BLOCK = 8
+
+
+def worst_block_excess(pred, ref):
+    """Per frame, the largest excess of an 8x8 block's mean luminance over the reference's,
+    relative to the reference frame's mean luminance, as the lavapipe blotch test measures one frame
+    (`worst_block_excess` in tests/tests/svgf_fireflies.rs): a firefly smeared into a blotch
+    brightens a whole block. `pred`, `ref` linear [N, 3, H, W]; returns [N]."""
+    blocks = lambda x: F.avg_pool2d(luminance(x), BLOCK)  # noqa: E731
+    excess = (blocks(pred) - blocks(ref)).flatten(1).amax(1)
+    return excess / luminance(ref).flatten(1).mean(1).clamp_min(1e-6)
+

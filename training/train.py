@@ -2,7 +2,7 @@
 
     python3 train.py --data DIR --minutes 6 --out weights.safetensors --log train.json [--init W]
         [--model direct|kernel] [--loss l1grad|l1msssim|l1gradflip] [--burn-in K [--burn-in-min J]]
-        [--widths E0,E1,E2,B,D1,D0] [--scales N] [--fireflies RATE]
+        [--widths E0,E1,E2,B,D1,D0] [--scales N] [--fireflies RATE] [--watch SCENES]
 
 `--model kernel` trains `kernel_model.KernelDenoiser` (both export as `lucid-rae-v3`, the decoder
 named in the file's `decoder` metadata; the renderer runs either); `--loss` picks a loss of `losses.py`; `--burn-in K` runs the first K
@@ -28,7 +28,18 @@ from safetensors.torch import load_file, save_file
 from data import add_fireflies, load_split, sample_batch
 from kernel_model import HEAD_NAMES, SCALES, TAPS, KernelDenoiser, kernel_layers, scales_of
 from kernel_model import export_tensors as kernel_export_tensors
-from losses import DEFAULT_WEIGHTS, LOSSES, TERM_NAMES, display_ssim, flip, log_tonemap, loss_fn, relmse, temporal_l1
+from losses import (
+    DEFAULT_WEIGHTS,
+    LOSSES,
+    TERM_NAMES,
+    display_ssim,
+    flip,
+    log_tonemap,
+    loss_fn,
+    relmse,
+    temporal_l1,
+    worst_block_excess,
+)
 from model import (
     DECODERS,
     FORMAT,
@@ -173,23 +184,44 @@ def model_cost(model, device, size=64):
 
 @torch.no_grad()
 def validate(model, sequences):
-    """Over whole validation sequences, from no history: mean relMSE, mean SSIM and FLIP (per frame,
-    as `lucid evaluate` computes them: SSIM on the luminance of the ACES + sRGB display images, FLIP
-    on the ACES-mapped ones) and temporal instability (mean |frame difference| of output minus
-    reference's, in log space)."""
+    """Over whole sequences, from no history: mean relMSE, mean SSIM and FLIP (per frame, as
+    `lucid evaluate` computes them: SSIM on the luminance of the ACES + sRGB display images, FLIP
+    on the ACES-mapped ones), temporal instability (mean |frame difference| of output minus
+    reference's, in log space) and blotches (the worst 8x8 block's excess brightness per frame, as
+    the lavapipe blotch test measures it, `losses.worst_block_excess`)."""
     model.eval()
-    rel, ssim, flips, inst = [], [], [], []
+    keys = ("relmse", "ssim", "flip", "temporal", "blotch")
+    sums = dict.fromkeys(keys, 0.0)
     for s in sequences:
         rec = s["record"].float().unsqueeze(0)
         ref = s["reference"].float().unsqueeze(0)
         out = model(rec, objects=s["objects"].unsqueeze(0))
-        rel.append(relmse(out, ref).item())
-        ssim.append(display_ssim(out[0], ref[0]).mean().item())
-        flips.append(flip(out[0], ref[0]).mean().item())
-        inst.append(temporal_l1(log_tonemap(out), log_tonemap(ref)).item())
+        sums["relmse"] += relmse(out, ref).item()
+        sums["ssim"] += display_ssim(out[0], ref[0]).mean().item()
+        sums["flip"] += flip(out[0], ref[0]).mean().item()
+        sums["temporal"] += temporal_l1(log_tonemap(out), log_tonemap(ref)).item()
+        sums["blotch"] += worst_block_excess(out[0], ref[0]).mean().item()
     model.train()
-    n = len(sequences)
-    return {"relmse": sum(rel) / n, "ssim": sum(ssim) / n, "flip": sum(flips) / n, "temporal": sum(inst) / n}
+    return {k: v / len(sequences) for k, v in sums.items()}
+
+
+def watched(train, scenes):
+    """The training sequences of `scenes` (comma-separated names; empty: none), validated on their
+    own beside the validation sequences (`--watch`)."""
+    names = [n for n in scenes.split(",") if n]
+    found = [s for s in train if s["scene"] in names]
+    missing = sorted(set(names) - {s["scene"] for s in found})
+    if missing:
+        raise SystemExit(f"--watch: no training sequences of {', '.join(missing)}")
+    return found
+
+
+def validation(model, val, watch):
+    """`validate` over the validation sequences, and over the watched ones under `watch`."""
+    result = validate(model, val)
+    if watch:
+        result["watch"] = validate(model, watch)
+    return result
 
 
 def run_window(model, rec, objects, burn_in):
@@ -248,6 +280,12 @@ def main():
         "temporal,flip (default 0.8,0.1,0.1,0.5)",
     )
     ap.add_argument("--val-every", type=int, default=250, help="validate every this many steps")
+    ap.add_argument(
+        "--watch",
+        default="",
+        help="scenes of the training split (comma-separated, e.g. covered-light) also validated on "
+        "their own whenever the validation sequences are: a failure case to keep an eye on",
+    )
     ap.add_argument("--seed", type=int, default=0)
     ap.add_argument("--init", help="start from these weights (a file train.py wrote)")
     ap.add_argument("--out", required=True)
@@ -257,6 +295,7 @@ def main():
     dev = "cuda" if torch.cuda.is_available() else "cpu"
     train = load_split(args.data, "train", dev)
     val = load_split(args.data, "validation", dev)
+    watch = watched(train, args.watch)
     burn_in_min = args.burn_in if args.burn_in_min is None else args.burn_in_min
     if not 0 <= burn_in_min <= args.burn_in:
         raise SystemExit(f"--burn-in-min {burn_in_min} is not between 0 and --burn-in {args.burn_in}")
@@ -305,11 +344,11 @@ def main():
         if step % args.val_every == 0:
             entry = {"step": step, "seconds": round(time.time() - start, 1), "loss": loss.item()}
             entry["loss_terms"] = {k: round(v.item(), 6) for k, v in zip(TERM_NAMES[args.loss], terms)}
-            entry.update(validate(model, val))
+            entry.update(validation(model, val, watch))
             history.append(entry)
             print(json.dumps(entry), flush=True)
     train_seconds = time.time() - start
-    final = validate(model, val)
+    final = validation(model, val, watch)
     if isinstance(model, KernelDenoiser):
         layers, tensors = kernel_layers(model.widths, model.scales), kernel_export_tensors(model)
     else:
@@ -332,6 +371,8 @@ def main():
         "validation_ssim": f"{final['ssim']:.5f}",
         "validation_flip": f"{final['flip']:.5f}",
         "validation_temporal": f"{final['temporal']:.5f}",
+        "validation_blotch": f"{final['blotch']:.5f}",
+        "watch": json.dumps({"scenes": args.watch, **final["watch"]}) if watch else "",
     }
     save_file(tensors, args.out, metadata=meta)
     summary = {
