@@ -348,7 +348,7 @@ pub fn add_neural(
     p.specialize("POOLED_LEVELS", levels);
     let mut level_size = full;
     let mut pooled_radiance = Vec::new();
-    for (level, scale) in ["half", "quarter", "eighth"].into_iter().enumerate() {
+    for (level, scale) in COARSER_SCALES.into_iter().enumerate() {
         level_size = half_size(level_size);
         let wanted = (level as u32) < levels;
         let bytes = if wanted { vec4_bytes(level_size) } else { 16 };
@@ -433,6 +433,9 @@ pub fn add_neural(
     }
 }
 
+/// The kernel decoder's scales below full resolution, as its buffers and passes are named.
+const COARSER_SCALES: [&str; 3] = ["half", "quarter", "eighth"];
+
 /// Adds the kernel decoder's coarser scales (`training/kernel_model.py`, `KernelOutput`) from their
 /// heads' outputs (`heads`, half resolution first) and the log radiance the features pass pooled
 /// to them (`radiance`): each scale's log radiance filtered by its per-pixel kernels
@@ -445,7 +448,6 @@ fn add_kernel_scales(
     radiance: &[BufferHandle],
     heads: &[Tensor],
 ) -> (BufferHandle, BufferHandle) {
-    const NAMES: [&str; 3] = ["half", "quarter", "eighth"];
     // Scale `index` (0 the half) filtered; a difference from `finer`, with `coarser`'s composited.
     let filter = |g: &mut RenderGraph,
                   index: usize,
@@ -459,7 +461,7 @@ fn add_kernel_scales(
         };
         let coarser_size = heads.get(index + 1).map_or(head.size, |h| h.size);
         let kind = if finer.is_some() { "detail" } else { "filter" };
-        let name = format!("neural.kernel_{kind}.{}", NAMES[index]);
+        let name = format!("neural.kernel_{kind}.{}", COARSER_SCALES[index]);
         let radiance = radiance[index];
         let mut p = g.compute_pass(&name, &KERNEL_FILTER);
         // Buffers a pass does not read are bound as the radiance (not read).

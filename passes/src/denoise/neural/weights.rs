@@ -300,7 +300,10 @@ impl NetworkWeights {
         };
         let tensors = SafeTensors::deserialize(bytes).map_err(|e| format_error(e.to_string()))?;
         let widths = read_widths(&tensors, file)?;
-        let scales = read_scales(&tensors);
+        let scales = match decoder {
+            Decoder::Direct => KERNEL_SCALES,
+            Decoder::Kernel => read_scales(&tensors),
+        };
         let layers = decoder.layers(widths, scales);
         let mut packed = Vec::with_capacity(layers.iter().map(Layer::packed_len).sum());
         let mut offsets = Vec::with_capacity(layers.len());
