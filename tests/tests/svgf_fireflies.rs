@@ -1,16 +1,19 @@
 //! Hard light transport at 1 spp: `covered-light` (light reaching the room only through gaps) and
 //! `caustics` (a glass sphere focusing a small lamp). SVGF's output stays finite and its fireflies
-//! do not spread into blotches: the worst 8x8 block's excess brightness over a 256-spp reference
-//! stays bounded, and below the per-frame filter's.
+//! do not spread into blotches: the worst 8x8 block's excess brightness over a 256-spp reference,
+//! over the eighth to the twelfth frame of a still camera, stays bounded, and below the per-frame
+//! filter's.
 
 use lucid_engine::capture::{rec709_luminance, ImageData};
 use lucid_engine::scene::builtin::{build_with, BuildOptions};
 use lucid_tests::svgf::{frame, reference, renderer, settings, Method, SIZE};
 use lucid_tests::{assert_no_validation_messages, context};
 
-const FRAMES: usize = 8;
-/// Largest accepted worst-block excess (measured: covered-light SVGF 0.35, learned 0.66, per-frame
-/// filter 0.88; caustics SVGF 0.11, learned 0.09, per-frame filter 0.17).
+/// The frames whose worst block counts: the eighth to the twelfth (a network can pass one frame by
+/// chance and blotch on the next, training/README.md "Four scales").
+const FRAMES: std::ops::RangeInclusive<usize> = 8..=12;
+/// Largest accepted worst-block excess over [`FRAMES`] (measured: covered-light SVGF 0.37, learned
+/// 0.53, per-frame filter 0.99; caustics SVGF 0.11, learned 0.05, per-frame filter 0.22).
 const MAX_EXCESS_COVERED_LIGHT: f64 = 0.6;
 const MAX_EXCESS_CAUSTICS: f64 = 0.25;
 /// Side of the blocks whose mean error is compared.
@@ -39,18 +42,18 @@ fn worst_block_excess(test: &ImageData, reference: &ImageData) -> f64 {
         .fold(0.0, f64::max)
 }
 
-/// The worst block excess of each of `methods` on the last frame of a still sequence of `name`.
+/// The worst block excess of each of `methods` over [`FRAMES`] of a still sequence of `name`.
 fn worst_errors<const N: usize>(name: &str, methods: [Method; N]) -> [f64; N] {
     let ctx = context(false);
     let scene = build_with(name, &BuildOptions { detail: 0.05 }).expect("scene");
     let reference = reference(&ctx, &scene, scene.camera, (16, 16), 8);
     let errors = methods.map(|method| {
         let mut r = renderer(&ctx, scene.clone(), settings(method, 8));
-        let mut last = frame(&mut r);
-        for _ in 1..FRAMES {
-            last = frame(&mut r);
-        }
-        worst_block_excess(&last, &reference)
+        (1..=*FRAMES.end())
+            .map(|t| (t, frame(&mut r)))
+            .filter(|(t, _)| FRAMES.contains(t))
+            .map(|(_, image)| worst_block_excess(&image, &reference))
+            .fold(0.0, f64::max)
     });
     assert_no_validation_messages(&ctx);
     errors
