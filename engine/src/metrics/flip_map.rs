@@ -4,7 +4,7 @@
 use rayon::prelude::*;
 
 use super::pixel_map::PixelMap;
-use super::temporal::{luminances, Luminances};
+use super::temporal::{reference_luminance, ReferenceLuminance};
 use super::{FlipReference, MetricsError, DEFAULT_PIXELS_PER_DEGREE};
 use crate::capture::{ImageData, PngEncoding};
 
@@ -17,11 +17,10 @@ pub fn flip_map(
     reference_frames: &[ImageData],
     display: &PngEncoding,
 ) -> Result<PixelMap, MetricsError> {
-    let Luminances {
-        reference: ref_lum,
-        reference_mean: ref_mean,
-        ..
-    } = luminances(test_frames, reference_frames)?;
+    let ReferenceLuminance {
+        frames: ref_lum,
+        mean: ref_mean,
+    } = reference_luminance(test_frames, reference_frames)?;
     let per_frame = test_frames
         .par_iter()
         .zip(reference_frames)

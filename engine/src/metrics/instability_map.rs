@@ -4,7 +4,7 @@
 use rayon::prelude::*;
 
 use super::pixel_map::PixelMap;
-use super::temporal::{luminances, Luminances};
+use super::temporal::{luminances, Luminances, ReferenceLuminance};
 use super::MetricsError;
 use crate::capture::ImageData;
 
@@ -19,8 +19,11 @@ pub fn instability_map(
 ) -> Result<PixelMap, MetricsError> {
     let Luminances {
         test: test_lum,
-        reference: ref_lum,
-        reference_mean: ref_mean,
+        reference:
+            ReferenceLuminance {
+                frames: ref_lum,
+                mean: ref_mean,
+            },
     } = luminances(test_frames, reference_frames)?;
     let pairs = (test_lum.len() - 1) as f64;
     let first = &reference_frames[0];

@@ -36,8 +36,11 @@ pub fn temporal_instability(
 ) -> Result<TemporalInstability, MetricsError> {
     let Luminances {
         test: test_lum,
-        reference: ref_lum,
-        reference_mean: ref_mean,
+        reference:
+            ReferenceLuminance {
+                frames: ref_lum,
+                mean: ref_mean,
+            },
     } = luminances(test_frames, reference_frames)?;
     let pixels = reference_frames[0].pixels.len() as f64;
     let per_pair: Vec<f64> = test_lum
@@ -58,10 +61,16 @@ pub fn temporal_instability(
 pub(super) struct Luminances {
     /// The test sequence's, per frame and pixel.
     pub test: Vec<Vec<f64>>,
-    /// The reference's, per frame and pixel.
-    pub reference: Vec<Vec<f64>>,
-    /// The mean over the whole reference sequence (positive).
-    pub reference_mean: f64,
+    /// The reference's ([`ReferenceLuminance`]).
+    pub reference: ReferenceLuminance,
+}
+
+/// Per frame, the luminance of every pixel of a reference sequence, and their mean.
+pub(super) struct ReferenceLuminance {
+    /// Per frame and pixel.
+    pub frames: Vec<Vec<f64>>,
+    /// The mean over the whole sequence (positive).
+    pub mean: f64,
 }
 
 /// The luminances of `test_frames` and `reference_frames`, checking what [`temporal_instability`]
@@ -70,6 +79,19 @@ pub(super) fn luminances(
     test_frames: &[ImageData],
     reference_frames: &[ImageData],
 ) -> Result<Luminances, MetricsError> {
+    let reference = reference_luminance(test_frames, reference_frames)?;
+    Ok(Luminances {
+        test: frame_luminances(test_frames),
+        reference,
+    })
+}
+
+/// The luminances of `reference_frames` and their mean, checking what [`temporal_instability`]
+/// requires of them and of `test_frames` (whose luminances are not computed).
+pub(super) fn reference_luminance(
+    test_frames: &[ImageData],
+    reference_frames: &[ImageData],
+) -> Result<ReferenceLuminance, MetricsError> {
     if test_frames.len() != reference_frames.len() {
         return Err(MetricsError::FrameCountMismatch {
             test: test_frames.len(),
@@ -85,27 +107,24 @@ pub(super) fn luminances(
     for frame in test_frames.iter().chain(reference_frames) {
         check_pair(frame, first)?;
     }
-    let luminance = |frames: &[ImageData]| -> Vec<Vec<f64>> {
-        frames
-            .par_iter()
-            .map(|f| {
-                f.pixels
-                    .par_iter()
-                    .map(|&p| f64::from(rec709_luminance(p)))
-                    .collect()
-            })
-            .collect()
-    };
-    let test_lum = luminance(test_frames);
-    let ref_lum = luminance(reference_frames);
+    let frames = frame_luminances(reference_frames);
     let pixels = first.pixels.len() as f64;
-    let ref_mean = ref_lum.iter().flatten().sum::<f64>() / (pixels * ref_lum.len() as f64);
-    if !(ref_mean.is_finite() && ref_mean > 0.0) {
-        return Err(MetricsError::DegenerateReference { mean: ref_mean });
+    let mean = frames.iter().flatten().sum::<f64>() / (pixels * frames.len() as f64);
+    if !(mean.is_finite() && mean > 0.0) {
+        return Err(MetricsError::DegenerateReference { mean });
     }
-    Ok(Luminances {
-        test: test_lum,
-        reference: ref_lum,
-        reference_mean: ref_mean,
-    })
+    Ok(ReferenceLuminance { frames, mean })
+}
+
+/// Per frame, the luminance of every pixel of `frames`.
+fn frame_luminances(frames: &[ImageData]) -> Vec<Vec<f64>> {
+    frames
+        .par_iter()
+        .map(|f| {
+            f.pixels
+                .par_iter()
+                .map(|&p| f64::from(rec709_luminance(p)))
+                .collect()
+        })
+        .collect()
 }

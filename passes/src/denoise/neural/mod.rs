@@ -454,12 +454,9 @@ fn add_kernel_scales(
                   finer: Option<BufferHandle>,
                   coarser: Option<BufferHandle>| {
         let head = heads[index];
-        let finer_size = if index == 0 {
-            head.size
-        } else {
-            heads[index - 1].size
-        };
-        let coarser_size = heads.get(index + 1).map_or(head.size, |h| h.size);
+        // The neighbouring scales' sizes, where they are read (else unused).
+        let finer_size = finer.map_or(head.size, |_| heads[index - 1].size);
+        let coarser_size = coarser.map_or(head.size, |_| heads[index + 1].size);
         let kind = if finer.is_some() { "detail" } else { "filter" };
         let name = format!("neural.kernel_{kind}.{}", COARSER_SCALES[index]);
         let radiance = radiance[index];
