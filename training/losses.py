@@ -9,7 +9,8 @@ Predictions and references are linear radiance, [B, T, 3, H, W] (a window of fra
 - `l1gradflip`: `l1grad`'s three terms plus FLIP (`flip.py`) on the display-mapped frames, the
   metric the held-out evaluation reports, weighted 0.5.
 
-Both weight later frames of a window more (the recurrence has warmed up).
+All weight later frames of a window more (the recurrence has warmed up), unless called with
+`flat=True` (a window that starts at a cut, whose first frames matter as much).
 """
 
 import torch
@@ -74,8 +75,9 @@ def flip(pred, ref):
     return _FLIPS[pred.device](display_linear(pred), display_linear(ref))
 
 
-def _frame_weights(t, device):
-    return torch.linspace(0.5, 1.5, t, device=device)
+def _frame_weights(t, device, flat=False):
+    """The weights of a window's `t` frames: rising from 0.5 to 1.5, or all 1 if `flat`."""
+    return torch.ones(t, device=device) if flat else torch.linspace(0.5, 1.5, t, device=device)
 
 
 def temporal_l1(p, r):
@@ -156,11 +158,11 @@ def display_ssim(pred, ref):
     return ssim(luminance(display(pred)), luminance(display(ref)), pad=True)
 
 
-def l1grad(pred, ref, weights):
+def l1grad(pred, ref, weights, flat=False):
     """Weighted sum and terms (spatial L1, gradient L1, temporal L1) in log space."""
     p, r = log_tonemap(pred), log_tonemap(ref)
     t = p.shape[1]
-    wt = _frame_weights(t, p.device).view(1, t, 1, 1, 1)
+    wt = _frame_weights(t, p.device, flat).view(1, t, 1, 1, 1)
     spatial = (wt * (p - r).abs()).mean()
     gx = lambda x: x[..., :, 1:] - x[..., :, :-1]  # noqa: E731
     gy = lambda x: x[..., 1:, :] - x[..., :-1, :]  # noqa: E731
@@ -170,11 +172,11 @@ def l1grad(pred, ref, weights):
     return sum(w * x for w, x in zip(weights, terms)), terms
 
 
-def l1msssim(pred, ref, weights, scales=3):
+def l1msssim(pred, ref, weights, flat=False, scales=3):
     """Weighted sum and terms (L1 and 1 - MS-SSIM on display-mapped images, temporal L1 in log
     space)."""
     b, t = pred.shape[:2]
-    wt = _frame_weights(t, pred.device)
+    wt = _frame_weights(t, pred.device, flat)
     dp, dr = display(pred, clamp=False), display(ref, clamp=False)
     l1 = (wt.view(1, t, 1, 1, 1) * (dp - dr).abs()).mean()
     ms = ms_ssim(dp.flatten(0, 1), dr.flatten(0, 1), scales).view(b, t)
@@ -184,18 +186,19 @@ def l1msssim(pred, ref, weights, scales=3):
     return sum(w * x for w, x in zip(weights, terms)), terms
 
 
-def l1gradflip(pred, ref, weights):
+def l1gradflip(pred, ref, weights, flat=False):
     """Weighted sum and terms: `l1grad`'s three, then FLIP of the display-mapped frames (later
-    frames weighted more)."""
-    _, terms = l1grad(pred, ref, weights[:3])
+    frames weighted more unless `flat`)."""
+    _, terms = l1grad(pred, ref, weights[:3], flat)
     b, t = pred.shape[:2]
     per_frame = flip(pred.flatten(0, 1), ref.flatten(0, 1)).view(b, t)
-    terms = (*terms, (_frame_weights(t, pred.device).view(1, t) * per_frame).mean())
+    terms = (*terms, (_frame_weights(t, pred.device, flat).view(1, t) * per_frame).mean())
     return sum(w * x for w, x in zip(weights, terms)), terms
 
 
 def loss_fn(name):
-    """The loss function called `name` (one of `LOSSES`): f(pred, ref, weights) -> (loss, terms)."""
+    """The loss function called `name` (one of `LOSSES`): f(pred, ref, weights, flat) -> (loss,
+    terms)."""
     return {"l1grad": l1grad, "l1msssim": l1msssim, "l1gradflip": l1gradflip}[name]
 
 

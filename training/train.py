@@ -3,6 +3,7 @@
     python3 train.py --data DIR --minutes 6 --out weights.safetensors --log train.json [--init W]
         [--model direct|kernel] [--loss l1grad|l1msssim|l1gradflip] [--burn-in K [--burn-in-min J]]
         [--widths E0,E1,E2,B,D1,D0] [--scales N] [--fireflies RATE] [--watch SCENES]
+        [--blotch WEIGHT] [--cold P]
 
 `--model kernel` trains `kernel_model.KernelDenoiser` (both export as `lucid-rae-v3`, the decoder
 named in the file's `decoder` metadata; the renderer runs either); `--loss` picks a loss of `losses.py`; `--burn-in K` runs the first K
@@ -11,7 +12,11 @@ up when the loss starts; with `--burn-in-min J`, each step draws its burn-in fro
 the loss also sees the first frames after a cut (the renderer's first frames have no history);
 `--widths` sets the U-Net's channel counts (a wider `--init` is narrowed to them); `--fireflies`
 adds isolated bright samples to the training inputs (not the references), so that the network
-learns to drop what no neighbour or frame supports.
+learns to drop what no neighbour or frame supports; `--blotch W` adds W times the windows' mean
+worst 8x8 block excess (`losses.worst_block_excess`, what the lavapipe blotch test bounds) to the
+loss; `--cold P` starts a window at the cut (no burn-in, its first frame without history) with
+probability P before the burn-in is drawn, and then weighs its frames alike rather than the later
+ones more, so that the first frames after a cut count as much as the settled ones.
 """
 
 import argparse
@@ -279,6 +284,19 @@ def main():
         "0.8,0.1,0.1); l1msssim l1,msssim,temporal (default 0.16,0.84,0.1); l1gradflip spatial,gradient,"
         "temporal,flip (default 0.8,0.1,0.1,0.5)",
     )
+    ap.add_argument(
+        "--blotch",
+        type=float,
+        default=0.0,
+        help="weight of the mean worst 8x8 block excess over the reference (losses.worst_block_excess) "
+        "added to the loss",
+    )
+    ap.add_argument(
+        "--cold",
+        type=float,
+        default=0.0,
+        help="probability that a window starts at the cut, without burn-in, its frames weighed alike",
+    )
     ap.add_argument("--val-every", type=int, default=250, help="validate every this many steps")
     ap.add_argument(
         "--watch",
@@ -328,14 +346,19 @@ def main():
         frac = (time.time() - start) / budget
         for group in opt.param_groups:
             group["lr"] = args.lr * 0.5 * (1.0 + math.cos(math.pi * min(frac, 1.0)))
-        burn_in = int(torch.randint(burn_in_min, args.burn_in + 1, (1,), generator=gen))
+        cold = bool(torch.rand((), generator=gen) < args.cold)
+        burn_in = 0 if cold else int(torch.randint(burn_in_min, args.burn_in + 1, (1,), generator=gen))
         rec, ref, objects = sample_batch(train, args.batch, burn_in + args.frames, args.crop, gen)
         rec, ref, objects = rec.to(dev), ref[:, burn_in:].to(dev), objects.to(dev)
         if args.fireflies:
             rec[:, :, 0:3] = add_fireflies(rec[:, :, 0:3], args.fireflies, firefly_gen)
         with autocast():
             out = run_window(model, rec, objects, burn_in)
-        loss, terms = compute_loss(out.float(), ref, ws)
+        loss, terms = compute_loss(out.float(), ref, ws, flat=cold)
+        if args.blotch:
+            blotch = worst_block_excess(out.float().flatten(0, 1), ref.flatten(0, 1)).clamp_min(0.0).mean()
+            loss = loss + args.blotch * blotch
+            terms = (*terms, blotch)
         opt.zero_grad(set_to_none=True)
         loss.backward()
         torch.nn.utils.clip_grad_norm_(model.parameters(), 1.0)
@@ -343,7 +366,8 @@ def main():
         step += 1
         if step % args.val_every == 0:
             entry = {"step": step, "seconds": round(time.time() - start, 1), "loss": loss.item()}
-            entry["loss_terms"] = {k: round(v.item(), 6) for k, v in zip(TERM_NAMES[args.loss], terms)}
+            names = TERM_NAMES[args.loss] + (("blotch",) if args.blotch else ())
+            entry["loss_terms"] = {k: round(v.item(), 6) for k, v in zip(names, terms)}
             entry.update(validation(model, val, watch))
             history.append(entry)
             print(json.dumps(entry), flush=True)
@@ -364,6 +388,8 @@ def main():
         "emission_motion": str(model.emission_motion),
         "burn_in": str(args.burn_in) if burn_in_min == args.burn_in else f"{burn_in_min}-{args.burn_in}",
         "fireflies": str(args.fireflies),
+        "blotch": str(args.blotch),
+        "cold": str(args.cold),
         "steps": str(step),
         "data": args.data,
         "init": args.init or "",
