@@ -45,9 +45,10 @@ TAPS = KERNEL * KERNEL
 EXTRA = unet_layers()[-1][2] - 3
 
 
-# The kernel heads' names, finest first; a network has the first `scales` of them (3 by default).
+# The kernel heads' names, finest first; a network has the first `scales` of them (by default the
+# committed network's 4, since the twentieth session; 3 before).
 HEAD_NAMES = ("out", "out_half", "out_quarter", "out_eighth")
-SCALES = 3
+SCALES = 4
 
 
 def heads(features, scales=SCALES):

@@ -10,10 +10,10 @@
 //! history clamp) is checked too; the fourth (the same frames) is of a network of other widths
 //! (`references/neural_narrow_weights.safetensors`: the twelfth session's 32-channel weights
 //! narrowed by `training/train.py`'s `narrow` to 16 channels out of `dec0`, the committed network
-//! having 16 out of `enc0` too); the fifth (the first's frames) is of a kernel decoder of four
-//! scales (`references/neural_scales_weights.safetensors`: the nineteenth session's `--scales 4`
-//! fine-tuning, `training/README.md`), so the eighth-resolution scale and the compositing between
-//! coarser scales are checked too; `the_emission_stays_on_its_object` checks what that average is
+//! having 16 out of `enc0` too); the fifth (the first's frames) is of the committed network's
+//! widths with three kernel scales (`references/neural_three_scales_weights.safetensors`: the
+//! weights committed from the eighteenth session to the twentieth), so both the committed four
+//! scales (the eighth resolution's, the compositing between coarser scales) and three are checked; `the_emission_stays_on_its_object` checks what that average is
 //! for over more frames. The running means of the noisy radiance and their
 //! second moments (reprojected in the second frame) are also compared directly, so they are checked
 //! whatever weight the network gives them. Every inference path the device runs is checked
@@ -26,8 +26,7 @@ use half::f16;
 use lucid_engine::graph::{Access, RenderGraph};
 use lucid_engine::memory::ImageDesc;
 use lucid_passes::denoise::neural::{
-    self, Decoder, FrameInputs, InferencePath, Network, NetworkWeights, KERNEL_SCALES,
-    RECORD_CHANNELS,
+    self, Decoder, FrameInputs, InferencePath, Network, NetworkWeights, RECORD_CHANNELS,
 };
 use safetensors::SafeTensors;
 
@@ -93,7 +92,7 @@ fn fixture(name: &'static str, weights: NetworkWeights) -> Fixture {
 }
 
 /// The committed weights' fixture, the other decoder's, the emitters', a narrower network's and one
-/// of four scales.
+/// of three scales.
 fn fixtures() -> [Fixture; 5] {
     let load = |file: &str| {
         NetworkWeights::load(std::path::Path::new(&references(file)))
@@ -114,8 +113,8 @@ fn fixtures() -> [Fixture; 5] {
             load("neural_narrow_weights.safetensors"),
         ),
         fixture(
-            "neural_parity_scales.safetensors",
-            load("neural_scales_weights.safetensors"),
+            "neural_parity_three_scales.safetensors",
+            load("neural_three_scales_weights.safetensors"),
         ),
     ];
     let decoders = fixtures.each_ref().map(|f| f.weights.decoder());
@@ -130,7 +129,7 @@ fn fixtures() -> [Fixture; 5] {
     );
     let scales = fixtures.each_ref().map(|f| f.weights.scales());
     assert!(
-        scales.contains(&4) && scales.contains(&KERNEL_SCALES),
+        scales.contains(&3) && scales.contains(&4),
         "the fixtures cover kernel decoders of three and four scales: {scales:?}"
     );
     fixtures

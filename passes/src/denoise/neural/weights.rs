@@ -105,7 +105,11 @@ impl Widths {
 pub const KERNEL_HEADS: [&str; 4] = ["out", "out_half", "out_quarter", "out_eighth"];
 
 /// The committed network's kernel scales (`SCALES` in `training/kernel_model.py`).
-pub const KERNEL_SCALES: u32 = 3;
+pub const KERNEL_SCALES: u32 = 4;
+
+/// The kernel scales of a file without an eighth-resolution head (the committed weights' until the
+/// twentieth session).
+const THREE_SCALES: u32 = 3;
 
 /// Output channels of the kernel decoder's head `level` (0 the full resolution's) in a network of
 /// `scales`: its kernel's 25 logits, the weight `a` of the next coarser scale (all but the
@@ -411,7 +415,7 @@ fn read_scales(tensors: &SafeTensors<'_>) -> u32 {
     if tensors.tensor("out_eighth.weight").is_ok() {
         4
     } else {
-        KERNEL_SCALES
+        THREE_SCALES
     }
 }
 

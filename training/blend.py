@@ -1,0 +1,66 @@
+"""Blends two weights files of one network tensor by tensor, (1 - t) A + t B (a "model soup",
+Wortsman et al. 2022): two fine-tunings from the same start stay near each other, so their blend
+is a network between them, and a little of one fine-tuning can carry what it learned into the
+other without its losses. The shipped weights since the twentieth session are such a blend
+(training/README.md, "Blotches held by a blend").
+
+    python3 blend.py A.safetensors B.safetensors --t 0.1 --out W.safetensors
+
+The output keeps A's metadata but its validation figures (measured on A alone), and adds `blend`:
+both files' names, `t`, and B's training options that differ from A's.
+"""
+
+import argparse
+import json
+from pathlib import Path
+
+from safetensors import safe_open
+from safetensors.torch import load_file, save_file
+
+# Metadata measured on one file, which a blend does not inherit.
+MEASURED = ("validation_relmse", "validation_ssim", "validation_flip", "validation_temporal", "validation_blotch", "watch")
+# Metadata that describes the network rather than its training, which both files must share.
+SHARED = ("format", "decoder", "layers")
+
+
+def metadata(path):
+    with safe_open(path, "pt") as f:
+        return dict(f.metadata() or {})
+
+
+def blend(a, b, t):
+    """(1 - t) a + t b of every tensor of two {name: tensor} of the same names and shapes."""
+    if a.keys() != b.keys():
+        raise ValueError(f"the files hold other tensors: {sorted(a.keys() ^ b.keys())}")
+    other = [k for k in a if a[k].shape != b[k].shape]
+    if other:
+        raise ValueError(f"tensors of other shapes: {other}")
+    return {k: ((1.0 - t) * a[k] + t * b[k]).contiguous() for k in a}
+
+
+def main():
+    ap = argparse.ArgumentParser()
+    ap.add_argument("a", help="weights a train.py run wrote")
+    ap.add_argument("b", help="weights of the same network")
+    ap.add_argument("--t", type=float, required=True, help="B's share, from 0 to 1")
+    ap.add_argument("--out", required=True)
+    args = ap.parse_args()
+    if not 0.0 <= args.t <= 1.0:
+        raise SystemExit(f"--t {args.t} is not between 0 and 1")
+    meta_a, meta_b = metadata(args.a), metadata(args.b)
+    differing = [k for k in SHARED if meta_a.get(k) != meta_b.get(k)]
+    if differing:
+        raise SystemExit(f"{args.a} and {args.b} differ in {differing}: not one network")
+    try:
+        tensors = blend(load_file(args.a), load_file(args.b), args.t)
+    except ValueError as e:
+        raise SystemExit(f"{args.a}, {args.b}: {e}") from None
+    meta = {k: v for k, v in meta_a.items() if k not in MEASURED}
+    b_options = {k: v for k, v in meta_b.items() if k not in MEASURED and k not in SHARED and meta_a.get(k) != v}
+    meta["blend"] = json.dumps({"a": Path(args.a).name, "b": Path(args.b).name, "t": args.t, "b_options": b_options})
+    save_file(tensors, args.out, metadata=meta)
+    print(json.dumps({"out": args.out, "t": args.t, "tensors": len(tensors), "b_options": b_options}))
+
+
+if __name__ == "__main__":
+    main()
