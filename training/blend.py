@@ -18,12 +18,20 @@ from safetensors import safe_open
 from safetensors.torch import load_file, save_file
 
 # Metadata measured on one file, which a blend does not inherit.
-MEASURED = ("validation_relmse", "validation_ssim", "validation_flip", "validation_temporal", "validation_blotch", "watch")
+MEASURED = (
+    "validation_relmse",
+    "validation_ssim",
+    "validation_flip",
+    "validation_temporal",
+    "validation_blotch",
+    "watch",
+)
 # Metadata that describes the network rather than its training, which both files must share.
 SHARED = ("format", "decoder", "layers")
 
 
 def metadata(path):
+    """The safetensors metadata of the file at `path` ({} if it has none)."""
     with safe_open(path, "pt") as f:
         return dict(f.metadata() or {})
 

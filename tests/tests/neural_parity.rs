@@ -13,8 +13,9 @@
 //! having 16 out of `enc0` too); the fifth (the first's frames) is of the committed network's
 //! widths with three kernel scales (`references/neural_three_scales_weights.safetensors`: the
 //! weights committed from the eighteenth session to the twentieth), so both the committed four
-//! scales (the eighth resolution's, the compositing between coarser scales) and three are checked; `the_emission_stays_on_its_object` checks what that average is
-//! for over more frames. The running means of the noisy radiance and their
+//! scales (the eighth resolution's, the compositing between coarser scales) and three are
+//! checked; `the_emission_stays_on_its_object` checks what that average is for over more frames.
+//! The running means of the noisy radiance and their
 //! second moments (reprojected in the second frame) are also compared directly, so they are checked
 //! whatever weight the network gives them. Every inference path the device runs is checked
 //! (lavapipe: the portable one; NVIDIA: the tensor-core one too), so where both run they agree
