@@ -6,10 +6,11 @@ Everything but the output layer is `model.py`'s: the input features, the reproje
 U-Net convolutions of `model.unet_layers` up to `dec0`, the temporal blend with the warped history and
 the recurrent state. The output layer `out` is replaced by `KernelOutput`:
 
-- **Three scales** (Vogels et al. 2018, "Denoising with kernel prediction and asymmetric loss
-  functions"; `scales`, four with an eighth): the demodulated radiance at full resolution,
-  average-pooled 2x2 (half) and 4x4 (quarter), each as log(1 + radiance) (pooled in linear space,
-  then the log), so that the coarser scales gather 4 and 16 samples per pixel of a 1-sample frame.
+- **Scales** (Vogels et al. 2018, "Denoising with kernel prediction and asymmetric loss
+  functions"; `scales`, three or four, the committed network four): the demodulated radiance at
+  full resolution, average-pooled 2x2 (half), 4x4 (quarter) and with four scales 8x8 (eighth),
+  each as log(1 + radiance) (pooled in linear space, then the log), so that the coarser scales
+  gather 4, 16 and 64 samples per pixel of a 1-sample frame.
 - **Kernels from pooled decoder features**: the last decoder features (`dec0`, full resolution)
   go through a 3x3 convolution head a scale: `out` on them at full resolution, `out_half` on them
   average-pooled to half resolution, `out_quarter` on them pooled again to quarter resolution (and

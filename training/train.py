@@ -354,9 +354,10 @@ def main():
             rec[:, :, 0:3] = add_fireflies(rec[:, :, 0:3], args.fireflies, firefly_gen)
         with autocast():
             out = run_window(model, rec, objects, burn_in)
-        loss, terms = compute_loss(out.float(), ref, ws, flat=cold)
+        out = out.float()
+        loss, terms = compute_loss(out, ref, ws, flat=cold)
         if args.blotch:
-            blotch = worst_block_excess(out.float().flatten(0, 1), ref.flatten(0, 1)).clamp_min(0.0).mean()
+            blotch = worst_block_excess(out.flatten(0, 1), ref.flatten(0, 1)).clamp_min(0.0).mean()
             loss = loss + args.blotch * blotch
             terms = (*terms, blotch)
         opt.zero_grad(set_to_none=True)
