@@ -82,7 +82,9 @@ fn gpu_trace(g: &GpuScene, o: Vec3, d: Vec3) -> Option<f32> {
                 for k in f..f + c {
                     if inst.kind == 0 {
                         let v = |j: usize| {
-                            Vec3::from(g.vertices[g.indices[3 * k as usize + j] as usize].position)
+                            Vec3::from(
+                                g.vertices[g.triangles[k as usize].vertices[j] as usize].position,
+                            )
                         };
                         if let Some((t, _, _)) = ray_triangle(lo, ld, v(0), v(1), v(2), 0.0, best) {
                             best = t;
@@ -148,7 +150,7 @@ fn gpu_buffers_trace_like_the_cpu_bvh() {
             assert_eq!(g.layout(), layout);
             assert_eq!(g.tlas_nodes.layout(), layout);
             g.check_depths().unwrap();
-            assert_eq!(g.indices.len() / 3, scene.unique_triangle_count());
+            assert_eq!(g.triangles.len(), scene.unique_triangle_count());
             compare(&scene, &bvh, &g);
         }
     }
@@ -197,7 +199,8 @@ fn cornell_light_table_splits_between_the_two_equal_triangles() {
         }
         // The light's triangle index addresses its vertices in the GPU buffers.
         let inst = &g.instances[l.instance as usize];
-        let v0 = Vec3::from(g.vertices[g.indices[3 * l.index as usize] as usize].position);
+        let v0 =
+            Vec3::from(g.vertices[g.triangles[l.index as usize].vertices[0] as usize].position);
         let w0 = apply(&inst.object_to_world, v0.extend(1.0));
         assert!([l.p0, l.p1, l.p2]
             .iter()
@@ -285,7 +288,7 @@ fn furnace_packs_a_single_sphere_instance() {
         !g.single_instance(),
         "a sphere instance takes the top level"
     );
-    assert!(g.lights.is_empty() && g.indices.is_empty());
+    assert!(g.lights.is_empty() && g.triangles.is_empty());
     assert_eq!(g.bytes_per_triangle(), 0.0);
     assert_eq!(
         gpu_trace(&g, Vec3::new(0.0, 0.0, 4.0), Vec3::NEG_Z),
@@ -316,7 +319,7 @@ fn light_records(g: &GpuScene) -> Vec<Vec<u32>> {
 fn gpu_triangle(g: &GpuScene, slot: u32, t: u32) -> [Vec3; 3] {
     let inst = &g.instances[slot as usize];
     std::array::from_fn(|k| {
-        let v = g.vertices[g.indices[3 * t as usize + k] as usize].position;
+        let v = g.vertices[g.triangles[t as usize].vertices[k] as usize].position;
         apply(&inst.object_to_world, Vec3::from(v).extend(1.0))
     })
 }
@@ -341,7 +344,9 @@ fn check_light_triangle(g: &GpuScene, ids: &[[u32; 2]], scene: &Scene, l: &GpuLi
     let material = &scene.materials[scene.instance_material(original as usize) as usize];
     assert_eq!(material.emission.to_array(), l.emission[..3]);
     let shading: Vec3 = (0..3)
-        .map(|k| decode_normal(g.vertices[g.indices[3 * l.index as usize + k] as usize].normal))
+        .map(|k| {
+            decode_normal(g.vertices[g.triangles[l.index as usize].vertices[k] as usize].normal)
+        })
         .sum();
     // Normals transform by the transposed world-to-object matrix.
     let world_shading: Vec3 = (0..3)

@@ -14,9 +14,10 @@ const uint MATERIAL_CUT_OUT = MATERIAL_FLAG_ALPHA_MASK | MATERIAL_FLAG_ALPHA_BLE
 // Texture coordinates and vertex alpha at the point of global triangle `prim` with vertex weights
 // `w` (for its first, second and third vertex).
 void triangle_uv_alpha(uint prim, vec3 w, out vec2 uv, out float alpha) {
-    uint i0 = b_indices.i[3u * prim];
-    uint i1 = b_indices.i[3u * prim + 1u];
-    uint i2 = b_indices.i[3u * prim + 2u];
+    uvec3 vertices = triangle_vertices(prim);
+    uint i0 = vertices.x;
+    uint i1 = vertices.y;
+    uint i2 = vertices.z;
     uv = w.x * unpackHalf2x16(b_vertices.v[i0].uv) + w.y * unpackHalf2x16(b_vertices.v[i1].uv)
         + w.z * unpackHalf2x16(b_vertices.v[i2].uv);
     alpha = 1.0;

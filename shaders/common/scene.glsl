@@ -1,7 +1,7 @@
 // The scene buffers, mirroring lucid_engine::scene::gpu (std430). Bound by name: b_vertices,
-// b_indices, b_blas, b_tlas, b_instances, b_spheres, b_materials, b_lights, b_light_table,
-// b_texels, b_textures, b_scene, b_triangle_ids, b_triangles, b_vertex_attributes. Bindings 0-11 and
-// 13-15 (12 is the frame constants); passes use 16 and up for their own resources.
+// b_blas, b_tlas, b_instances, b_spheres, b_materials, b_lights, b_light_table,
+// b_texels, b_textures, b_scene, b_triangle_ids, b_triangles, b_vertex_attributes. Bindings 0 and 2-11
+// and 13-15 (12 is the frame constants); passes use 16 and up for their own resources.
 #ifndef LUCID_SCENE_GLSL
 #define LUCID_SCENE_GLSL
 
@@ -84,7 +84,6 @@ layout(constant_id = 110) const bool HAS_VERTEX_COLORS = true;
 layout(constant_id = 111) const bool HAS_TEXTURE_TRANSFORMS = true;
 
 layout(set = 0, binding = 0, std430) readonly buffer Vertices { Vertex v[]; } b_vertices;
-layout(set = 0, binding = 1, std430) readonly buffer Indices { uint i[]; } b_indices;
 // BVH nodes in the scene's layout (traverse.glsl's WIDE_BVH): a binary node is four uvec4 (BvhNode),
 // a wide node five (lucid_engine::scene::gpu::wide::WideNode).
 layout(set = 0, binding = 2, std430) readonly buffer BlasNodes { uvec4 n[]; } b_blas;
@@ -99,9 +98,10 @@ layout(set = 0, binding = 10, std430) readonly buffer Textures { TextureRecord r
 layout(set = 0, binding = 11, std430) readonly buffer ScenePayload { SceneParams p; } b_scene;
 // Per triangle of the flattened instance: material, original scene instance.
 layout(set = 0, binding = 13, std430) readonly buffer TriangleIds { uvec2 t[]; } b_triangle_ids;
-// Per triangle (in b_indices order), nine floats: first vertex, p1 - p0, p2 - p0 (what ray
-// intersection reads, contiguous).
-layout(set = 0, binding = 14, std430) readonly buffer Triangles { float t[]; } b_triangles;
+// Per triangle, in the packed BLASes' order, three vec4 (GpuTriangle): first vertex, p1 - p0 and
+// p2 - p0 (what ray intersection reads, in the first two and a lane of the third), then the indices
+// of the three vertices in b_vertices (triangle_vertices).
+layout(set = 0, binding = 14, std430) readonly buffer Triangles { vec4 t[]; } b_triangles;
 // Per vertex (as b_vertices), when the scene has vertex colours or tangents (HAS_VERTEX_COLORS,
 // HAS_NORMAL_MAPS): packHalf2x16(r, g), packHalf2x16(b, alpha), the octahedral tangent and the
 // bitangent's sign as float bits. One unread element otherwise.
@@ -134,6 +134,11 @@ vec3 decode_normal(uint bits) {
         n.xy = (1.0 - abs(n.yx)) * s;
     }
     return normalize(n);
+}
+
+// The indices in b_vertices of global triangle `prim`'s vertices.
+uvec3 triangle_vertices(uint prim) {
+    return floatBitsToUint(b_triangles.t[3u * prim + 2u].yzw);
 }
 
 vec3 transform_point(vec4 m[3], vec3 p) {

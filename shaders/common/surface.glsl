@@ -80,9 +80,10 @@ Surface surface_at(Hit hit, vec3 origin, vec3 dir) {
         s.color = vec3(1.0);
         return s;
     }
-    uint i0 = b_indices.i[3u * hit.primitive];
-    uint i1 = b_indices.i[3u * hit.primitive + 1u];
-    uint i2 = b_indices.i[3u * hit.primitive + 2u];
+    uvec3 vertices = triangle_vertices(hit.primitive);
+    uint i0 = vertices.x;
+    uint i1 = vertices.y;
+    uint i2 = vertices.z;
     Vertex v0 = b_vertices.v[i0];
     Vertex v1 = b_vertices.v[i1];
     Vertex v2 = b_vertices.v[i2];

@@ -47,10 +47,12 @@ vec3 safe_inverse(vec3 d) {
 
 // Moller-Trumbore; returns t (or T_INFINITY) and barycentrics.
 float intersect_triangle(uint tri, vec3 o, vec3 d, float t_max, out vec2 bary) {
-    uint f = 9u * tri;
-    vec3 p0 = vec3(b_triangles.t[f], b_triangles.t[f + 1u], b_triangles.t[f + 2u]);
-    vec3 e1 = vec3(b_triangles.t[f + 3u], b_triangles.t[f + 4u], b_triangles.t[f + 5u]);
-    vec3 e2 = vec3(b_triangles.t[f + 6u], b_triangles.t[f + 7u], b_triangles.t[f + 8u]);
+    uint f = 3u * tri;
+    vec4 a = b_triangles.t[f];
+    vec4 b = b_triangles.t[f + 1u];
+    vec3 p0 = a.xyz;
+    vec3 e1 = vec3(a.w, b.xy);
+    vec3 e2 = vec3(b.zw, b_triangles.t[f + 2u].x);
     vec3 pv = cross(d, e2);
     float det = dot(e1, pv);
     bary = vec2(0.0);

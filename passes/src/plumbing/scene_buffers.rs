@@ -11,9 +11,8 @@ use lucid_engine::{Context, Result};
 use std::sync::Arc;
 
 /// The names of the scene buffers in the shaders, in [`SceneBuffers::buffers`] order.
-const NAMES: [&str; 15] = [
+const NAMES: [&str; 14] = [
     "b_vertices",
-    "b_indices",
     "b_blas",
     "b_tlas",
     "b_instances",
@@ -31,7 +30,7 @@ const NAMES: [&str; 15] = [
 
 /// Device-local copies of a packed scene.
 pub struct SceneBuffers {
-    buffers: [Arc<Buffer>; 15],
+    buffers: [Arc<Buffer>; 14],
     /// New contents of top-level buffers (by index), written in place by each frame's graph
     /// until a frame with them is submitted ([`SceneBuffers::submitted`]).
     pending: Vec<(usize, Arc<Vec<u8>>)>,
@@ -61,20 +60,19 @@ impl SceneBuffers {
         Ok(Self {
             buffers: [
                 upload(ctx, NAMES[0], &gpu.vertices)?,
-                upload(ctx, NAMES[1], &gpu.indices)?,
-                upload(ctx, NAMES[2], gpu.blas_nodes.bytes())?,
-                upload(ctx, NAMES[3], gpu.tlas_nodes.bytes())?,
-                upload(ctx, NAMES[4], &gpu.instances)?,
-                upload(ctx, NAMES[5], &gpu.spheres)?,
-                upload(ctx, NAMES[6], &gpu.materials)?,
-                upload(ctx, NAMES[7], &gpu.lights)?,
-                upload(ctx, NAMES[8], &gpu.light_table)?,
-                upload(ctx, NAMES[9], &gpu.texels)?,
-                upload(ctx, NAMES[10], &gpu.textures)?,
-                upload(ctx, NAMES[11], std::slice::from_ref(&gpu.params))?,
-                upload(ctx, NAMES[12], triangle_ids)?,
-                upload(ctx, NAMES[13], &gpu.triangles)?,
-                upload(ctx, NAMES[14], &gpu.vertex_attributes)?,
+                upload(ctx, NAMES[1], gpu.blas_nodes.bytes())?,
+                upload(ctx, NAMES[2], gpu.tlas_nodes.bytes())?,
+                upload(ctx, NAMES[3], &gpu.instances)?,
+                upload(ctx, NAMES[4], &gpu.spheres)?,
+                upload(ctx, NAMES[5], &gpu.materials)?,
+                upload(ctx, NAMES[6], &gpu.lights)?,
+                upload(ctx, NAMES[7], &gpu.light_table)?,
+                upload(ctx, NAMES[8], &gpu.texels)?,
+                upload(ctx, NAMES[9], &gpu.textures)?,
+                upload(ctx, NAMES[10], std::slice::from_ref(&gpu.params))?,
+                upload(ctx, NAMES[11], triangle_ids)?,
+                upload(ctx, NAMES[12], &gpu.triangles)?,
+                upload(ctx, NAMES[13], &gpu.vertex_attributes)?,
             ],
             pending: Vec::new(),
             features: gpu.features,
@@ -87,11 +85,11 @@ impl SceneBuffers {
     /// buffers at once (frames in flight keep the old ones alive until they finish).
     pub fn update_top_level(&mut self, ctx: &Context, gpu: &GpuScene) -> Result<()> {
         let arrays: [(usize, &[u8]); 5] = [
-            (3, gpu.tlas_nodes.bytes()),
-            (4, bytemuck::cast_slice(&gpu.instances)),
-            (7, bytemuck::cast_slice(&gpu.lights)),
-            (8, bytemuck::cast_slice(&gpu.light_table)),
-            (11, bytemuck::bytes_of(&gpu.params)),
+            (2, gpu.tlas_nodes.bytes()),
+            (3, bytemuck::cast_slice(&gpu.instances)),
+            (6, bytemuck::cast_slice(&gpu.lights)),
+            (7, bytemuck::cast_slice(&gpu.light_table)),
+            (10, bytemuck::bytes_of(&gpu.params)),
         ];
         for (i, data) in arrays {
             self.pending.retain(|(j, _)| *j != i);
@@ -153,7 +151,7 @@ impl SceneBuffers {
 /// The scene buffers of one frame's graph.
 #[derive(Clone, Copy, Debug)]
 pub struct SceneHandles {
-    handles: [BufferHandle; 15],
+    handles: [BufferHandle; 14],
 }
 
 impl SceneHandles {

@@ -26,7 +26,7 @@ fn memory(scene: &Scene) -> serde_json::Value {
         .into_iter()
         .map(|layout| {
             let (gpu, ids) = pack_flat(&flat, scene, &bvh, layout);
-            let triangles = (gpu.indices.len() / 3).max(1) as f64;
+            let triangles = gpu.triangles.len().max(1) as f64;
             let total = gpu.total_bytes() + ids.len() * 8;
             let depths = gpu.bvh_depths();
             (

@@ -32,10 +32,8 @@ pub struct PackedGeometry {
     /// The colour, alpha and tangent of every vertex of `vertices` (opaque white and `+X` where a
     /// mesh has none) when some mesh has vertex colours or tangents, else empty.
     pub vertex_attributes: Vec<GpuVertexAttributes>,
-    /// Triangle vertex indices (absolute), each mesh's triangles in its
+    /// Every triangle's vertex, edges and vertex indices (absolute), each mesh's triangles in its
     /// packed BLAS's order (`blas_orders`).
-    pub indices: Vec<u32>,
-    /// Every triangle's vertex and edges, in the order of `indices`.
     pub triangles: Vec<GpuTriangle>,
     /// All BLAS nodes in the GPU layout, with absolute node and triangle indices.
     pub blas_nodes: GpuNodes,
@@ -61,7 +59,6 @@ pub fn pack(scene: &Scene, bvh: &Bvh, layout: BvhLayout) -> PackedGeometry {
     let mut out = PackedGeometry {
         vertices: Vec::with_capacity(vertex_total),
         vertex_attributes: Vec::new(),
-        indices: Vec::with_capacity(scene.unique_triangle_count() * 3),
         triangles: Vec::with_capacity(scene.unique_triangle_count()),
         blas_nodes: GpuNodes::new(layout),
         blas_roots: Vec::with_capacity(bvh.blases.len()),
@@ -82,21 +79,16 @@ pub fn pack(scene: &Scene, bvh: &Bvh, layout: BvhLayout) -> PackedGeometry {
             out.vertex_attributes
                 .extend((0..mesh.positions.len()).map(|i| attributes(mesh, i)));
         }
-        let tri_base = (out.indices.len() / 3) as u32;
+        let tri_base = out.triangles.len() as u32;
         out.triangle_base.push(tri_base);
         let packed = out.blas_nodes.pack_tree(&blas.nodes, &blas.order, tri_base);
-        out.indices.extend(
-            packed
-                .order
-                .iter()
-                .flat_map(|&t| (mesh.indices[t as usize] + vertex_base).to_array()),
-        );
         out.triangles.extend(packed.order.iter().map(|&t| {
             let [p0, p1, p2] = mesh.triangle(t as usize);
             GpuTriangle {
                 p0: p0.to_array(),
                 e1: (p1 - p0).to_array(),
                 e2: (p2 - p0).to_array(),
+                vertices: (mesh.indices[t as usize] + vertex_base).to_array(),
             }
         }));
         out.add_blas(packed);

@@ -30,9 +30,10 @@ pub struct GpuVertex {
     pub uv: u32,
 }
 
-/// A triangle as ray intersection reads it, 36 bytes (nine floats, read as `float t[]` in GLSL:
-/// first vertex, second minus first, third minus first), in the packed BLAS's order: contiguous reads
-/// instead of indices then vertices.
+/// A triangle, 48 bytes, read as three `vec4` in GLSL: what ray intersection reads (first vertex,
+/// second minus first, third minus first: contiguous reads instead of indices then vertices) in two
+/// 16-byte loads, then the indices of its vertices (`triangle_vertices` in
+/// `shaders/common/scene.glsl`), in the packed BLAS's order.
 #[repr(C)]
 #[derive(Clone, Copy, Debug, Default, PartialEq, Pod, Zeroable)]
 pub struct GpuTriangle {
@@ -42,6 +43,8 @@ pub struct GpuTriangle {
     pub e1: [f32; 3],
     /// Third vertex minus the first.
     pub e2: [f32; 3],
+    /// Indices of the three vertices (absolute: in `GpuScene::vertices`).
+    pub vertices: [u32; 3],
 }
 
 /// An instance, 112 bytes (std430 alignment 16).

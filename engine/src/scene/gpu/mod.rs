@@ -65,9 +65,7 @@ pub struct GpuScene {
     /// Vertex colours, alphas and tangents, one per vertex, when some mesh has colours or
     /// tangents; else empty (and `HAS_VERTEX_COLORS` and `HAS_NORMAL_MAPS` off).
     pub vertex_attributes: Vec<GpuVertexAttributes>,
-    /// Triangle vertex indices, three per triangle.
-    pub indices: Vec<u32>,
-    /// Triangles for ray intersection (first vertex and edges), in the order of `indices`.
+    /// Triangles: what ray intersection reads (first vertex and edges) and their vertex indices.
     pub triangles: Vec<GpuTriangle>,
     /// All bottom-level nodes.
     pub blas_nodes: GpuNodes,
@@ -126,7 +124,7 @@ impl GpuScene {
     }
 
     /// A lower bound of the bytes packing `scene` takes on the device, from the triangle and vertex
-    /// counts of the meshes its instances use (each such mesh's indices, triangle records and
+    /// counts of the meshes its instances use (each such mesh's triangle records and
     /// vertices, once; no BVH, instances, textures or lights), so known before the BVH is built.
     pub fn least_bytes(scene: &Scene) -> u64 {
         let mut used = vec![false; scene.meshes.len()];
@@ -142,7 +140,7 @@ impl GpuScene {
             .filter(|(_, used)| *used)
             .map(|(m, _)| {
                 let triangles = m.indices.len() as u64;
-                let per_triangle = (size_of::<[u32; 3]>() + size_of::<GpuTriangle>()) as u64;
+                let per_triangle = size_of::<GpuTriangle>() as u64;
                 triangles * per_triangle + m.positions.len() as u64 * size_of::<GpuVertex>() as u64
             })
             .sum()
@@ -172,7 +170,6 @@ impl GpuScene {
             environment_distribution,
             vertices: geo.vertices,
             vertex_attributes: geo.vertex_attributes,
-            indices: geo.indices,
             triangles: geo.triangles,
             blas_nodes: geo.blas_nodes,
             tlas_nodes: GpuNodes::new(layout),
@@ -314,7 +311,7 @@ impl GpuScene {
             environment: params::environment(&scene.environment, self.environment_record, cells),
             sun: params::sun(scene.sun.as_ref()),
             counts0: [
-                (self.indices.len() / 3) as u32,
+                self.triangles.len() as u32,
                 self.instances.len() as u32,
                 self.spheres.len() as u32,
                 self.lights.len() as u32,
@@ -365,11 +362,10 @@ impl GpuScene {
         matches!(self.instances.as_slice(), [only] if only.kind != INSTANCE_SPHERES)
     }
 
-    /// Bytes of vertices and indices.
+    /// Bytes of vertices, triangles and spheres.
     pub fn geometry_bytes(&self) -> usize {
         self.vertices.len() * size_of::<GpuVertex>()
             + self.vertex_attributes.len() * size_of::<GpuVertexAttributes>()
-            + self.indices.len() * 4
             + self.triangles.len() * size_of::<GpuTriangle>()
             + self.spheres.len() * size_of::<GpuSphere>()
     }
@@ -396,7 +392,7 @@ impl GpuScene {
     /// Geometry plus BVH bytes per stored (unique, pre-instancing)
     /// triangle; 0 for a scene without triangles.
     pub fn bytes_per_triangle(&self) -> f64 {
-        let tris = self.indices.len() / 3;
+        let tris = self.triangles.len();
         if tris == 0 {
             0.0
         } else {
