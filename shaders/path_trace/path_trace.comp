@@ -2,8 +2,10 @@
 #extension GL_KHR_shader_subgroup_arithmetic : require
 #extension GL_KHR_shader_subgroup_basic : require
 // Unidirectional path tracing (common/path.glsl), `spp` samples per pixel, one thread per pixel,
-// in batches of samples (common/sample_batch.glsl): the images hold the running sums until the
-// last batch writes the averages, and b_rng_state each pixel's generator between batches;
+// in batches of samples (common/sample_batch.glsl): the images hold the running sums (each sample
+// adds to them, so that no sum is held in registers while a path is traced: 96 registers instead
+// of 124-128 on an H100 with the denoiser's outputs on, bench/README.md) until the frame's last
+// sample writes the averages, and b_rng_state each pixel's generator between batches;
 // on frames with replay on, a pixel per stratum replays last frame's paths instead
 // (common/replay.glsl) so that the denoiser gets noise-free temporal gradients at no extra paths.
 // Writes the noisy radiance, the radiance demodulated by the first hit (emission removed, divided
@@ -65,29 +67,32 @@ void main() {
     float aspect = float(size.x) / float(size.y);
     uint rays = 0u;
     uint dropped = 0u;
-    vec3 sum = first ? vec3(0.0) : imageLoad(u_radiance, pixel).rgb;
-    vec3 demodulated_sum = vec3(0.0);
-    vec3 albedo_sum = vec3(0.0);
-    vec3 emission_sum = vec3(0.0);
-    if (SURFACE_OUTPUTS && !first) {
-        demodulated_sum = imageLoad(u_demodulated, pixel).rgb;
-        albedo_sum = imageLoad(u_albedo, pixel).rgb;
-        emission_sum = imageLoad(u_emission, pixel).rgb;
-    }
+    // Each sample adds to what the images hold (zero before the frame's first sample); the
+    // frame's last also averages.
+    float last_scale = batch_is_last(batch, spp) ? 1.0 / float(spp) : 1.0;
     for (uint i = 0u; i < batch.count; ++i) {
         vec2 ndc = film_ndc(vec2(source), rng_next2(rng), vec2(size));
         vec3 origin;
         vec3 dir;
         camera_ray(camera, ndc, aspect, rng_next2(rng), origin, dir);
         PathResult path = trace_path(origin, dir, rng, max_depth, rr_depth, pixel_spread(camera, float(size.y)), rays);
-        albedo_sum += path.first_albedo;
-        if (any(isnan(path.radiance)) || any(isinf(path.radiance))) {
-            dropped += 1u;
-            continue;
+        bool finite = !(any(isnan(path.radiance)) || any(isinf(path.radiance)));
+        dropped += finite ? 0u : 1u;
+        bool fresh = first && i == 0u;
+        float scale = i + 1u == batch.count ? last_scale : 1.0;
+        vec3 radiance = finite ? path.radiance : vec3(0.0);
+        vec3 sum = (fresh ? vec3(0.0) : imageLoad(u_radiance, pixel).rgb) + radiance;
+        imageStore(u_radiance, pixel, vec4(sum * scale, 1.0));
+        if (SURFACE_OUTPUTS) {
+            vec3 demodulated = finite ? demodulate(path.radiance, path.first_emission, path.first_albedo) : vec3(0.0);
+            vec3 emission = finite ? path.first_emission : vec3(0.0);
+            vec3 demodulated_sum = (fresh ? vec3(0.0) : imageLoad(u_demodulated, pixel).rgb) + demodulated;
+            vec3 albedo_sum = (fresh ? vec3(0.0) : imageLoad(u_albedo, pixel).rgb) + path.first_albedo;
+            vec3 emission_sum = (fresh ? vec3(0.0) : imageLoad(u_emission, pixel).rgb) + emission;
+            imageStore(u_demodulated, pixel, vec4(demodulated_sum * scale, 1.0));
+            imageStore(u_albedo, pixel, vec4(albedo_sum * scale, 1.0));
+            imageStore(u_emission, pixel, vec4(emission_sum * scale, 1.0));
         }
-        sum += path.radiance;
-        demodulated_sum += demodulate(path.radiance, path.first_emission, path.first_albedo);
-        emission_sum += path.first_emission;
     }
     if (dropped > 0u) {
         atomicAdd(b_stats.non_finite, dropped);
@@ -99,15 +104,7 @@ void main() {
     if (loop_limit_reached(batch.count + 1u)) {
         atomicAdd(b_stats.cut_short, 1u);
     }
-    bool last = batch_is_last(batch, spp);
-    if (!last) {
+    if (!batch_is_last(batch, spp)) {
         b_rng_state.s[state_index] = rng;
-    }
-    float scale = last ? 1.0 / float(spp) : 1.0;
-    imageStore(u_radiance, pixel, vec4(sum * scale, 1.0));
-    if (SURFACE_OUTPUTS) {
-        imageStore(u_demodulated, pixel, vec4(demodulated_sum * scale, 1.0));
-        imageStore(u_albedo, pixel, vec4(albedo_sum * scale, 1.0));
-        imageStore(u_emission, pixel, vec4(emission_sum * scale, 1.0));
     }
 }
