@@ -10,8 +10,8 @@
 // first hit (its emission removed, divided by its albedo) and that hit's albedo and emission.
 // Non-finite samples are dropped and counted in b_stats, as are the pixels whose loops the device
 // cut short. The samples come in batches (common/sample_batch.glsl): the images hold the running
-// sums until the last batch writes the averages, and b_rng_state each pixel's generator between
-// batches.
+// sums (each sample adds to them) until the frame's last sample writes the averages, and
+// b_rng_state each pixel's generator between batches.
 #include "common/math.glsl"
 #include "common/rng.glsl"
 #include "common/scene.glsl"
@@ -267,6 +267,23 @@ vec3 trace_camera(vec3 o, vec3 d, inout uint rng, uint max_depth, uint rr_depth,
     return radiance;
 }
 
+// Writes pixel's averages over the frame's `spp` samples from their sums, the light tracer's splat
+// added to the radiance.
+void store_averages(ivec2 pixel, uvec2 size, uint spp, vec3 sum, vec3 albedo_sum, vec3 emission_sum) {
+    uint i = 3u * (uint(pixel.y) * size.x + uint(pixel.x));
+    vec3 splat = vec3(float(b_splat.v[i]), float(b_splat.v[i + 1u]), float(b_splat.v[i + 2u]))
+        * (pc.splat_scale / SPLAT_ONE);
+    vec3 radiance = sum / float(spp) + splat;
+    vec3 albedo = albedo_sum / float(spp);
+    vec3 emission = emission_sum / float(spp);
+    imageStore(u_radiance, pixel, vec4(radiance, 1.0));
+    if (SURFACE_OUTPUTS) {
+        imageStore(u_demodulated, pixel, vec4(demodulate(radiance, emission, albedo), 1.0));
+        imageStore(u_albedo, pixel, vec4(albedo, 1.0));
+        imageStore(u_emission, pixel, vec4(emission, 1.0));
+    }
+}
+
 void main() {
     ivec2 pixel = ivec2(gl_GlobalInvocationID.xy);
     uvec2 size = uvec2(b_frame.f.width, b_frame.f.height);
@@ -282,14 +299,10 @@ void main() {
     uint max_depth = b_frame.f.max_depth;
     uint rr_depth = b_frame.f.rr_depth;
     float aspect = float(size.x) / float(size.y);
-    vec3 sum = first ? vec3(0.0) : imageLoad(u_radiance, pixel).rgb;
-    vec3 albedo_sum = vec3(0.0);
-    vec3 emission_sum = vec3(0.0);
-    if (SURFACE_OUTPUTS && !first) {
-        albedo_sum = imageLoad(u_albedo, pixel).rgb;
-        emission_sum = imageLoad(u_emission, pixel).rgb;
-    }
+    bool last = batch_is_last(batch, spp);
     uint dropped = 0u;
+    // Each sample adds to what the images hold (zero before the frame's first sample), so that no
+    // sum is held in registers while a path is traced; the frame's last sample writes the averages.
     for (uint i = 0u; i < batch.count; ++i) {
         vec2 ndc = film_ndc(vec2(pixel), rng_next2(rng), vec2(size));
         vec3 origin;
@@ -303,9 +316,23 @@ void main() {
             l = vec3(0.0);
             emission = vec3(0.0);
         }
-        sum += l;
-        albedo_sum += albedo;
-        emission_sum += emission;
+        bool fresh = first && i == 0u;
+        vec3 sum = (fresh ? vec3(0.0) : imageLoad(u_radiance, pixel).rgb) + l;
+        vec3 albedo_sum = vec3(0.0);
+        vec3 emission_sum = vec3(0.0);
+        if (SURFACE_OUTPUTS) {
+            albedo_sum = (fresh ? vec3(0.0) : imageLoad(u_albedo, pixel).rgb) + albedo;
+            emission_sum = (fresh ? vec3(0.0) : imageLoad(u_emission, pixel).rgb) + emission;
+        }
+        if (last && i + 1u == batch.count) {
+            store_averages(pixel, size, spp, sum, albedo_sum, emission_sum);
+        } else {
+            imageStore(u_radiance, pixel, vec4(sum, 1.0));
+            if (SURFACE_OUTPUTS) {
+                imageStore(u_albedo, pixel, vec4(albedo_sum, 1.0));
+                imageStore(u_emission, pixel, vec4(emission_sum, 1.0));
+            }
+        }
     }
     if (dropped > 0u) {
         atomicAdd(b_stats.non_finite, dropped);
@@ -317,25 +344,7 @@ void main() {
     if (loop_limit_reached(batch.count + 1u)) {
         atomicAdd(b_stats.cut_short, 1u);
     }
-    if (!batch_is_last(batch, spp)) {
+    if (!last) {
         b_rng_state.s[state_index] = rng;
-        imageStore(u_radiance, pixel, vec4(sum, 1.0));
-        if (SURFACE_OUTPUTS) {
-            imageStore(u_albedo, pixel, vec4(albedo_sum, 1.0));
-            imageStore(u_emission, pixel, vec4(emission_sum, 1.0));
-        }
-        return;
-    }
-    uint i = 3u * (uint(pixel.y) * size.x + uint(pixel.x));
-    vec3 splat = vec3(float(b_splat.v[i]), float(b_splat.v[i + 1u]), float(b_splat.v[i + 2u]))
-        * (pc.splat_scale / SPLAT_ONE);
-    vec3 radiance = sum / float(spp) + splat;
-    vec3 albedo = albedo_sum / float(spp);
-    vec3 emission = emission_sum / float(spp);
-    imageStore(u_radiance, pixel, vec4(radiance, 1.0));
-    if (SURFACE_OUTPUTS) {
-        imageStore(u_demodulated, pixel, vec4(demodulate(radiance, emission, albedo), 1.0));
-        imageStore(u_albedo, pixel, vec4(albedo, 1.0));
-        imageStore(u_emission, pixel, vec4(emission, 1.0));
     }
 }
