@@ -28,6 +28,15 @@ const NAMES: [&str; 14] = [
     "b_vertex_attributes",
 ];
 
+/// Slots in [`NAMES`] (and [`SceneBuffers::buffers`]) of the buffers replaced after the upload.
+const TLAS: usize = 2;
+const INSTANCES: usize = 3;
+const MATERIALS: usize = 5;
+const LIGHTS: usize = 6;
+const LIGHT_TABLE: usize = 7;
+const TEXTURES: usize = 9;
+const PARAMS: usize = 10;
+
 /// Device-local copies of a packed scene.
 pub struct SceneBuffers {
     buffers: [Arc<Buffer>; 14],
@@ -85,11 +94,11 @@ impl SceneBuffers {
     /// buffers at once (frames in flight keep the old ones alive until they finish).
     pub fn update_top_level(&mut self, ctx: &Context, gpu: &GpuScene) -> Result<()> {
         let arrays: [(usize, &[u8]); 5] = [
-            (2, gpu.tlas_nodes.bytes()),
-            (3, bytemuck::cast_slice(&gpu.instances)),
-            (6, bytemuck::cast_slice(&gpu.lights)),
-            (7, bytemuck::cast_slice(&gpu.light_table)),
-            (10, bytemuck::bytes_of(&gpu.params)),
+            (TLAS, gpu.tlas_nodes.bytes()),
+            (INSTANCES, bytemuck::cast_slice(&gpu.instances)),
+            (LIGHTS, bytemuck::cast_slice(&gpu.lights)),
+            (LIGHT_TABLE, bytemuck::cast_slice(&gpu.light_table)),
+            (PARAMS, bytemuck::bytes_of(&gpu.params)),
         ];
         for (i, data) in arrays {
             self.pending.retain(|(j, _)| *j != i);
@@ -107,8 +116,8 @@ impl SceneBuffers {
 
     /// Replaces the materials, their texture records (and params) after a material edit.
     pub fn update_materials(&mut self, ctx: &Context, gpu: &GpuScene) -> Result<()> {
-        self.buffers[6] = upload(ctx, NAMES[6], &gpu.materials)?;
-        self.buffers[10] = upload(ctx, NAMES[10], &gpu.textures)?;
+        self.buffers[MATERIALS] = upload(ctx, NAMES[MATERIALS], &gpu.materials)?;
+        self.buffers[TEXTURES] = upload(ctx, NAMES[TEXTURES], &gpu.textures)?;
         self.update_top_level(ctx, gpu)
     }
 
@@ -206,4 +215,25 @@ pub fn traversal_specialization(gpu: &GpuScene) -> Specialization {
         .set("HAS_ALPHA_TEST", gpu.features.alpha_test)
         .set("SINGLE_INSTANCE", gpu.single_instance())
         .set("WIDE_BVH", gpu.layout() == BvhLayout::Wide)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn the_replaced_slots_name_their_buffers() {
+        let slots = [
+            (TLAS, "b_tlas"),
+            (INSTANCES, "b_instances"),
+            (MATERIALS, "b_materials"),
+            (LIGHTS, "b_lights"),
+            (LIGHT_TABLE, "b_light_table"),
+            (TEXTURES, "b_textures"),
+            (PARAMS, "b_scene"),
+        ];
+        for (slot, name) in slots {
+            assert_eq!(NAMES[slot], name);
+        }
+    }
 }
