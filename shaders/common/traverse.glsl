@@ -13,6 +13,9 @@ layout(constant_id = 100) const bool HAS_SPHERES = true;
 // The scene is packed as exactly one triangle instance (GpuScene::single_instance, e.g. a fully
 // flattened static scene): trace_ray walks its BLAS directly, without the top level.
 layout(constant_id = 108) const bool SINGLE_INSTANCE = false;
+// The scene has so few instances (more than one, at most passes/src/plumbing/scene_buffers.rs's
+// MAX_FEW_INSTANCES) that trace_ray walks each one's BLAS in turn rather than the top level.
+layout(constant_id = 119) const bool FEW_INSTANCES = false;
 // The BVH nodes are compressed 8-wide ones (lucid_engine::scene::gpu::BvhLayout::Wide), not binary.
 layout(constant_id = 116) const bool WIDE_BVH = false;
 
@@ -162,6 +165,18 @@ bool trace_ray(vec3 origin, vec3 dir, float t_max, bool any_hit, out Hit hit) {
         vec3 o = transform_point(inst.world_to_object, origin);
         vec3 d = transform_vector(inst.world_to_object, dir);
         return traverse_blas(0u, inst, o, d, any_hit, hit);
+    }
+    if (FEW_INSTANCES) {
+        bool found = false;
+        for (uint i = 0u; i < b_scene.p.counts0.y; ++i) {
+            if (intersect_instance(i, origin, dir, any_hit, hit)) {
+                found = true;
+                if (any_hit) {
+                    return true;
+                }
+            }
+        }
+        return found;
     }
     if (WIDE_BVH) {
         return trace_wide_tlas(word, origin, dir, any_hit, hit);

@@ -2,8 +2,9 @@
 //! compressed wide), on random rays through every built-in scene (reduced tessellation for the
 //! large ones), axis-parallel rays and rays grazing triangles (aimed just inside an edge, or running
 //! just above a surface, nearly parallel to it). The GPU traverses the renderer's packing (static
-//! instances flattened into one BLAS, some kept as instances); hits must name the same original
-//! instance as the CPU's two-level BVH over the original scene.
+//! instances flattened into one BLAS, some kept as instances: walked directly, in turn when few,
+//! or through the top level); hits must name the same original instance as the CPU's two-level
+//! BVH over the original scene.
 
 use ash::vk;
 use glam::{Affine3A, Quat, Vec3};
@@ -15,7 +16,9 @@ use lucid_engine::scene::gpu::{pack_flat, BvhLayout};
 use lucid_engine::scene::{Bvh, FlatScene, Scene};
 use lucid_engine::shader::ShaderLibrary;
 use lucid_passes::debug::ray_query::{self, QueryHit, QueryRay, SPHERE_BIT};
-use lucid_passes::plumbing::scene_buffers::{traversal_specialization, SceneBuffers};
+use lucid_passes::plumbing::scene_buffers::{
+    traversal_specialization, SceneBuffers, MAX_FEW_INSTANCES,
+};
 use lucid_tests::{assert_no_validation_messages, context, run};
 use std::sync::Arc;
 
@@ -45,7 +48,7 @@ fn check_builtin(
     dynamic: impl Fn(usize) -> bool,
     rays_per_scene: usize,
     layout: BvhLayout,
-) -> bool {
+) -> TopLevel {
     let options = BuildOptions { detail: 0.02 };
     let mut scene = builtin::build_with(name, &options).unwrap();
     scene.validate().unwrap();
@@ -93,7 +96,23 @@ fn grazing_ray(
 /// Traces random, axis-parallel and grazing rays through the validated `scene` packed as the
 /// renderer packs it in `layout`, with the scene's specialization (the single-instance fast path
 /// included); returns whether the packing was a single instance.
-fn check_scene(scene: &Scene, dynamic: &[bool], rays_per_scene: usize, layout: BvhLayout) -> bool {
+/// How rays reached the instances of a packed scene (`shaders/common/traverse.glsl`).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+enum TopLevel {
+    /// One triangle instance, walked directly (`SINGLE_INSTANCE`).
+    Single,
+    /// A few instances, each walked in turn (`FEW_INSTANCES`).
+    Few,
+    /// The top-level BVH.
+    Walked,
+}
+
+fn check_scene(
+    scene: &Scene,
+    dynamic: &[bool],
+    rays_per_scene: usize,
+    layout: BvhLayout,
+) -> TopLevel {
     let name = format!("{} ({layout})", scene.name);
     let name = name.as_str();
     let bvh = Bvh::build(scene);
@@ -225,15 +244,25 @@ fn check_scene(scene: &Scene, dynamic: &[bool], rays_per_scene: usize, layout: B
     );
     drop((executor, buffers));
     assert_no_validation_messages(&ctx);
-    gpu.single_instance()
+    if gpu.single_instance() {
+        TopLevel::Single
+    } else if gpu.instances.len() <= MAX_FEW_INSTANCES {
+        TopLevel::Few
+    } else {
+        TopLevel::Walked
+    }
 }
 
 #[test]
 fn gpu_traversal_matches_cpu_on_every_builtin_scene() {
-    // Every third instance kept dynamic, so most scenes keep a top level.
+    // Every third instance kept dynamic, so most scenes keep more than one instance.
     for layout in BvhLayout::ALL {
-        for name in builtin::names() {
-            check_builtin(name, |i| i % 3 == 1, 4000, layout);
+        let walks: Vec<TopLevel> = builtin::names()
+            .iter()
+            .map(|name| check_builtin(name, |i| i % 3 == 1, 4000, layout))
+            .collect();
+        for walk in [TopLevel::Few, TopLevel::Walked] {
+            assert!(walks.contains(&walk), "no scene was traced with {walk:?}");
         }
     }
 }
@@ -247,8 +276,9 @@ fn single_instance_fast_path_matches_cpu() {
 
 /// The single-instance fast path in `layout`: a static Cornell box, and one dynamic instance.
 fn check_single_instance(layout: BvhLayout) {
-    assert!(
+    assert_eq!(
         check_builtin("cornell-box", |_| false, 4000, layout),
+        TopLevel::Single,
         "a static Cornell box is one flattened instance"
     );
     // One dynamic instance, mirrored and rotated: the fast path keeps its transform.
@@ -261,8 +291,9 @@ fn check_single_instance(layout: BvhLayout) {
         Quat::from_rotation_y(0.3),
         Vec3::new(0.2, -0.1, 0.05),
     );
-    assert!(
+    assert_eq!(
         check_scene(&scene, &[true], 4000, layout),
+        TopLevel::Single,
         "a lone dynamic instance is a single instance"
     );
 }

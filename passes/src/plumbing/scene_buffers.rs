@@ -204,16 +204,25 @@ pub fn specialization(gpu: &GpuScene) -> Specialization {
     })
 }
 
+/// The most instances rays walk one after the other instead of through the top level
+/// (`FEW_INSTANCES` in `shaders/common/traverse.glsl`).
+pub const MAX_FEW_INSTANCES: usize = 4;
+
 /// The constants of `shaders/common/traverse.glsl` alone, for passes that only trace (see
 /// [`crate::debug::ray_query`]): `HAS_SPHERES`, `HAS_ALPHA_TEST` (cut-out surfaces let rays
 /// through), `SINGLE_INSTANCE` when the packing is one triangle instance
-/// ([`GpuScene::single_instance`]; the traversal then skips the top level), and `WIDE_BVH` for the
-/// layout of the nodes ([`GpuScene::layout`]).
+/// ([`GpuScene::single_instance`]; the traversal then skips the top level), `FEW_INSTANCES` when
+/// there are more but at most [`MAX_FEW_INSTANCES`] (each one's BLAS walked in turn, no top level
+/// either), and `WIDE_BVH` for the layout of the nodes ([`GpuScene::layout`]).
 pub fn traversal_specialization(gpu: &GpuScene) -> Specialization {
     Specialization::new()
         .set("HAS_SPHERES", gpu.features.spheres)
         .set("HAS_ALPHA_TEST", gpu.features.alpha_test)
         .set("SINGLE_INSTANCE", gpu.single_instance())
+        .set(
+            "FEW_INSTANCES",
+            !gpu.single_instance() && gpu.instances.len() <= MAX_FEW_INSTANCES,
+        )
         .set("WIDE_BVH", gpu.layout() == BvhLayout::Wide)
 }
 
