@@ -48,13 +48,13 @@ void main() {
     // The pixel whose random numbers and camera this thread's paths use: its own, or on a replay
     // pick, last frame's pixel it came from.
     ivec2 source = pixel;
-    Camera camera = b_frame.f.camera;
+    bool replayed = false;
     if (replay_picked(pixel, push.replay, frame, ivec2(size))) {
         ivec2 q = replay_source(pixel, imageLoad(u_motion, pixel).xy, push.replay, frame, ivec2(size));
         if (q != NO_REPLAY) {
             source = q;
             frame -= 1u;
-            camera = b_frame.f.prev_camera;
+            replayed = true;
         }
     }
     SampleBatch batch = push.batch;
@@ -71,6 +71,8 @@ void main() {
     // frame's last also averages.
     float last_scale = batch_is_last(batch, spp) ? 1.0 / float(spp) : 1.0;
     for (uint i = 0u; i < batch.count; ++i) {
+        // Read afresh for every path, so that the camera is not held in registers while one is traced.
+        Camera camera = replayed ? b_frame.f.prev_camera : b_frame.f.camera;
         vec2 ndc = film_ndc(vec2(source), rng_next2(rng), vec2(size));
         vec3 origin;
         vec3 dir;
