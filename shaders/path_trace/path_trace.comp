@@ -72,7 +72,10 @@ void main() {
     float last_scale = batch_is_last(batch, spp) ? 1.0 / float(spp) : 1.0;
     for (uint i = 0u; i < batch.count; ++i) {
         // Read afresh for every path, so that the camera is not held in registers while one is traced.
-        Camera camera = replayed ? b_frame.f.prev_camera : b_frame.f.camera;
+        Camera camera = b_frame.f.camera;
+        if (replayed) {
+            camera = b_frame.f.prev_camera;
+        }
         vec2 ndc = film_ndc(vec2(source), rng_next2(rng), vec2(size));
         vec3 origin;
         vec3 dir;
