@@ -69,7 +69,8 @@ void main() {
     uint dropped = 0u;
     // Each sample adds to what the images hold (zero before the frame's first sample); the
     // frame's last also averages.
-    float last_scale = batch_is_last(batch, spp) ? 1.0 / float(spp) : 1.0;
+    bool last = batch_is_last(batch, spp);
+    float last_scale = last ? 1.0 / float(spp) : 1.0;
     for (uint i = 0u; i < batch.count; ++i) {
         // Read afresh for every path, so that the camera is not held in registers while one is traced.
         Camera camera = b_frame.f.camera;
@@ -109,7 +110,7 @@ void main() {
     if (loop_limit_reached(batch.count + 1u)) {
         atomicAdd(b_stats.cut_short, 1u);
     }
-    if (!batch_is_last(batch, spp)) {
+    if (!last) {
         b_rng_state.s[state_index] = rng;
     }
 }

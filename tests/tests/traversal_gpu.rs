@@ -14,11 +14,9 @@ use lucid_engine::memory::Buffer;
 use lucid_engine::scene::builtin::{self, BuildOptions};
 use lucid_engine::scene::gpu::{pack_flat, BvhLayout};
 use lucid_engine::scene::{Bvh, FlatScene, Scene};
-use lucid_engine::shader::ShaderLibrary;
+use lucid_engine::shader::{ShaderLibrary, SpecValue, Specialization};
 use lucid_passes::debug::ray_query::{self, QueryHit, QueryRay, SPHERE_BIT};
-use lucid_passes::plumbing::scene_buffers::{
-    traversal_specialization, SceneBuffers, MAX_FEW_INSTANCES,
-};
+use lucid_passes::plumbing::scene_buffers::{traversal_specialization, SceneBuffers};
 use lucid_tests::{assert_no_validation_messages, context, run};
 use std::sync::Arc;
 
@@ -93,9 +91,6 @@ fn grazing_ray(
     Some((target + normal * 1e-3 * size - dir * size, dir))
 }
 
-/// Traces random, axis-parallel and grazing rays through the validated `scene` packed as the
-/// renderer packs it in `layout`, with the scene's specialization (the single-instance fast path
-/// included); returns whether the packing was a single instance.
 /// How rays reached the instances of a packed scene (`shaders/common/traverse.glsl`).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 enum TopLevel {
@@ -107,6 +102,23 @@ enum TopLevel {
     Walked,
 }
 
+impl TopLevel {
+    /// The walk the traversal's specialization constants select.
+    fn of(spec: &Specialization) -> Self {
+        let on = |name: &str| spec.get(name) == Some(SpecValue::Bool(true));
+        if on("SINGLE_INSTANCE") {
+            TopLevel::Single
+        } else if on("FEW_INSTANCES") {
+            TopLevel::Few
+        } else {
+            TopLevel::Walked
+        }
+    }
+}
+
+/// Traces random, axis-parallel and grazing rays through the validated `scene` packed as the
+/// renderer packs it in `layout`, with the scene's specialization (the single-instance and
+/// few-instance walks included); returns the walk that specialization selected.
 fn check_scene(
     scene: &Scene,
     dynamic: &[bool],
@@ -244,13 +256,7 @@ fn check_scene(
     );
     drop((executor, buffers));
     assert_no_validation_messages(&ctx);
-    if gpu.single_instance() {
-        TopLevel::Single
-    } else if gpu.instances.len() <= MAX_FEW_INSTANCES {
-        TopLevel::Few
-    } else {
-        TopLevel::Walked
-    }
+    TopLevel::of(&spec)
 }
 
 #[test]
