@@ -18,6 +18,27 @@ fn a_device_that_does_not_exist_lists_the_available_ones() {
 }
 
 #[test]
+fn a_device_can_be_requested_by_index() {
+    let desc = ContextDesc {
+        device: Some("#0".into()),
+        ..ContextDesc::for_tests(false)
+    };
+    let ctx = Context::new(&desc).unwrap();
+    let name = ctx.info().name.clone();
+    assert_no_validation_messages(&ctx);
+    drop(ctx);
+    let desc = ContextDesc {
+        device: Some("#99".into()),
+        ..ContextDesc::for_tests(false)
+    };
+    let text = Context::new(&desc)
+        .err()
+        .expect("no 100th device")
+        .to_string();
+    assert!(text.contains(&format!("#0 {name}")), "{text}");
+}
+
+#[test]
 fn a_device_can_be_requested_by_name() {
     let name = context(false).info().name.clone();
     let fragment: String = name.chars().take(4).collect::<String>().to_uppercase();

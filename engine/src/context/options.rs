@@ -22,7 +22,8 @@ pub struct ContextDesc {
     pub validation: Validation,
     /// When true and the validation layer is not installed, creation fails instead of warning.
     pub require_validation: bool,
-    /// A substring of the device name to use (the `LUCID_DEVICE` variable).
+    /// A substring of the device name to use, or `#N` for the N-th device the loader lists (the
+    /// `LUCID_DEVICE` variable).
     pub device: Option<String>,
     /// Extra instance extensions (e.g. the surface extensions a window needs).
     pub instance_extensions: Vec<CString>,
@@ -62,7 +63,7 @@ impl Default for ContextDesc {
 }
 
 impl ContextDesc {
-    /// The default description, adjusted by `LUCID_DEVICE` (device name substring),
+    /// The default description, adjusted by `LUCID_DEVICE` (device name substring or `#N`),
     /// `LUCID_VALIDATION` (`0`/`off`, `1`/`on`, `sync`) and `LUCID_PIPELINE_STATISTICS`
     /// (`1`/`on`/`true` captures pipeline statistics) and `LUCID_INJECT_DEVICE_LOST` (`N`: the N-th
     /// frame reports a device loss, see [`ContextDesc::inject_device_lost_at_frame`]) and

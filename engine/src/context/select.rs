@@ -39,8 +39,10 @@ impl DeviceKind {
     }
 }
 
-/// Chooses a device: the first usable one whose name contains `requested` (case-insensitive) if given,
-/// otherwise the most preferred kind (discrete first), ties broken by enumeration order.
+/// Chooses a device: with `requested` = `#N`, the N-th the loader lists (from 0; for machines of
+/// several identical GPUs); with another `requested`, the first usable one whose name contains it
+/// (case-insensitive); otherwise the most preferred kind (discrete first), ties broken by
+/// enumeration order.
 pub fn select_device(
     candidates: &[DeviceCandidate],
     requested: Option<&str>,
@@ -48,31 +50,45 @@ pub fn select_device(
     let describe = || {
         candidates
             .iter()
-            .map(|c| match &c.unusable {
-                Some(why) => format!("{} ({why})", c.name),
-                None => c.name.clone(),
+            .enumerate()
+            .map(|(i, c)| match &c.unusable {
+                Some(why) => format!("#{i} {} ({why})", c.name),
+                None => format!("#{i} {}", c.name),
             })
             .collect::<Vec<_>>()
     };
+    let no_such = |requested: &str| EngineError::NoSuchDevice {
+        requested: requested.to_string(),
+        available: describe(),
+    };
+    let unusable = |requested: &str| EngineError::NoSuitableDevice {
+        reason: format!("every device matching {requested:?} is unusable"),
+        available: describe(),
+    };
     if let Some(requested) = requested.filter(|r| !r.is_empty()) {
+        if let Some(digits) = requested.strip_prefix('#') {
+            let index = digits
+                .parse::<usize>()
+                .ok()
+                .filter(|&i| i < candidates.len())
+                .ok_or_else(|| no_such(requested))?;
+            return match candidates[index].unusable {
+                None => Ok(index),
+                Some(_) => Err(unusable(requested)),
+            };
+        }
         let needle = requested.to_lowercase();
         let matching: Vec<usize> = (0..candidates.len())
             .filter(|&i| candidates[i].name.to_lowercase().contains(&needle))
             .collect();
         if matching.is_empty() {
-            return Err(EngineError::NoSuchDevice {
-                requested: requested.to_string(),
-                available: describe(),
-            });
+            return Err(no_such(requested));
         }
         return matching
             .iter()
             .copied()
             .find(|&i| candidates[i].unusable.is_none())
-            .ok_or_else(|| EngineError::NoSuitableDevice {
-                reason: format!("every device matching {requested:?} is unusable"),
-                available: describe(),
-            });
+            .ok_or_else(|| unusable(requested));
     }
     (0..candidates.len())
         .filter(|&i| candidates[i].unusable.is_none())
@@ -136,6 +152,31 @@ mod tests {
             candidate("llvmpipe (LLVM 15)", DeviceKind::Cpu, None),
         ];
         assert_eq!(select_device(&list, Some("LLVMPIPE")).unwrap(), 1);
+    }
+
+    #[test]
+    fn request_by_index_picks_one_of_identical_gpus() {
+        let list = [
+            candidate("NVIDIA H100", DeviceKind::Discrete, None),
+            candidate("NVIDIA H100", DeviceKind::Discrete, None),
+            candidate(
+                "NVIDIA H100",
+                DeviceKind::Discrete,
+                Some("no compute queue"),
+            ),
+        ];
+        assert_eq!(select_device(&list, Some("#1")).unwrap(), 1);
+        assert_eq!(select_device(&list, Some("#0")).unwrap(), 0);
+        let err = select_device(&list, Some("#3")).unwrap_err();
+        assert!(matches!(err, EngineError::NoSuchDevice { .. }), "{err}");
+        let text = err.to_string();
+        assert!(text.contains("#1 NVIDIA H100"), "{text}");
+        assert!(matches!(
+            select_device(&list, Some("#x")).unwrap_err(),
+            EngineError::NoSuchDevice { .. }
+        ));
+        let err = select_device(&list, Some("#2")).unwrap_err();
+        assert!(matches!(err, EngineError::NoSuitableDevice { .. }), "{err}");
     }
 
     #[test]

@@ -21,10 +21,10 @@ pub enum EngineError {
         /// Every device the loader reported, with what disqualified it.
         available: Vec<String>,
     },
-    /// A device was requested by name (`LUCID_DEVICE`) but none matched.
-    #[error("no Vulkan device matches {requested:?}; available devices: [{}]. Set LUCID_DEVICE to a substring of one of them, or unset it", .available.join(", "))]
+    /// A device was requested by name or index (`LUCID_DEVICE`) but none matched.
+    #[error("no Vulkan device matches {requested:?}; available devices: [{}]. Set LUCID_DEVICE to a substring of one of their names, to #N for the N-th, or unset it", .available.join(", "))]
     NoSuchDevice {
-        /// The requested name substring.
+        /// The requested name substring or `#N` index.
         requested: String,
         /// Names of the devices that exist.
         available: Vec<String>,
