@@ -4,7 +4,7 @@
 use std::collections::HashSet;
 
 use lucid_engine::scene::builtin::{self, random_room};
-use lucid_engine::scene::{MaterialKind, Scene, SceneError};
+use lucid_engine::scene::{Material, MaterialKind, Scene, SceneError};
 
 const SEEDS: std::ops::Range<u64> = 0..200;
 
@@ -97,6 +97,40 @@ fn camera_paths_stay_inside_the_room() {
             );
         }
     }
+}
+
+/// Some floors are glossy (polished or metal, GGX alpha up to 0.25, the reflections that smear under
+/// reprojection), most are matte, and tiles share their floor's finish.
+#[test]
+fn some_floors_are_glossy() {
+    let scenes = rooms(0..60);
+    let floors = |s: &Scene| -> Vec<Material> {
+        s.materials
+            .iter()
+            .filter(|m| m.name == "floor" || m.name == "floor-tile")
+            .cloned()
+            .collect()
+    };
+    let mut glossy = 0;
+    for s in &scenes {
+        let f = floors(s);
+        assert!(!f.is_empty(), "{}: no floor", s.name);
+        assert!(
+            f.iter()
+                .all(|m| m.kind == f[0].kind && m.alpha == f[0].alpha),
+            "{}: the tiles' finish differs from the floor's",
+            s.name
+        );
+        match f[0].kind {
+            MaterialKind::Diffuse => {}
+            MaterialKind::Conductor | MaterialKind::MetalRough => {
+                assert!(f[0].alpha > 0.0 && f[0].alpha <= 0.25, "{}", s.name);
+                glossy += 1;
+            }
+            kind => panic!("{}: a {kind:?} floor", s.name),
+        }
+    }
+    assert!((9..=30).contains(&glossy), "{glossy} glossy floors of 60");
 }
 
 #[test]

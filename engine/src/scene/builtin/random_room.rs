@@ -4,9 +4,9 @@
 //!
 //! Each seed draws a closed box room 3 to 10 m wide and deep and 2.5 to
 //! 4.5 m high (plain or accent-coloured walls, sometimes a wainscot band, a
-//! plain or tiled floor), 4 to 16 objects (cuboids, analytic spheres,
-//! cylinders and now and then a Utah teapot, on the floor or stacked on a
-//! cuboid) whose materials are diffuse, conductor (GGX alpha 0.02 to 0.5),
+//! plain or tiled floor, matte or now and then polished or metal), 4 to 16
+//! objects (cuboids, analytic spheres, cylinders and now and then a Utah
+//! teapot, on the floor or stacked on a cuboid) whose materials are diffuse, conductor (GGX alpha 0.02 to 0.5),
 //! glass (IOR 1.5, smooth or rough) or emissive, and its lights: one to
 //! three emissive panels or hanging boxes, or, in rooms with windows in the
 //! back wall, the sun and sky of `blinds-room` shining in plus up to two of
@@ -41,12 +41,17 @@ use room::Room;
 /// Prefix of the scene names, followed by the seed in decimal.
 pub const NAME_PREFIX: &str = "random-room-";
 
+/// Mixed into the seed for the floor's finish, drawn apart from the layout so that adding the
+/// finish left every seed's room otherwise as it was.
+const FLOOR_FINISH_STREAM: u64 = 0x666c_6f6f_7246_494e;
+
 /// Builds the random room of `seed`, named `random-room-<seed>`.
 pub fn random_room(seed: u64) -> Result<Scene, SceneError> {
     let mut rng = Rng::new(seed);
+    let mut finish = Rng::new(seed ^ FLOOR_FINISH_STREAM);
     let mut scene = Scene::new(&format!("{NAME_PREFIX}{seed}"));
     let room = Room::random(&mut rng);
-    let windows = room::add(&mut scene, &mut rng, &room);
+    let windows = room::add(&mut scene, &mut rng, &mut finish, &room);
     let mut meshes = SharedMeshes::default();
     let mut obstacles = lights::add(&mut scene, &mut rng, &room, windows, &mut meshes);
     objects::add(&mut scene, &mut rng, &room, &mut obstacles, &mut meshes);

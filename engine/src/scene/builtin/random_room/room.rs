@@ -1,4 +1,4 @@
-//! The room's shell: floor (plain or tiled in two albedos), four walls
+//! The room's shell: floor (plain or tiled in two albedos, matte, polished or metal), four walls
 //! (some in an accent colour, some with a wainscot band) and a ceiling.
 //! Sometimes the back wall (`z = -depth/2`) has windows, and then a sun
 //! and sky (as in `blinds-room`) shine in through them.
@@ -60,8 +60,9 @@ fn pale(rng: &mut Rng) -> Vec3 {
     muted(rng, 0.35, 0.85, 0.12)
 }
 
-/// Adds the shell of `room`; returns whether it has windows.
-pub fn add(scene: &mut Scene, rng: &mut Rng, room: &Room) -> bool {
+/// Adds the shell of `room`; returns whether it has windows. The floor's finish is drawn from
+/// `finish`, a stream of its own, so that it leaves the rest of the room as it was.
+pub fn add(scene: &mut Scene, rng: &mut Rng, finish: &mut Rng, room: &Room) -> bool {
     let (a, b, h) = (room.half.x, room.half.y, room.height);
     let wall = scene.add_material(Material::diffuse("wall", pale(rng)));
     let wainscot = if rng.chance(0.4) {
@@ -98,7 +99,7 @@ pub fn add(scene: &mut Scene, rng: &mut Rng, room: &Room) -> bool {
         }
         scene.add_mesh_instance(mesh.build(&format!("wall-{k}"), material));
     }
-    add_floor(scene, rng, room);
+    add_floor(scene, rng, finish, room);
     let ceiling = scene.add_material(Material::diffuse("ceiling", pale(rng)));
     let mut mesh = MeshBuilder::new();
     mesh.quad(
@@ -115,10 +116,11 @@ pub fn add(scene: &mut Scene, rng: &mut Rng, room: &Room) -> bool {
     windows
 }
 
-/// A plain floor, or half the time a checkerboard of two albedos.
-fn add_floor(scene: &mut Scene, rng: &mut Rng, room: &Room) {
+/// A plain floor, or half the time a checkerboard of two albedos, in the finish `finish` draws.
+fn add_floor(scene: &mut Scene, rng: &mut Rng, finish: &mut Rng, room: &Room) {
     let (a, b) = (room.half.x, room.half.y);
-    let base = scene.add_material(Material::diffuse("floor", muted(rng, 0.05, 0.6, 0.4)));
+    let finish = FloorFinish::random(finish);
+    let base = scene.add_material(finish.material("floor", muted(rng, 0.05, 0.6, 0.4)));
     if !rng.chance(0.5) {
         let mut mesh = MeshBuilder::new();
         mesh.quad(
@@ -131,7 +133,7 @@ fn add_floor(scene: &mut Scene, rng: &mut Rng, room: &Room) {
         scene.add_mesh_instance(mesh.build("floor", base));
         return;
     }
-    let other = scene.add_material(Material::diffuse("floor-tile", muted(rng, 0.05, 0.8, 0.4)));
+    let other = scene.add_material(finish.material("floor-tile", muted(rng, 0.05, 0.8, 0.4)));
     let tile = rng.range(0.4, 1.0);
     let (nx, nz) = (
         (2.0 * a / tile).round().max(1.0) as u32,
@@ -148,6 +150,41 @@ fn add_floor(scene: &mut Scene, rng: &mut Rng, room: &Room) {
     let [even, odd] = tiles;
     scene.add_mesh_instance(even.build("floor", base));
     scene.add_mesh_instance(odd.build("floor-tiles", other));
+}
+
+/// How a floor reflects: mostly matte, sometimes polished (a specular layer over its colour, as
+/// stone or varnished wood) or bare metal, both glossy enough to mirror the room blurrily, the case
+/// where reprojected history smears reflections.
+#[derive(Clone, Copy)]
+enum FloorFinish {
+    Matte,
+    Polished { alpha: f32 },
+    Metal { alpha: f32 },
+}
+
+impl FloorFinish {
+    /// Matte 65 %, polished (GGX alpha 0.02 to 0.2) 25 %, metal (alpha 0.03 to 0.25) 10 %.
+    fn random(rng: &mut Rng) -> Self {
+        match rng.weighted(&[0.65, 0.25, 0.1]) {
+            0 => Self::Matte,
+            1 => Self::Polished {
+                alpha: rng.range(0.02, 0.2),
+            },
+            _ => Self::Metal {
+                alpha: rng.range(0.03, 0.25),
+            },
+        }
+    }
+
+    /// A floor material of colour `color` in this finish (a metal's colour lightened to a
+    /// plausible reflectance).
+    fn material(self, name: &str, color: Vec3) -> Material {
+        match self {
+            Self::Matte => Material::diffuse(name, color),
+            Self::Polished { alpha } => Material::metal_rough(name, color, 0.0, alpha),
+            Self::Metal { alpha } => Material::conductor(name, 0.5 + 0.5 * color, alpha),
+        }
+    }
 }
 
 /// One to three windows side by side in the back wall, as
