@@ -2,8 +2,9 @@
 # Design choices measured against each other, in one command on the NVIDIA machine (within
 # $BUDGET = 560 seconds, dataset included):
 #   training/compare_gpu.sh OUT_DIR
-# Renders the dataset into /tmp/lucid-dataset unless it is there (dataset_gpu.sh, as train_gpu.sh),
-# then trains every variant of $VARIANTS at once on the one GPU (one background train.py each, the
+# Renders the dataset into /tmp/lucid-dataset unless it is there (dataset_gpu.sh),
+# then trains every variant of $VARIANTS at once (one background train.py each, variant K on GPU
+# K % GPUS, gpus.sh: on one GPU all share it; the
 # same --minutes: by default what $BUDGET leaves after the dataset and $RESERVE = 90 seconds for
 # start-up, validation and export, at most 6), waits for them and writes into OUT_DIR:
 #   compare.json          per variant: final validation relMSE, SSIM, FLIP, temporal instability, steps,
@@ -67,6 +68,8 @@ mkdir -p "$out"
 out=$(realpath "$out")
 data=$(realpath -m "$data")
 init=${INIT:+$(realpath "$INIT")}
+# shellcheck source=training/gpus.sh
+. "$here/gpus.sh"
 "$here/dataset_gpu.sh" "$data"
 echo "dataset: $(( $(date +%s) - start )) s, $(du -sh "$data" | cut -f1)"
 (cd "$here" && python3 -c "import json, sys; from data import dataset_folders; json.dump([json.load(open(f / 'index.json')) for f in dataset_folders(sys.argv[1])], open(sys.argv[2], 'w'), indent=1)" "$data" "$out/dataset.json")
@@ -76,13 +79,13 @@ cd "$here"
 pids=()
 for i in "${!names[@]}"; do
   name=${names[$i]}
-  # shellcheck disable=SC2086 # the variant's and TRAIN_ARGS's words are separate arguments
-  PYTHONUNBUFFERED=1 python3 train.py --data "$data" --minutes "$minutes" ${args[$i]} \
+  # shellcheck disable=SC2086,SC2046 # the variant's, TRAIN_ARGS's and gpu_env's words are separate
+  env $(gpu_env "$i") PYTHONUNBUFFERED=1 python3 train.py --data "$data" --minutes "$minutes" ${args[$i]} \
     --out "$work/$name.safetensors" --log "$work/$name.json" ${init:+--init "$init"} ${TRAIN_ARGS:-} \
     > "$work/$name.log" 2>&1 &
   pids+=($!)
 done
-echo "training ${names[*]} for $minutes minutes each, in parallel"
+echo "training ${names[*]} for $minutes minutes each, in parallel on $GPUS GPU(s)"
 failed=0
 for i in "${!pids[@]}"; do
   if wait "${pids[$i]}"; then
@@ -93,8 +96,8 @@ for i in "${!pids[@]}"; do
     failed=1
   fi
 done
-python3 - "$work" "$out/compare.json" "$minutes" "$(( $(date +%s) - start ))" "${names[@]}" <<'EOF'
-import json, sys
+GPUS=$GPUS python3 - "$work" "$out/compare.json" "$minutes" "$(( $(date +%s) - start ))" "${names[@]}" <<'EOF'
+import json, os, sys
 from pathlib import Path
 
 work, dest, minutes, elapsed, names = Path(sys.argv[1]), sys.argv[2], float(sys.argv[3]), int(sys.argv[4]), sys.argv[5:]
@@ -132,7 +135,8 @@ if base:
 summary = {
     "minutes": minutes,
     "seconds_before_export": elapsed,
-    "note": "variants trained at the same time on one GPU; validation from no history over whole "
+    "gpus": int(os.environ["GPUS"]),
+    "note": "variants trained at the same time, variant K on GPU K % gpus; validation from no history over whole "
     "validation sequences; relMSE, SSIM and FLIP as lucid evaluate computes them, temporal = mean |frame "
     "difference of output - reference's| in log space, blotch = the worst 8x8 block's excess brightness "
     "per frame over the reference mean's; watch = the same over the training sequences of TRAIN_ARGS' --watch",

@@ -6,20 +6,24 @@
 # others with procedural training rooms only (`data.py` reads the shards as one dataset). LUCID
 # names the lucid binary (default target/release/lucid, relative to the current directory); ROOMS,
 # the procedural training rooms of a shard (32); FRAMES, the frames of a sequence (16); SEQUENCES,
-# the sequences of a scene (2). train_gpu.sh and compare_gpu.sh call it.
+# the sequences of a scene (2). On a machine of several GPUs shard K renders on GPU K % GPUS
+# (gpus.sh). compare_gpu.sh calls it.
 set -euo pipefail
 data=${1:?usage: training/dataset_gpu.sh DATA_DIR}
 if [ -f "$data/index.json" ] || [ -f "$data/shard-0/index.json" ]; then
   exit 0
 fi
 lucid=$(realpath "${LUCID:-target/release/lucid}")
+# shellcheck source=training/gpus.sh
+. "$(dirname "$0")/gpus.sh"
 shards=${SHARDS:-1}
 pids=()
 for ((k = 0; k < shards; k++)); do
   if [ "$k" -eq 0 ]; then extra=(--validation-rooms 4); else extra=(--validation-rooms 0 --no-builtin); fi
   dest=$data
   if [ "$shards" -gt 1 ]; then dest=$data/shard-$k; fi
-  "$lucid" dataset --out "$dest" --size 256x256 --frames "${FRAMES:-16}" --rooms "${ROOMS:-32}" \
+  # shellcheck disable=SC2046 # gpu_env's assignments are separate words
+  env $(gpu_env "$k") "$lucid" dataset --out "$dest" --size 256x256 --frames "${FRAMES:-16}" --rooms "${ROOMS:-32}" \
     --sequences "${SEQUENCES:-2}" --reference-spp 256 --seed "$k" "${extra[@]}" &
   pids+=($!)
 done

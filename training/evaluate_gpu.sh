@@ -9,7 +9,8 @@
 # a weights file to use instead of the committed ones; ALSO, more weights files (space-separated),
 # each evaluated as one more method `neural-<file stem>` on the same frames; SECOND_REFERENCE set, the
 # reference rendered again with another seed as one more method (the reference's own noise);
-# OPTIONS, more options of `lucid sequence` (e.g. --edge-emission).
+# OPTIONS, more options of `lucid sequence` (e.g. --edge-emission). On a machine of several GPUs
+# the scenes run at once, one a GPU (gpus.sh).
 set -euo pipefail
 out=${1:?usage: training/evaluate_gpu.sh OUT_DIR}
 lucid=$(realpath "${LUCID:-target/release/lucid}")
@@ -20,14 +21,39 @@ if [ "${BENCH:-1}" != 0 ]; then
   LUCID="$lucid" "$(dirname "$0")/bench_gpu.sh" "$bench"
   cp "$bench/neural_times.json" "$out/"
 fi
-for scene in ${SCENES:-classroom caustics}; do
-  dir=/tmp/heldout-$scene
-  "$lucid" sequence --scene "$scene" --size 1920x1080 --frames "$frames" --reference-spp 1024 \
+# shellcheck source=training/gpus.sh
+. "$(dirname "$0")/gpus.sh"
+# One held-out scene on GPU $2: its frames, OIDN's where it can, the metrics.
+evaluate_scene() {
+  local scene=$1 dir=/tmp/heldout-$1
+  # shellcheck disable=SC2046 # gpu_env's and ALSO's words are separate arguments
+  env $(gpu_env "$2") "$lucid" sequence --scene "$scene" --size 1920x1080 --frames "$frames" --reference-spp 1024 \
     --out "$dir" --no-evaluate ${SECOND_REFERENCE:+--second-reference} ${OPTIONS:-} ${WEIGHTS:+--neural-weights "$(realpath "$WEIGHTS")"} \
     $(for w in ${ALSO:-}; do echo "--also-neural-weights $(realpath "$w")"; done)
   if python3 -c "import pyoidn" 2>/dev/null; then
-    python3 "$(dirname "$0")/oidn_baseline.py" "$dir"
+    # shellcheck disable=SC2046
+    env $(gpu_env "$2") python3 "$(dirname "$0")/oidn_baseline.py" "$dir"
   fi
   "$lucid" evaluate "$dir"
   cp "$dir/metrics.csv" "$out/metrics_$scene.csv"
+}
+# The scenes one after another on one GPU, at once on several (scene K on GPU K % GPUS).
+pids=()
+k=0
+for scene in ${SCENES:-classroom caustics}; do
+  if [ "$GPUS" -gt 1 ]; then
+    evaluate_scene "$scene" "$k" > "/tmp/evaluate-$scene.log" 2>&1 &
+    pids+=($!)
+  else
+    evaluate_scene "$scene" "$k"
+  fi
+  k=$((k + 1))
 done
+failed=0
+for pid in "${pids[@]}"; do
+  wait "$pid" || failed=1
+done
+for scene in ${SCENES:-classroom caustics}; do
+  if [ "$GPUS" -gt 1 ]; then tail -n 30 "/tmp/evaluate-$scene.log"; fi
+done
+exit $failed

@@ -3,7 +3,7 @@
     python3 train.py --data DIR --minutes 6 --out weights.safetensors --log train.json [--init W]
         [--model direct|kernel] [--loss l1grad|l1msssim|l1gradflip] [--burn-in K [--burn-in-min J]]
         [--widths E0,E1,E2,B,D1,D0] [--scales N] [--fireflies RATE] [--watch SCENES]
-        [--blotch WEIGHT] [--cold P]
+        [--blotch WEIGHT [--blotch-margin M]] [--cold P]
 
 `--model kernel` trains `kernel_model.KernelDenoiser` (both export as `lucid-rae-v3`, the decoder
 named in the file's `decoder` metadata; the renderer runs either); `--loss` picks a loss of `losses.py`; `--burn-in K` runs the first K
@@ -14,7 +14,8 @@ the loss also sees the first frames after a cut (the renderer's first frames hav
 adds isolated bright samples to the training inputs (not the references), so that the network
 learns to drop what no neighbour or frame supports; `--blotch W` adds W times the windows' mean
 worst 8x8 block excess (`losses.worst_block_excess`, what the lavapipe blotch test bounds) to the
-loss; `--cold P` starts a window at the cut (no burn-in, its first frame without history) with
+loss, with `--blotch-margin M` only what exceeds M, so that blocks a little bright cost nothing and
+only blotches are pushed down; `--cold P` starts a window at the cut (no burn-in, its first frame without history) with
 probability P before the burn-in is drawn, and then weighs its frames alike rather than the later
 ones more, so that the first frames after a cut count as much as the settled ones.
 """
@@ -292,6 +293,12 @@ def main():
         "added to the loss",
     )
     ap.add_argument(
+        "--blotch-margin",
+        type=float,
+        default=0.0,
+        help="the blotch term counts only the excess beyond this (relative to the frame's mean luminance)",
+    )
+    ap.add_argument(
         "--cold",
         type=float,
         default=0.0,
@@ -357,7 +364,8 @@ def main():
         out = out.float()
         loss, terms = compute_loss(out, ref, ws, flat=cold)
         if args.blotch:
-            blotch = worst_block_excess(out.flatten(0, 1), ref.flatten(0, 1)).clamp_min(0.0).mean()
+            excess = worst_block_excess(out.flatten(0, 1), ref.flatten(0, 1))
+            blotch = (excess - args.blotch_margin).clamp_min(0.0).mean()
             loss = loss + args.blotch * blotch
             terms = (*terms, blotch)
         opt.zero_grad(set_to_none=True)
@@ -390,6 +398,7 @@ def main():
         "burn_in": str(args.burn_in) if burn_in_min == args.burn_in else f"{burn_in_min}-{args.burn_in}",
         "fireflies": str(args.fireflies),
         "blotch": str(args.blotch),
+        "blotch_margin": str(args.blotch_margin),
         "cold": str(args.cold),
         "steps": str(step),
         "data": args.data,

@@ -1,0 +1,13 @@
+# Sourced by the *_gpu.sh scripts: GPUS, the number of GPUs to spread work over, from the variable
+# GPUS if set, else the count nvidia-smi lists, else 1. Work item K runs on GPU K % GPUS: Vulkan
+# programs with LUCID_DEVICE=#K (the loader's K-th device), PyTorch with CUDA_VISIBLE_DEVICES=K.
+if [ -z "${GPUS:-}" ]; then
+  GPUS=$( (nvidia-smi -L 2>/dev/null || true) | grep -c '^GPU ' || true)
+  if [ "$GPUS" -lt 1 ]; then GPUS=1; fi
+fi
+# The environment that puts work item $1 on its GPU (nothing on a machine of one GPU).
+gpu_env() {
+  if [ "$GPUS" -gt 1 ]; then
+    echo "LUCID_DEVICE=#$(($1 % GPUS)) CUDA_VISIBLE_DEVICES=$(($1 % GPUS))"
+  fi
+}
