@@ -24,6 +24,23 @@ layout(set = 0, binding = 20, rgba16f) uniform writeonly image2D u_emission;    
 layout(set = 0, binding = 21, rgba32ui) uniform writeonly uimage2D u_ids;            // object, material, primitive, hit flag
 layout(set = 0, binding = 22, rgba16f) uniform writeonly image2D u_motion;           // previous pixel - pixel (xy), previous depth (z)
 
+// Largest motion offset stored, in pixels: beyond every image's size, so a clamped offset still
+// leads off the frame, and exact in half precision.
+const float MOTION_LIMIT = 32768.0;
+
+// The offset from `pixel` to where `prev` (camera_project's, with the previous camera) lies on the
+// previous frame. Offsets are clamped to MOTION_LIMIT, and a point at or behind the previous
+// camera's plane (whose projection is mirrored, infinite or NaN) gets MOTION_LIMIT: rgba16f holds
+// no more than 65504, so a larger offset would be stored as infinity, and infinity minus infinity
+// is NaN wherever the motion is used (reprojection weights, a denoiser's training).
+vec2 motion_offset(vec3 prev, ivec2 pixel, uvec2 size) {
+    vec2 offset = prev.xy * vec2(size) - 0.5 - vec2(pixel);
+    if (!(prev.z > 0.0) || any(isnan(offset))) {
+        return vec2(MOTION_LIMIT);
+    }
+    return clamp(offset, -MOTION_LIMIT, MOTION_LIMIT);
+}
+
 void main() {
     ivec2 pixel = ivec2(gl_GlobalInvocationID.xy);
     uvec2 size = uvec2(b_frame.f.width, b_frame.f.height);
@@ -46,8 +63,7 @@ void main() {
         imageStore(u_ids, pixel, uvec4(0xffffffffu, 0xffffffffu, 0xffffffffu, 0u));
         // The sky moves with the camera's rotation only.
         vec3 prev = camera_project(prev_cam, prev_cam.position_aperture.xyz + dir, aspect);
-        vec2 prev_pixel = prev.xy * vec2(size) - 0.5;
-        imageStore(u_motion, pixel, vec4(prev_pixel - vec2(pixel), 0.0, 1.0));
+        imageStore(u_motion, pixel, vec4(motion_offset(prev, pixel, size), 0.0, 1.0));
         return;
     }
     Surface s = surface_at(hit, origin, dir);
@@ -69,6 +85,5 @@ void main() {
         prev_world = transform_point(b_prev_transforms.t[inst.scene_instance].rows, object);
     }
     vec3 prev = camera_project(prev_cam, prev_world, aspect);
-    vec2 prev_pixel = prev.xy * vec2(size) - 0.5;
-    imageStore(u_motion, pixel, vec4(prev_pixel - vec2(pixel), prev.z, 1.0));
+    imageStore(u_motion, pixel, vec4(motion_offset(prev, pixel, size), prev.z, 1.0));
 }

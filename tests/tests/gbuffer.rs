@@ -1,9 +1,12 @@
 //! The G-buffer: depth, normals and ids are sane, and motion vectors follow the camera and moved
 //! instances (reprojection lands on the same object).
 
-use glam::{Affine3A, Vec3};
+use std::f32::consts::FRAC_PI_2;
+
+use glam::{Affine3A, Quat, Vec3};
 use lucid_engine::capture::ImageData;
 use lucid_engine::graph::RenderGraph;
+use lucid_engine::scene::Camera;
 use lucid_passes::renderer::{Renderer, Settings};
 use lucid_tests::render::{frame_images, scene};
 use lucid_tests::{assert_no_validation_messages, context, run};
@@ -144,6 +147,69 @@ fn camera_motion_reprojects_onto_the_same_objects() {
     );
     drop(renderer);
     assert_no_validation_messages(&ctx);
+}
+
+/// The G-buffer of a frame seen from `now` after one seen from `before`: every motion vector is
+/// finite and at most the shader's limit (half precision holds 65504 at most, and a GPU may store
+/// a larger offset as infinity, which turns reprojection arithmetic into NaN), and the pixels that
+/// lay at or behind the last camera's plane, where projecting is meaningless (mirrored, or
+/// infinite at the plane), reproject off the frame. Returns how many pixels lay there.
+fn check_motion_after(before: Camera, now: Camera, size: u32) -> usize {
+    const MOTION_LIMIT: f32 = 32768.0;
+    let ctx = context(false);
+    let mut renderer =
+        Renderer::new(&ctx, scene("cornell-box"), size, size, Settings::default()).unwrap();
+    renderer.set_camera(before);
+    gbuffer_frame(&mut renderer);
+    renderer.set_camera(now);
+    let after = gbuffer_frame(&mut renderer);
+    let mut behind = 0;
+    for y in 0..size {
+        for x in 0..size {
+            let m = after.motion.get(x, y).unwrap();
+            assert!(
+                m[0].abs() <= MOTION_LIMIT && m[1].abs() <= MOTION_LIMIT,
+                "pixel ({x}, {y}): motion {m:?}"
+            );
+            if after.ids.get(x, y).unwrap()[3] != 1.0 || m[2] > 0.0 {
+                continue;
+            }
+            behind += 1;
+            let (px, py) = (x as f32 + m[0], y as f32 + m[1]);
+            assert!(
+                px < -0.5 || py < -0.5 || px >= size as f32 || py >= size as f32,
+                "pixel ({x}, {y}) lay behind the last camera, yet reprojects to ({px}, {py})"
+            );
+        }
+    }
+    drop(renderer);
+    assert_no_validation_messages(&ctx);
+    behind
+}
+
+/// A dolly backwards: the walls beside the camera are seen now but lay behind the last camera.
+#[test]
+fn a_dolly_backwards_reprojects_what_was_behind_off_the_frame() {
+    let s = scene("cornell-box");
+    let mut inside = s.camera;
+    inside.position = s.bounds().center();
+    assert!(
+        check_motion_after(inside, s.camera, SIZE) > 0,
+        "nothing lay behind"
+    );
+}
+
+/// A quarter turn: what the middle column (of an odd width) sees now lay on the last camera's
+/// plane, give or take rounding, where the projection is infinite.
+#[test]
+fn a_quarter_turn_keeps_motion_finite() {
+    let start = scene("cornell-box").camera;
+    let mut turned = start;
+    turned.orientation = Quat::from_axis_angle(start.up(), FRAC_PI_2) * start.orientation;
+    assert!(
+        check_motion_after(turned, start, 49) > 0,
+        "nothing lay behind"
+    );
 }
 
 #[test]
