@@ -14,6 +14,7 @@ import argparse
 import json
 from pathlib import Path
 
+import torch
 from safetensors import safe_open
 from safetensors.torch import load_file, save_file
 
@@ -43,6 +44,9 @@ def blend(a, b, t):
     other = [k for k in a if a[k].shape != b[k].shape]
     if other:
         raise ValueError(f"tensors of other shapes: {other}")
+    broken = [k for k in a if not (torch.isfinite(a[k]).all() and torch.isfinite(b[k]).all())]
+    if broken:
+        raise ValueError(f"non-finite values in {broken}")
     return {k: ((1.0 - t) * a[k] + t * b[k]).contiguous() for k in a}
 
 

@@ -41,6 +41,15 @@ def load_split(root, split, device):
             name = f"{folder.name}/{entry['file']}"
             if record.shape[1] != RECORD_SIZE:
                 raise ValueError(f"{name}: record has {record.shape[1]} channels, expected {RECORD_SIZE}")
+            for key in ("record", "reference"):
+                finite = torch.isfinite(tensors[key])
+                if not finite.all():
+                    bad = (~finite).nonzero()[0].tolist()
+                    raise ValueError(
+                        f"{name}: {key} holds {(~finite).sum().item()} non-finite values (the first at "
+                        f"frame {bad[0]}, channel {bad[1]}, y {bad[2]}, x {bad[3]}): render the dataset again "
+                        "with a lucid that saturates them"
+                    )
             objects = tensors.get("objects")
             if objects is None:
                 objects = torch.zeros(record.shape[0], record.shape[2], record.shape[3], dtype=torch.int32)

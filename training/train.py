@@ -348,7 +348,7 @@ def main():
     firefly_gen = torch.Generator(dev).manual_seed(args.seed + 1)
     budget = args.minutes * 60.0
     start = time.time()
-    history, step = [], 0
+    history, step, skipped = [], 0, 0
     while time.time() - start < budget:
         frac = (time.time() - start) / budget
         for group in opt.param_groups:
@@ -368,6 +368,12 @@ def main():
             blotch = (excess - args.blotch_margin).clamp_min(0.0).mean()
             loss = loss + args.blotch * blotch
             terms = (*terms, blotch)
+        if not torch.isfinite(loss):
+            # A window that breaks the arithmetic (fp16 overflow) must not poison the weights.
+            skipped += 1
+            if skipped > max(10, step // 100):
+                raise SystemExit(f"{skipped} non-finite losses in {step + skipped} steps: stopping")
+            continue
         opt.zero_grad(set_to_none=True)
         loss.backward()
         torch.nn.utils.clip_grad_norm_(model.parameters(), 1.0)
@@ -414,6 +420,7 @@ def main():
     summary = {
         "final": final,
         "steps": step,
+        "skipped_steps": skipped,
         "train_seconds": round(train_seconds, 1),
         "total_seconds": round(time.time() - process_start, 1),
         "device": torch.cuda.get_device_name() if dev == "cuda" else "cpu",

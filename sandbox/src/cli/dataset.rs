@@ -254,12 +254,16 @@ fn render_sequence(
         Vec::with_capacity(cameras.len() * pixels * RECORD_CHANNELS as usize);
     let mut references: Vec<u16> = Vec::with_capacity(cameras.len() * pixels * 3);
     let mut objects: Vec<i32> = Vec::with_capacity(cameras.len() * pixels);
-    for &camera in cameras {
+    for (frame, &camera) in cameras.iter().enumerate() {
         noisy.set_camera(camera);
         let (_, record) = noisy.render_and_read_record()?;
         let floats: Vec<f32> = bytemuck::pod_collect_to_vec(&record);
         let (channels, ids) = floats.split_at(RECORD_OBJECT as usize * pixels);
-        records.extend(channels.iter().map(|&v| f16::from_f32(v).to_bits()));
+        records.extend(
+            half_saturated(channels).with_context(|| {
+                format!("scene {}, frame {frame}: the noisy record", scene.name)
+            })?,
+        );
         // The ids are the low 24 bits, exact in the float.
         objects.extend(ids.iter().map(|&id| id as i32));
 
@@ -269,7 +273,12 @@ fn render_sequence(
         }
         let image = reference.render_and_read()?;
         for c in 0..3 {
-            references.extend(image.pixels.iter().map(|p| f16::from_f32(p[c]).to_bits()));
+            let channel: Vec<f32> = image.pixels.iter().map(|p| p[c]).collect();
+            references.extend(
+                half_saturated(&channel).with_context(|| {
+                    format!("scene {}, frame {frame}: the reference", scene.name)
+                })?,
+            );
         }
         progress.inc();
     }
@@ -304,4 +313,35 @@ fn render_sequence(
     let metadata = HashMap::from([("scene".to_string(), scene.name.clone())]);
     let bytes = safetensors::serialize(&tensors, &Some(metadata))?;
     write_atomic(path, &bytes).with_context(|| format!("writing {}", path.display()))
+}
+
+/// `values` as half-precision bits, saturated to the largest finite half (65504) so that a bright
+/// sample is stored as bright rather than infinite (infinities turn a training step's arithmetic
+/// into NaN); a NaN is an error naming its index.
+fn half_saturated(values: &[f32]) -> anyhow::Result<Vec<u16>> {
+    let max = f32::from(f16::MAX);
+    values
+        .iter()
+        .enumerate()
+        .map(|(i, &v)| {
+            if v.is_nan() {
+                bail!("value {i} is NaN");
+            }
+            Ok(f16::from_f32(v.clamp(-max, max)).to_bits())
+        })
+        .collect()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn half_values_saturate_and_nan_is_an_error() {
+        let bits = half_saturated(&[1.5, 1e6, f32::NEG_INFINITY, 65504.0]).unwrap();
+        let back: Vec<f32> = bits.iter().map(|&b| f16::from_bits(b).to_f32()).collect();
+        assert_eq!(back, [1.5, 65504.0, -65504.0, 65504.0]);
+        let err = half_saturated(&[0.0, f32::NAN]).unwrap_err().to_string();
+        assert!(err.contains("value 1 is NaN"), "{err}");
+    }
 }
