@@ -19,6 +19,16 @@ void camera_ray(Camera c, vec2 ndc, float aspect, vec2 lens, out vec3 origin, ou
     }
 }
 
+// `previous ? prev : current`, member by member: a select of whole structs is SPIR-V 1.4's.
+Camera camera_select(bool previous, Camera current, Camera prev) {
+    Camera c;
+    c.position_aperture = previous ? prev.position_aperture : current.position_aperture;
+    c.right_focus = previous ? prev.right_focus : current.right_focus;
+    c.up_tan_half_fov = previous ? prev.up_tan_half_fov : current.up_tan_half_fov;
+    c.forward = previous ? prev.forward : current.forward;
+    return c;
+}
+
 // The angle one pixel of an image `height` pixels high spans at the centre of camera c's film:
 // how fast primary ray cones widen (texture filtering, cone_lod in surface.glsl).
 float pixel_spread(Camera c, float height) {
