@@ -2,11 +2,11 @@
 # Design choices measured against each other, in one command on the NVIDIA machine (within
 # $BUDGET = 560 seconds, dataset included):
 #   training/compare_gpu.sh OUT_DIR
-# Renders the dataset into /tmp/lucid-dataset unless it is there (dataset_gpu.sh),
-# then trains every variant of $VARIANTS at once (one background train.py each, variant K on GPU
-# K % GPUS, gpus.sh: on one GPU all share it; the
-# same --minutes: by default what $BUDGET leaves after the dataset and $RESERVE = 90 seconds for
-# start-up, validation and export, at most 6), waits for them and writes into OUT_DIR:
+# Renders the dataset into /tmp/lucid-dataset unless it is there (dataset_gpu.sh), then trains
+# every variant of $VARIANTS at once (one background train.py each, variant K on GPU K % GPUS, see
+# gpus.sh, so on one GPU all share it; the same --minutes: by default what $BUDGET leaves after the
+# dataset and $RESERVE = 90 seconds for start-up, validation and export, at most 6), waits for
+# them and writes into OUT_DIR:
 #   compare.json          per variant: final validation relMSE, SSIM, FLIP, temporal instability, steps,
 #                         seconds, parameters, FLOPs per pixel (and the ratios to the first variant)
 #   variants.tar.gz       per variant: weights (<name>.safetensors), log (<name>.json) and output

@@ -2,7 +2,8 @@
 //! frames hold the denoiser's 1-sample inputs (the record of `lucid_passes::denoise::neural`: demodulated
 //! radiance, albedo, emission, normal, roughness, depth, motion), each pixel's object id (which the
 //! denoiser's averages of albedo and emission over time test) and a many-sample reference, one
-//! safetensors file per sequence plus `index.json` (read by `training/data.py`).
+//! safetensors file per sequence plus `index.json` (read by `training/data.py`). Records and
+//! references are half precision, saturated at ±65504; a NaN is an error naming scene and frame.
 //!
 //! Scenes: procedural rooms (`random-room-<seed>`) and the built-in scenes, except `classroom` and
 //! `caustics`, which stay held out for evaluation; or, with `--scenes`, only the scenes named, in
