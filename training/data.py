@@ -42,13 +42,12 @@ def load_split(root, split, device):
             if record.shape[1] != RECORD_SIZE:
                 raise ValueError(f"{name}: record has {record.shape[1]} channels, expected {RECORD_SIZE}")
             for key in ("record", "reference"):
-                finite = torch.isfinite(tensors[key])
-                if not finite.all():
-                    bad = (~finite).nonzero()[0].tolist()
+                bad = ~torch.isfinite(tensors[key])
+                if bad.any():
+                    t, c, y, x = bad.nonzero()[0].tolist()
                     raise ValueError(
-                        f"{name}: {key} holds {(~finite).sum().item()} non-finite values (the first at "
-                        f"frame {bad[0]}, channel {bad[1]}, y {bad[2]}, x {bad[3]}): render the dataset again "
-                        "with a lucid that saturates them"
+                        f"{name}: {key} holds {bad.sum().item()} non-finite values (the first at frame {t}, "
+                        f"channel {c}, y {y}, x {x}): render the dataset again with a lucid that saturates them"
                     )
             objects = tensors.get("objects")
             if objects is None:

@@ -15,9 +15,10 @@ adds isolated bright samples to the training inputs (not the references), so tha
 learns to drop what no neighbour or frame supports; `--blotch W` adds W times the windows' mean
 worst 8x8 block excess (`losses.worst_block_excess`, what the lavapipe blotch test bounds) to the
 loss, with `--blotch-margin M` only what exceeds M, so that blocks a little bright cost nothing and
-only blotches are pushed down; `--cold P` starts a window at the cut (no burn-in, its first frame without history) with
-probability P before the burn-in is drawn, and then weighs its frames alike rather than the later
-ones more, so that the first frames after a cut count as much as the settled ones.
+only blotches are pushed down; `--cold P` starts a window at the cut (no burn-in, its first frame
+without history) with probability P before the burn-in is drawn, and then weighs its frames alike
+rather than the later ones more, so that the first frames after a cut count as much as the settled
+ones. A step whose loss is not finite is skipped (and counted); past 1% of the steps, training stops.
 """
 
 import argparse
@@ -369,7 +370,8 @@ def main():
             loss = loss + args.blotch * blotch
             terms = (*terms, blotch)
         if not torch.isfinite(loss):
-            # A window that breaks the arithmetic (fp16 overflow) must not poison the weights.
+            # A window that breaks the arithmetic (a non-finite input, an overflow) must not poison
+            # the weights.
             skipped += 1
             if skipped > max(10, step // 100):
                 raise SystemExit(f"{skipped} non-finite losses in {step + skipped} steps: stopping")

@@ -261,7 +261,7 @@ fn render_sequence(
         let floats: Vec<f32> = bytemuck::pod_collect_to_vec(&record);
         let (channels, ids) = floats.split_at(RECORD_OBJECT as usize * pixels);
         records.extend(
-            half_saturated(channels).with_context(|| {
+            half_saturated(channels.iter().copied()).with_context(|| {
                 format!("scene {}, frame {frame}: the noisy record", scene.name)
             })?,
         );
@@ -274,9 +274,8 @@ fn render_sequence(
         }
         let image = reference.render_and_read()?;
         for c in 0..3 {
-            let channel: Vec<f32> = image.pixels.iter().map(|p| p[c]).collect();
             references.extend(
-                half_saturated(&channel).with_context(|| {
+                half_saturated(image.pixels.iter().map(|p| p[c])).with_context(|| {
                     format!("scene {}, frame {frame}: the reference", scene.name)
                 })?,
             );
@@ -319,12 +318,12 @@ fn render_sequence(
 /// `values` as half-precision bits, saturated to the largest finite half (65504) so that a bright
 /// sample is stored as bright rather than infinite (infinities turn a training step's arithmetic
 /// into NaN); a NaN is an error naming its index.
-fn half_saturated(values: &[f32]) -> anyhow::Result<Vec<u16>> {
+fn half_saturated(values: impl IntoIterator<Item = f32>) -> anyhow::Result<Vec<u16>> {
     let max = f32::from(f16::MAX);
     values
-        .iter()
+        .into_iter()
         .enumerate()
-        .map(|(i, &v)| {
+        .map(|(i, v)| {
             if v.is_nan() {
                 bail!("value {i} is NaN");
             }
@@ -339,10 +338,10 @@ mod tests {
 
     #[test]
     fn half_values_saturate_and_nan_is_an_error() {
-        let bits = half_saturated(&[1.5, 1e6, f32::NEG_INFINITY, 65504.0]).unwrap();
+        let bits = half_saturated([1.5, 1e6, f32::NEG_INFINITY, 65504.0]).unwrap();
         let back: Vec<f32> = bits.iter().map(|&b| f16::from_bits(b).to_f32()).collect();
         assert_eq!(back, [1.5, 65504.0, -65504.0, 65504.0]);
-        let err = half_saturated(&[0.0, f32::NAN]).unwrap_err().to_string();
+        let err = half_saturated([0.0, f32::NAN]).unwrap_err().to_string();
         assert!(err.contains("value 1 is NaN"), "{err}");
     }
 }
