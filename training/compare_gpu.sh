@@ -26,7 +26,8 @@
 # (dataset_gpu.sh), DATA, the dataset's folder; INIT, weights every variant starts from (e.g.
 # lucid-rae-v2's: its first layer grows by the new inputs, at zero); MINUTES, each variant's
 # training time; TRAIN_ARGS, more train.py arguments for every variant; SHIP, the variant exported
-# under the shipping name (the first).
+# under the shipping name (the first); GPUS_PER_VARIANT, the GPUs each variant trains on at once,
+# data-parallel (parallel.py; default 1): variant K on GPUs K * G to K * G + G - 1 (modulo GPUS).
 set -euo pipefail
 out=${1:?usage: training/compare_gpu.sh OUT_DIR}
 here=$(cd "$(dirname "$0")" && pwd)
@@ -76,16 +77,24 @@ echo "dataset: $(( $(date +%s) - start )) s, $(du -sh "$data" | cut -f1)"
 minutes=${MINUTES:-$(python3 -c "print(round(max(0.1, min(6.0, ($budget - $reserve - ($(date +%s) - $start)) / 60)), 2))")}
 work=$(mktemp -d "${TMPDIR:-/tmp}/lucid-compare.XXXXXX")
 cd "$here"
+per_variant=${GPUS_PER_VARIANT:-1}
 pids=()
 for i in "${!names[@]}"; do
   name=${names[$i]}
-  # shellcheck disable=SC2086,SC2046 # the variant's, TRAIN_ARGS's and gpu_env's words are separate
-  env $(gpu_env "$i") PYTHONUNBUFFERED=1 python3 train.py --data "$data" --minutes "$minutes" ${args[$i]} \
+  if [ "$per_variant" -gt 1 ]; then
+    placement=$(gpu_set "$i" "$per_variant")
+    launcher="parallel.py $per_variant"
+  else
+    placement=$(gpu_env "$i")
+    launcher=""
+  fi
+  # shellcheck disable=SC2086 # the variant's, TRAIN_ARGS's, the placement's and launcher's words are separate
+  env $placement PYTHONUNBUFFERED=1 python3 $launcher train.py --data "$data" --minutes "$minutes" ${args[$i]} \
     --out "$work/$name.safetensors" --log "$work/$name.json" ${init:+--init "$init"} ${TRAIN_ARGS:-} \
     > "$work/$name.log" 2>&1 &
   pids+=($!)
 done
-echo "training ${names[*]} for $minutes minutes each, in parallel on $GPUS GPU(s)"
+echo "training ${names[*]} for $minutes minutes each, in parallel on $GPUS GPU(s), $per_variant a variant"
 failed=0
 for i in "${!pids[@]}"; do
   if wait "${pids[$i]}"; then

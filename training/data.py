@@ -25,16 +25,22 @@ def dataset_folders(root):
     return shards
 
 
-def load_split(root, split, device):
+def load_split(root, split, device, part=(0, 1), scenes=None):
     """The sequences of `split` ("train", "validation" or "study") as a list of dicts with
     `record`, `reference` (float16 on `device`), `objects` ([T,1,H,W] float32 on `device`, as
     `model.RecurrentDenoiser.step` takes them; zero where the dataset has none), `name` and
-    `scene`."""
+    `scene`. `part` = (k, n): only every n-th sequence of the split from the k-th (a data-parallel
+    process's share: each loads only its own); `scenes`: only the sequences of these scenes."""
     out = []
+    k, n = part
+    i = -1
     for folder in dataset_folders(root):
         index = json.loads((folder / "index.json").read_text())
         for entry in index["sequences"]:
-            if entry["split"] != split:
+            if entry["split"] != split or (scenes is not None and entry.get("scene", "") not in scenes):
+                continue
+            i += 1
+            if i % n != k:
                 continue
             tensors = load_file(str(folder / entry["file"]))
             record, reference = tensors["record"], tensors["reference"]
@@ -63,7 +69,9 @@ def load_split(root, split, device):
                 }
             )
     if not out:
-        raise ValueError(f"{root}: no '{split}' sequences")
+        of = f" of {', '.join(sorted(scenes))}" if scenes is not None else ""
+        share = f" in share {k} of {n}" if n > 1 else ""
+        raise ValueError(f"{root}: no '{split}' sequences{of}{share}")
     return out
 
 

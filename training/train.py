@@ -19,6 +19,10 @@ only blotches are pushed down; `--cold P` starts a window at the cut (no burn-in
 without history) with probability P before the burn-in is drawn, and then weighs its frames alike
 rather than the later ones more, so that the first frames after a cut count as much as the settled
 ones. A step whose loss is not finite is skipped (and counted); past 1% of the steps, training stops.
+
+Started by `python3 parallel.py N train.py ...` it trains data-parallel on N GPUs (`parallel.py`): each
+process loads its share of the sequences, the gradients are averaged, the batch is N times
+`--batch`, and the first process validates and writes the weights and the log.
 """
 
 import argparse
@@ -58,11 +62,14 @@ from model import (
     sources,
     widths_of,
 )
+from parallel import Group
 
 MODELS = DECODERS
 # The bias of a new coarser scale's weight `a` in the head that composites it, when weights of
 # fewer scales start a model of more (load_weights): sigmoid(-3), almost unused.
 NEW_SCALE_BIAS = -3.0
+# How far apart the data-parallel processes' seeds are: each draws its own windows.
+PROCESS_SEED_STRIDE = 7919
 
 
 def build_model(name, widths=WIDTHS, scales=SCALES):
@@ -212,11 +219,16 @@ def validate(model, sequences):
     return {k: v / len(sequences) for k, v in sums.items()}
 
 
-def watched(train, scenes):
+def watched(root, scenes, device):
     """The training sequences of `scenes` (comma-separated names; empty: none), validated on their
     own beside the validation sequences (`--watch`)."""
     names = [n for n in scenes.split(",") if n]
-    found = [s for s in train if s["scene"] in names]
+    if not names:
+        return []
+    try:
+        found = load_split(root, "train", device, scenes=set(names))
+    except ValueError:
+        found = []
     missing = sorted(set(names) - {s["scene"] for s in found})
     if missing:
         raise SystemExit(f"--watch: no training sequences of {', '.join(missing)}")
@@ -317,11 +329,12 @@ def main():
     ap.add_argument("--out", required=True)
     ap.add_argument("--log", required=True)
     args = ap.parse_args()
+    group = Group()
     torch.manual_seed(args.seed)
-    dev = "cuda" if torch.cuda.is_available() else "cpu"
-    train = load_split(args.data, "train", dev)
-    val = load_split(args.data, "validation", dev)
-    watch = watched(train, args.watch)
+    dev = group.device
+    train = load_split(args.data, "train", dev, part=group.share())
+    val = load_split(args.data, "validation", dev) if group.first else []
+    watch = watched(args.data, args.watch, dev) if group.first else []
     burn_in_min = args.burn_in if args.burn_in_min is None else args.burn_in_min
     if not 0 <= burn_in_min <= args.burn_in:
         raise SystemExit(f"--burn-in-min {burn_in_min} is not between 0 and --burn-in {args.burn_in}")
@@ -335,25 +348,32 @@ def main():
     model = build_model(args.model, widths, args.scales).to(dev)
     if args.init:
         load_weights(model, args.init)
+    group.same_start(model)
     cost = model_cost(model, dev)
-    print(json.dumps({"model": args.model, "loss": args.loss, "device": dev, **cost}), flush=True)
+    if group.first:
+        head = {"model": args.model, "loss": args.loss, "device": dev, "processes": group.world, **cost}
+        print(json.dumps(head), flush=True)
     opt = torch.optim.Adam(model.parameters(), lr=args.lr)
     ws = [float(v) for v in args.weights.split(",")] if args.weights else list(DEFAULT_WEIGHTS[args.loss])
     if len(ws) != len(TERM_NAMES[args.loss]):
         raise SystemExit(f"--weights takes {len(TERM_NAMES[args.loss])} numbers for --loss {args.loss}")
     compute_loss = loss_fn(args.loss)
     autocast = (lambda: torch.autocast("cuda", dtype=torch.bfloat16)) if dev == "cuda" else contextlib.nullcontext
-    gen = torch.Generator().manual_seed(args.seed)
+    # Each process its own windows: the first draws what a single process would.
+    seed = args.seed + PROCESS_SEED_STRIDE * group.rank
+    gen = torch.Generator().manual_seed(seed)
     # Its own generator, so that the same seed draws the same windows with or without fireflies; on
     # the training device (drawn on the CPU, they took half the steps).
-    firefly_gen = torch.Generator(dev).manual_seed(args.seed + 1)
+    firefly_gen = torch.Generator(dev).manual_seed(seed + 1)
     budget = args.minutes * 60.0
     start = time.time()
     history, step, skipped = [], 0, 0
-    while time.time() - start < budget:
-        frac = (time.time() - start) / budget
-        for group in opt.param_groups:
-            group["lr"] = args.lr * 0.5 * (1.0 + math.cos(math.pi * min(frac, 1.0)))
+    while True:
+        frac = group.progress((time.time() - start) / budget)
+        if frac >= 1.0:
+            break
+        for param_group in opt.param_groups:
+            param_group["lr"] = args.lr * 0.5 * (1.0 + math.cos(math.pi * frac))
         cold = bool(torch.rand((), generator=gen) < args.cold)
         burn_in = 0 if cold else int(torch.randint(burn_in_min, args.burn_in + 1, (1,), generator=gen))
         rec, ref, objects = sample_batch(train, args.batch, burn_in + args.frames, args.crop, gen)
@@ -369,7 +389,7 @@ def main():
             blotch = (excess - args.blotch_margin).clamp_min(0.0).mean()
             loss = loss + args.blotch * blotch
             terms = (*terms, blotch)
-        if not torch.isfinite(loss):
+        if not group.all_finite(loss):
             # A window that breaks the arithmetic (a non-finite input, an overflow) must not poison
             # the weights.
             skipped += 1
@@ -378,10 +398,11 @@ def main():
             continue
         opt.zero_grad(set_to_none=True)
         loss.backward()
+        group.average_gradients(model)
         torch.nn.utils.clip_grad_norm_(model.parameters(), 1.0)
         opt.step()
         step += 1
-        if step % args.val_every == 0:
+        if step % args.val_every == 0 and group.first:
             entry = {"step": step, "seconds": round(time.time() - start, 1), "loss": loss.item()}
             names = TERM_NAMES[args.loss] + (("blotch",) if args.blotch else ())
             entry["loss_terms"] = {k: round(v.item(), 6) for k, v in zip(names, terms)}
@@ -389,6 +410,10 @@ def main():
             history.append(entry)
             print(json.dumps(entry), flush=True)
     train_seconds = time.time() - start
+    if not group.first:
+        group.wait()
+        group.close()
+        return
     final = validation(model, val, watch)
     if isinstance(model, KernelDenoiser):
         layers, tensors = kernel_layers(model.widths, model.scales), kernel_export_tensors(model)
@@ -409,6 +434,7 @@ def main():
         "blotch_margin": str(args.blotch_margin),
         "cold": str(args.cold),
         "steps": str(step),
+        "processes": str(group.world),
         "data": args.data,
         "init": args.init or "",
         "validation_relmse": f"{final['relmse']:.5f}",
@@ -422,6 +448,7 @@ def main():
     summary = {
         "final": final,
         "steps": step,
+        "processes": group.world,
         "skipped_steps": skipped,
         "train_seconds": round(train_seconds, 1),
         "total_seconds": round(time.time() - process_start, 1),
@@ -431,6 +458,8 @@ def main():
     with open(args.log, "w") as f:
         json.dump({"args": vars(args), "format": fmt, "loss_weights": ws, **summary, "history": history}, f, indent=1)
     print(json.dumps(summary), flush=True)
+    group.wait()
+    group.close()
 
 
 if __name__ == "__main__":
