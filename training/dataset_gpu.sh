@@ -6,7 +6,9 @@
 # others with procedural training rooms only (`data.py` reads the shards as one dataset). LUCID
 # names the lucid binary (default target/release/lucid, relative to the current directory); ROOMS,
 # the procedural training rooms of a shard (32); FRAMES, the frames of a sequence (16); SEQUENCES,
-# the sequences of a scene (2). On a machine of several GPUs shard K renders on GPU K % GPUS
+# the sequences of a scene (2); SEED_OFFSET (default 0), added to the seeds of shards 1 and on, so
+# that a dataset of other training rooms can be rendered with the same validation rooms and built-in
+# scenes (shard 0 keeps seed 0). On a machine of several GPUs shard K renders on GPU K % GPUS
 # (gpus.sh). compare_gpu.sh calls it.
 set -euo pipefail
 data=${1:?usage: training/dataset_gpu.sh DATA_DIR}
@@ -19,12 +21,18 @@ lucid=$(realpath "${LUCID:-target/release/lucid}")
 shards=${SHARDS:-1}
 pids=()
 for ((k = 0; k < shards; k++)); do
-  if [ "$k" -eq 0 ]; then extra=(--validation-rooms 4); else extra=(--validation-rooms 0 --no-builtin); fi
+  seed=$k
+  if [ "$k" -eq 0 ]; then
+    extra=(--validation-rooms 4)
+  else
+    extra=(--validation-rooms 0 --no-builtin)
+    seed=$((k + ${SEED_OFFSET:-0}))
+  fi
   dest=$data
   if [ "$shards" -gt 1 ]; then dest=$data/shard-$k; fi
   # shellcheck disable=SC2046 # gpu_env's assignments are separate words
   env $(gpu_env "$k") "$lucid" dataset --out "$dest" --size 256x256 --frames "${FRAMES:-16}" --rooms "${ROOMS:-32}" \
-    --sequences "${SEQUENCES:-2}" --reference-spp 256 --seed "$k" "${extra[@]}" &
+    --sequences "${SEQUENCES:-2}" --reference-spp 256 --seed "$seed" "${extra[@]}" &
   pids+=($!)
 done
 for pid in "${pids[@]}"; do
