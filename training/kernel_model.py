@@ -7,14 +7,14 @@ U-Net convolutions of `model.unet_layers` up to `dec0`, the temporal blend with 
 the recurrent state. The output layer `out` is replaced by `KernelOutput`:
 
 - **Scales** (Vogels et al. 2018, "Denoising with kernel prediction and asymmetric loss
-  functions"; `scales`, three or four, the committed network four): the demodulated radiance at
-  full resolution, average-pooled 2x2 (half), 4x4 (quarter) and with four scales 8x8 (eighth),
-  each as log(1 + radiance) (pooled in linear space, then the log), so that the coarser scales
-  gather 4, 16 and 64 samples per pixel of a 1-sample frame.
+  functions"; `scales`, three to five, the committed network four): the demodulated radiance at
+  full resolution, average-pooled 2x2 (half), 4x4 (quarter), with four scales 8x8 (eighth) and
+  with five 16x16 (sixteenth), each as log(1 + radiance) (pooled in linear space, then the log),
+  so that the coarser scales gather 4, 16, 64 and 256 samples per pixel of a 1-sample frame.
 - **Kernels from pooled decoder features**: the last decoder features (`dec0`, full resolution)
   go through a 3x3 convolution head a scale: `out` on them at full resolution, `out_half` on them
   average-pooled to half resolution, `out_quarter` on them pooled again to quarter resolution (and
-  `out_eighth`). Each head predicts the 25 weights of a 5x5 kernel per pixel (softmax, so the
+  `out_eighth`, `out_sixteenth`). Each head predicts the 25 weights of a 5x5 kernel per pixel (softmax, so the
   filter is a weighted mean; borders replicate), applied to the log radiance of its scale.
 - **Coarse-to-fine**: `fine' = fine - a * U(D(fine)) + a * U(coarse)` with D the 2x2 average, U
   bilinear upsampling and `a = sigmoid(.)` a per-pixel weight predicted by the finer scale's head
@@ -48,7 +48,7 @@ EXTRA = unet_layers()[-1][2] - 3
 
 # The kernel heads' names, finest first; a network has the first `scales` of them (by default the
 # committed network's 4, since the twentieth session; 3 before).
-HEAD_NAMES = ("out", "out_half", "out_quarter", "out_eighth")
+HEAD_NAMES = ("out", "out_half", "out_quarter", "out_eighth", "out_sixteenth")
 SCALES = 4
 
 

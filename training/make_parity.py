@@ -9,8 +9,8 @@ pixel's object id (`objects`), as do the dataset's frames of a dataset that has 
     python3 make_parity.py --weights ../passes/src/denoise/neural/lucid-rae-v3.safetensors \
         [--data DATASET_DIR | --records FIXTURE] --out ../tests/references/neural_parity.safetensors
 
-With `--data`, the frames are a 32x24 crop of the first validation sequence's first two frames
-(and their object ids, where the dataset has them);
+With `--data`, the frames are a crop (`--size`, 32x24 by default) of the first validation
+sequence's first two frames (and their object ids, where the dataset has them);
 with `--records`, the records of an existing fixture (to keep its frames when only the model or
 the weights change); without either, a synthetic pair (a textured plane seen by a camera that
 moves by a sub-pixel offset, an emitter on it that is an object of its own, sky in a corner, and
@@ -29,11 +29,12 @@ from data import dataset_folders
 from model import OBJECT_BITS, RECORD_SIZE
 from train import build_model, file_scales, file_widths, load_weights
 
-W, H = 32, 24
+SIZE = "32x24"
 
 
-def synthetic():
-    """The synthetic records and their object ids ([2,1,H,W], as the shaders keep them)."""
+def synthetic(W, H):
+    """The synthetic records of `W` x `H` pixels and their object ids ([2,1,H,W], as the shaders
+    keep them)."""
     g = torch.Generator().manual_seed(7)
     rec = torch.zeros(2, RECORD_SIZE, H, W)
     objects = torch.zeros(2, 1, H, W)
@@ -66,7 +67,7 @@ def synthetic():
     return rec.half().float(), objects
 
 
-def from_dataset(root):
+def from_dataset(root, W, H):
     folder = dataset_folders(root)[0]
     index = json.loads((folder / "index.json").read_text())
     entry = next(e for e in index["sequences"] if e["split"] == "validation")
@@ -87,20 +88,27 @@ def main():
     group = ap.add_mutually_exclusive_group()
     group.add_argument("--data")
     group.add_argument("--records", help="reuse the records of this parity fixture")
+    ap.add_argument(
+        "--size",
+        default=SIZE,
+        help="WxH of the synthetic frames or the dataset's crop (a network of N kernel scales needs "
+        "sizes divisible by 2^(N-1), as training's crops are)",
+    )
     ap.add_argument("--out", required=True)
     args = ap.parse_args()
+    W, H = (int(v) for v in args.size.split("x"))
     decoder = safe_open_metadata(args.weights).get("decoder", "direct")
     model = build_model(decoder, file_widths(args.weights), file_scales(args.weights))
     load_weights(model, args.weights)
     objects = None
     if args.data:
-        (record, objects), source = from_dataset(args.data), args.data
+        (record, objects), source = from_dataset(args.data, W, H), args.data
     elif args.records:
         fixture = load_file(args.records)
         record, objects = fixture["record"], fixture.get("objects")
         source = safe_open_metadata(args.records).get("source", args.records)
     else:
-        (record, objects), source = synthetic(), "synthetic"
+        (record, objects), source = synthetic(W, H), "synthetic"
     expected, accum, moment, robust, state = [], [], [], [], None
     with torch.no_grad():
         for t in range(record.shape[0]):
@@ -117,7 +125,7 @@ def main():
     metadata = {"weights": Path(args.weights).name, "decoder": decoder, "source": source}
     save_file(tensors, args.out, metadata=metadata)
     reprojected = (tensors["accum"][-1, 3] > 1.0).float().mean().item()
-    print(f"{args.out}: {W}x{H}, {record.shape[0]} frames, from {source}; running mean reprojected at {reprojected:.0%}")
+    print(f"{args.out}: {record.shape[3]}x{record.shape[2]}, {record.shape[0]} frames, from {source}; running mean reprojected at {reprojected:.0%}")
 
 
 def safe_open_metadata(path):

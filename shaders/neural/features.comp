@@ -11,11 +11,12 @@
 // the object id kept in the emission's alpha; the emission supersampled at emitters' edges weighs
 // more as it moves, edge_emission.glsl), which output.comp re-modulates by.
 // Reads the frame's inputs from the light transport's and the G-buffer's images (inputs.glsl).
-// With POOLED_LEVELS (the kernel-predicting decoder's coarser scales, 2 or 3;
+// With POOLED_LEVELS (the kernel-predicting decoder's coarser scales, 2 to 4;
 // training/kernel_model.py, `KernelOutput`), also the demodulated radiance (negative values
-// clamped) 2x2 average-pooled that many times, in linear space, then log(1 + x) rounded to half
+// clamped) 2x2 average-pooled up to three times, in linear space, then log(1 + x) rounded to half
 // precision, as kernel_filter.comp filters it at the half, quarter (and eighth) scales; odd edges
-// repeat the last pixel of each level, as pool.comp does.
+// repeat the last pixel of each level, as pool.comp does. With a fourth level, the eighth's linear
+// means too, which radiance_pool.comp pools to the sixteenth.
 #include "common/image_coords.glsl"
 #include "common/math.glsl"
 #define INPUTS_BINDING 16
@@ -44,12 +45,15 @@ layout(set = 0, binding = 11, rgba32f) uniform writeonly image2D u_albedo_mean;
 layout(set = 0, binding = 12, rgba32f) uniform readonly image2D u_prev_emission_mean;
 layout(set = 0, binding = 13, rgba32f) uniform writeonly image2D u_emission_mean;
 // The pooled log radiance (POOLED_LEVELS), rgb of a vec4 a pixel of half, quarter and eighth
-// resolution.
+// resolution, and the eighth's linear means (POOLED_LEVELS 4).
 layout(set = 0, binding = 14, std430) writeonly buffer RadianceHalf { vec4 v[]; } b_radiance_half;
 layout(set = 0, binding = 15, std430) writeonly buffer RadianceQuarter {
     vec4 v[];
 } b_radiance_quarter;
 layout(set = 0, binding = 23, std430) writeonly buffer RadianceEighth { vec4 v[]; } b_radiance_eighth;
+layout(set = 0, binding = 24, std430) writeonly buffer RadianceEighthLinear {
+    vec4 v[];
+} b_radiance_eighth_linear;
 // The G-buffer's ids: object (x), material, primitive, hit flag.
 layout(set = 0, binding = 22, rgba32ui) uniform readonly uimage2D u_ids;
 
@@ -119,13 +123,8 @@ vec3 log_emission(ivec2 q) {
     return s_log_emission[r.y][r.x];
 }
 
-// The log of `mean` rounded to half precision, as the filter reads it (`pack_channels`).
-vec4 log_pooled(vec3 mean) {
-    return vec4(unpack_channels(pack_channels(vec4(log(vec3(1.0) + mean), 0.0))).rgb, 0.0);
-}
-
 // Writes the workgroup's pixels of `radiance` (this invocation's, clamped to 0) 2x2 average-pooled
-// POOLED_LEVELS times. Every invocation of the workgroup calls it (barriers).
+// POOLED_LEVELS times, at most three. Every invocation of the workgroup calls it (barriers).
 void pool_radiance(vec3 radiance) {
     uvec2 local = gl_LocalInvocationID.xy;
     s_radiance[local.y][local.x] = radiance;
@@ -168,6 +167,9 @@ void pool_radiance(vec3 radiance) {
             mean += 0.25 * s_radiance_quarter[q.y][q.x];
         }
         b_radiance_eighth.v[tile.y * eighth_size.x + tile.x] = log_pooled(mean);
+        if (POOLED_LEVELS > 3u) {
+            b_radiance_eighth_linear.v[tile.y * eighth_size.x + tile.x] = vec4(mean, 0.0);
+        }
     }
 }
 

@@ -20,4 +20,10 @@ uvec2 pack_channels(vec4 v) {
     return uvec2(packHalf2x16(v.xy), packHalf2x16(v.zw));
 }
 
+// The kernel decoder's radiance at a coarser scale as kernel_filter.comp reads it: log(1 + `mean`)
+// rounded to half precision (`pack_channels`), alpha 0.
+vec4 log_pooled(vec3 mean) {
+    return vec4(unpack_channels(pack_channels(vec4(log(vec3(1.0) + mean), 0.0))).rgb, 0.0);
+}
+
 #endif

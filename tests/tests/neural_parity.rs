@@ -14,7 +14,12 @@
 //! widths with three kernel scales (`references/neural_three_scales_weights.safetensors`: the
 //! weights committed from the eighteenth session to the twentieth), so both the committed four
 //! scales (the eighth resolution's, the compositing between coarser scales) and three are
-//! checked; `the_emission_stays_on_its_object` checks what that average is for over more frames.
+//! checked; the sixth (`make_parity.py`'s synthetic frames at 48x32, sizes a sixteenth divides) is
+//! of five scales (`references/neural_five_scales_weights.safetensors`: the committed weights
+//! widened to five by `training/train.py`'s `load_weights`, the sixteenth's head fresh and the
+//! eighth's weight of it at sigmoid(0), where it changes the output by up to 3%), so the
+//! sixteenth's radiance pooling and head are checked too; `the_emission_stays_on_its_object`
+//! checks what that average is for over more frames.
 //! The running means of the noisy radiance and their
 //! second moments (reprojected in the second frame) are also compared directly, so they are checked
 //! whatever weight the network gives them. Every inference path the device runs is checked
@@ -92,9 +97,9 @@ fn fixture(name: &'static str, weights: NetworkWeights) -> Fixture {
     }
 }
 
-/// The committed weights' fixture, the other decoder's, the emitters', a narrower network's and one
-/// of three scales.
-fn fixtures() -> [Fixture; 5] {
+/// The committed weights' fixture, the other decoder's, the emitters', a narrower network's, one
+/// of three scales and one of five.
+fn fixtures() -> [Fixture; 6] {
     let load = |file: &str| {
         NetworkWeights::load(std::path::Path::new(&references(file)))
             .unwrap_or_else(|e| panic!("load {file}: {e}"))
@@ -117,6 +122,10 @@ fn fixtures() -> [Fixture; 5] {
             "neural_parity_three_scales.safetensors",
             load("neural_three_scales_weights.safetensors"),
         ),
+        fixture(
+            "neural_parity_five_scales.safetensors",
+            load("neural_five_scales_weights.safetensors"),
+        ),
     ];
     let decoders = fixtures.each_ref().map(|f| f.weights.decoder());
     assert!(
@@ -130,8 +139,8 @@ fn fixtures() -> [Fixture; 5] {
     );
     let scales = fixtures.each_ref().map(|f| f.weights.scales());
     assert!(
-        scales.contains(&3) && scales.contains(&4),
-        "the fixtures cover kernel decoders of three and four scales: {scales:?}"
+        (3..=5).all(|n| scales.contains(&n)),
+        "the fixtures cover kernel decoders of three, four and five scales: {scales:?}"
     );
     fixtures
 }

@@ -17,8 +17,8 @@
 //!    place by the next convolution); on the tensor cores where the device has them, else portable
 //!    compute ([`InferencePath`]).
 //! 4. **Decoder** ([`Decoder`]): either one output layer predicting log radiance directly, or
-//!    one a scale ([`KERNEL_HEADS`], three or four as the weights have them) predicting per-pixel
-//!    5x5 kernels that filter the noisy log radiance at full, half, quarter (and eighth)
+//!    one a scale ([`KERNEL_HEADS`], three to five as the weights have them) predicting per-pixel
+//!    5x5 kernels that filter the noisy log radiance at full, half, quarter (eighth, sixteenth)
 //!    resolution, composited coarse to fine (`shaders/neural/kernel*`; the full scale is filtered
 //!    and composited in the output pass, `output.comp`).
 //! 5. **Output**: the predicted log radiance blended with the reprojected history by a learned
@@ -49,7 +49,8 @@ use crate::denoise::gbuffer::GBuffer;
 use crate::denoise::{DenoiseInputs, Denoised, FrameDenoiser, FrameInfo, TransportRequest};
 use crate::light_transport::SurfaceImages;
 use crate::shaders::neural::{
-    CONV, CONV_COOP, FEATURES as FEATURES_SHADER, KERNEL_FILTER, OUTPUT, POOL, RECORD,
+    CONV, CONV_COOP, FEATURES as FEATURES_SHADER, KERNEL_FILTER, OUTPUT, POOL, RADIANCE_POOL,
+    RECORD,
 };
 use lucid_engine::capture::ImageData;
 use lucid_engine::graph::{BufferHandle, ComputePass, ImageHandle, RenderGraph};
@@ -343,12 +344,14 @@ pub fn add_neural(
     let robust = p.history("u_prev_robust", "u_robust", robust_history);
     let albedo = p.history("u_prev_albedo_mean", "u_albedo_mean", albedo_history);
     let emission = p.history("u_prev_emission_mean", "u_emission_mean", emission_history);
-    // The kernel decoder's radiance pooled to each coarser scale (16 bytes unwritten where not).
+    // The kernel decoder's radiance pooled to each coarser scale the features pass pools, and
+    // the eighth's linear means where a sixteenth is pooled from them (16 bytes unwritten where
+    // not).
     let levels = if kernel { network.scales - 1 } else { 0 };
     p.specialize("POOLED_LEVELS", levels);
     let mut level_size = full;
     let mut pooled_radiance = Vec::new();
-    for (level, scale) in COARSER_SCALES.into_iter().enumerate() {
+    for (level, scale) in COARSER_SCALES[..FEATURES_POOLED_LEVELS].iter().enumerate() {
         level_size = half_size(level_size);
         let wanted = (level as u32) < levels;
         let bytes = if wanted { vec4_bytes(level_size) } else { 16 };
@@ -361,6 +364,16 @@ pub fn add_neural(
             pooled_radiance.push(buffer);
         }
     }
+    let sixteenth_wanted = levels as usize > FEATURES_POOLED_LEVELS;
+    let eighth_linear = p.create_buffer(
+        "b_radiance_eighth_linear",
+        "neural.pooled_radiance_linear",
+        if sixteenth_wanted {
+            vec4_bytes(level_size)
+        } else {
+            16
+        },
+    );
     let features = Tensor {
         buffer: p.create_buffer(
             "b_features",
@@ -371,6 +384,9 @@ pub fn add_neural(
         size: full,
     };
     p.dispatch([width, height, 1]);
+    if sixteenth_wanted {
+        pooled_radiance.push(add_radiance_pool(g, eighth_linear, level_size));
+    }
 
     let conv = |g: &mut RenderGraph, layer: usize, in0: Tensor, in1: Option<Tensor>, pool| {
         add_conv(g, network, &weights, layer, (in0, in1), pool)
@@ -383,13 +399,16 @@ pub fn add_neural(
     let (d0, [d0_half, d0_quarter]) = conv(g, 5, d1, Some(e0), levels.min(2));
     let (net, _) = conv(g, 6, d0, None, 0);
     // The kernel decoder's coarser scales: the decoder features pooled to each (the eighth from
-    // the quarter), each scale's head, then its filtered radiance; the output pass filters the
-    // full scale and composites it with the half scale's filtered radiance and the quarter
-    // scale's detail.
+    // the quarter, the sixteenth from the eighth), each scale's head, then its filtered radiance;
+    // the output pass filters the full scale and composites it with the half scale's filtered
+    // radiance and the quarter scale's detail.
     let d0_eighth = d0_quarter
         .filter(|_| levels >= 3)
         .map(|quarter| add_pool(g, quarter, "neural.dec0.pool_eighth"));
-    let coarse_features: Vec<Tensor> = [d0_half, d0_quarter, d0_eighth]
+    let d0_sixteenth = d0_eighth
+        .filter(|_| levels >= 4)
+        .map(|eighth| add_pool(g, eighth, "neural.dec0.pool_sixteenth"));
+    let coarse_features: Vec<Tensor> = [d0_half, d0_quarter, d0_eighth, d0_sixteenth]
         .into_iter()
         .flatten()
         .take(levels as usize)
@@ -434,7 +453,27 @@ pub fn add_neural(
 }
 
 /// The kernel decoder's scales below full resolution, as its buffers and passes are named.
-const COARSER_SCALES: [&str; 3] = ["half", "quarter", "eighth"];
+const COARSER_SCALES: [&str; 4] = ["half", "quarter", "eighth", "sixteenth"];
+
+/// The coarser scales whose radiance the features pass pools within its 8x8 tiles; the sixteenth's
+/// is pooled from the eighth's linear means ([`add_radiance_pool`]).
+const FEATURES_POOLED_LEVELS: usize = 3;
+
+/// Adds the pass that pools the eighth scale's linear radiance means (`eighth`, `eighth_size`) to
+/// the sixteenth scale's log radiance (`radiance_pool.comp`); returns its buffer.
+fn add_radiance_pool(
+    g: &mut RenderGraph,
+    eighth: BufferHandle,
+    eighth_size: (u32, u32),
+) -> BufferHandle {
+    let size = half_size(eighth_size);
+    let mut p = g.compute_pass("neural.pool_radiance.sixteenth", &RADIANCE_POOL);
+    p.read("b_in", eighth)
+        .push(&[size.0, size.1, eighth_size.0, eighth_size.1]);
+    let out = p.create_buffer("b_out", "neural.pooled_radiance", vec4_bytes(size));
+    p.dispatch([size.0, size.1, 1]);
+    out
+}
 
 /// Adds the kernel decoder's coarser scales (`training/kernel_model.py`, `KernelOutput`) from their
 /// heads' outputs (`heads`, half resolution first) and the log radiance the features pass pooled

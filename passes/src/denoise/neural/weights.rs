@@ -102,14 +102,19 @@ impl Widths {
 
 /// The kernel decoder's heads, finest first, one a scale (`HEAD_NAMES` in
 /// `training/kernel_model.py`): full resolution and each coarser one half the previous.
-pub const KERNEL_HEADS: [&str; 4] = ["out", "out_half", "out_quarter", "out_eighth"];
+pub const KERNEL_HEADS: [&str; 5] = [
+    "out",
+    "out_half",
+    "out_quarter",
+    "out_eighth",
+    "out_sixteenth",
+];
 
 /// The committed network's kernel scales (`SCALES` in `training/kernel_model.py`).
 pub const KERNEL_SCALES: u32 = 4;
 
-/// The kernel scales of a file without an eighth-resolution head (the committed weights' until the
-/// twentieth session).
-const THREE_SCALES: u32 = 3;
+/// The fewest kernel scales a file has (the committed weights' until the twentieth session).
+const FEWEST_SCALES: u32 = 3;
 
 /// Output channels of the kernel decoder's head `level` (0 the full resolution's) in a network of
 /// `scales`: its kernel's 25 logits, the weight `a` of the next coarser scale (all but the
@@ -146,7 +151,7 @@ impl Decoder {
     }
 
     /// Every layer of a network of `widths` with this decoder (the kernel decoder's of `scales`,
-    /// 3 or 4), in execution order: [`Widths::unet`], then the output layers on the last decoder
+    /// 3 to 5), in execution order: [`Widths::unet`], then the output layers on the last decoder
     /// features (the kernel decoder's finest first, [`KERNEL_HEADS`]).
     pub fn layers(self, widths: Widths, scales: u32) -> Vec<Layer> {
         let features = widths.0[5];
@@ -349,7 +354,7 @@ impl NetworkWeights {
         self.decoder
     }
 
-    /// The kernel decoder's scales, 3 or 4 (for the direct decoder [`KERNEL_SCALES`], unused).
+    /// The kernel decoder's scales, 3 to 5 (for the direct decoder [`KERNEL_SCALES`], unused).
     pub fn scales(&self) -> u32 {
         self.scales
     }
@@ -409,14 +414,14 @@ fn read_widths(tensors: &SafeTensors<'_>, file: &str) -> Result<Widths, WeightsE
     Ok(Widths(widths))
 }
 
-/// The kernel decoder's scales: four where the file has an eighth-resolution head, else three (the
-/// heads' shapes are checked as they are read).
+/// The kernel decoder's scales: three, and one more for each coarser head the file has in turn
+/// (eighth, then sixteenth resolution; the heads' shapes are checked as they are read).
 fn read_scales(tensors: &SafeTensors<'_>) -> u32 {
-    if tensors.tensor("out_eighth.weight").is_ok() {
-        4
-    } else {
-        THREE_SCALES
-    }
+    let coarser = KERNEL_HEADS[FEWEST_SCALES as usize..]
+        .iter()
+        .take_while(|head| tensors.tensor(&format!("{head}.weight")).is_ok())
+        .count();
+    FEWEST_SCALES + coarser as u32
 }
 
 /// The float32 values of tensor `name`, which must have `shape` and be finite.
@@ -568,6 +573,16 @@ mod tests {
                     ("out_half", 26),
                     ("out_quarter", 26),
                     ("out_eighth", 25),
+                ],
+            ),
+            (
+                5,
+                vec![
+                    ("out", 27),
+                    ("out_half", 26),
+                    ("out_quarter", 26),
+                    ("out_eighth", 26),
+                    ("out_sixteenth", 25),
                 ],
             ),
         ] {
