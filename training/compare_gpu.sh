@@ -27,7 +27,8 @@
 # lucid-rae-v2's: its first layer grows by the new inputs, at zero); MINUTES, each variant's
 # training time; TRAIN_ARGS, more train.py arguments for every variant; SHIP, the variant exported
 # under the shipping name (the first); GPUS_PER_VARIANT, the GPUs each variant trains on at once,
-# data-parallel (parallel.py; default 1): variant K on GPUs K * G to K * G + G - 1 (modulo GPUS).
+# data-parallel (parallel.py; default 1): variant K on GPUs K * G to K * G + G - 1 (G times the
+# variants must not exceed the GPUs).
 set -euo pipefail
 out=${1:?usage: training/compare_gpu.sh OUT_DIR}
 here=$(cd "$(dirname "$0")" && pwd)
@@ -71,13 +72,17 @@ data=$(realpath -m "$data")
 init=${INIT:+$(realpath "$INIT")}
 # shellcheck source=training/gpus.sh
 . "$here/gpus.sh"
+per_variant=${GPUS_PER_VARIANT:-1}
+if [ "$per_variant" -gt 1 ] && [ $((per_variant * ${#names[@]})) -gt "$GPUS" ]; then
+  echo "GPUS_PER_VARIANT=$per_variant for ${#names[@]} variant(s) needs $((per_variant * ${#names[@]})) GPUs; this machine has $GPUS" >&2
+  exit 2
+fi
 "$here/dataset_gpu.sh" "$data"
 echo "dataset: $(( $(date +%s) - start )) s, $(du -sh "$data" | cut -f1)"
 (cd "$here" && python3 -c "import json, sys; from data import dataset_folders; json.dump([json.load(open(f / 'index.json')) for f in dataset_folders(sys.argv[1])], open(sys.argv[2], 'w'), indent=1)" "$data" "$out/dataset.json")
 minutes=${MINUTES:-$(python3 -c "print(round(max(0.1, min(6.0, ($budget - $reserve - ($(date +%s) - $start)) / 60)), 2))")}
 work=$(mktemp -d "${TMPDIR:-/tmp}/lucid-compare.XXXXXX")
 cd "$here"
-per_variant=${GPUS_PER_VARIANT:-1}
 pids=()
 for i in "${!names[@]}"; do
   name=${names[$i]}

@@ -11,12 +11,10 @@ gpu_env() {
     echo "LUCID_DEVICE=#$(($1 % GPUS)) CUDA_VISIBLE_DEVICES=$(($1 % GPUS))"
   fi
 }
-# The environment that gives work item $1 the $2 GPUs from $1 * $2 on (modulo GPUS), for a
-# data-parallel training (parallel.py); nothing on a machine of one GPU.
+# The environment that gives work item $1 the $2 GPUs from $1 * $2 on, for a data-parallel
+# training (parallel.py; the caller checks that there are that many).
 gpu_set() {
-  if [ "$GPUS" -gt 1 ]; then
-    local list="" j
-    for ((j = 0; j < $2; j++)); do list+="${list:+,}$((($1 * $2 + j) % GPUS))"; done
-    echo "CUDA_VISIBLE_DEVICES=$list"
-  fi
+  local list="" j
+  for ((j = 0; j < $2; j++)); do list+="${list:+,}$(($1 * $2 + j))"; done
+  echo "CUDA_VISIBLE_DEVICES=$list"
 }

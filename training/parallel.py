@@ -23,6 +23,11 @@ class Group:
         if self.world > 1:
             local = int(os.environ["LOCAL_RANK"])
             if torch.cuda.is_available():
+                if local >= torch.cuda.device_count():
+                    raise SystemExit(
+                        f"process {local} of {self.world} has no GPU of its own: "
+                        f"{torch.cuda.device_count()} visible (CUDA_VISIBLE_DEVICES)"
+                    )
                 torch.cuda.set_device(local)
                 self.device = f"cuda:{local}"
                 dist.init_process_group("nccl")
