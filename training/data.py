@@ -30,7 +30,8 @@ def load_split(root, split, device, part=(0, 1), scenes=None):
     `record`, `reference` (float16 on `device`), `objects` ([T,1,H,W] float32 on `device`, as
     `model.RecurrentDenoiser.step` takes them; zero where the dataset has none), `name` and
     `scene`. `part` = (k, n): only every n-th sequence of the split from the k-th (a data-parallel
-    process's share: each loads only its own); `scenes`: only the sequences of these scenes."""
+    process's share: each loads only its own); `scenes`: only the sequences of these scenes (then
+    possibly none: the caller says which scenes it missed)."""
     out = []
     k, n = part
     i = -1
@@ -68,10 +69,9 @@ def load_split(root, split, device, part=(0, 1), scenes=None):
                     "objects": objects,
                 }
             )
-    if not out:
-        of = f" of {', '.join(sorted(scenes))}" if scenes is not None else ""
+    if not out and scenes is None:
         share = f" in share {k} of {n}" if n > 1 else ""
-        raise ValueError(f"{root}: no '{split}' sequences{of}{share}")
+        raise ValueError(f"{root}: no '{split}' sequences{share}")
     return out
 
 

@@ -225,10 +225,7 @@ def watched(root, scenes, device):
     names = [n for n in scenes.split(",") if n]
     if not names:
         return []
-    try:
-        found = load_split(root, "train", device, scenes=set(names))
-    except ValueError:
-        found = []
+    found = load_split(root, "train", device, scenes=set(names))
     missing = sorted(set(names) - {s["scene"] for s in found})
     if missing:
         raise SystemExit(f"--watch: no training sequences of {', '.join(missing)}")

@@ -398,21 +398,19 @@ pub fn add_neural(
     let (d1, _) = conv(g, 4, bottleneck, Some(e1), 0);
     let (d0, [d0_half, d0_quarter]) = conv(g, 5, d1, Some(e0), levels.min(2));
     let (net, _) = conv(g, 6, d0, None, 0);
-    // The kernel decoder's coarser scales: the decoder features pooled to each (the eighth from
-    // the quarter, the sixteenth from the eighth), each scale's head, then its filtered radiance;
+    // The kernel decoder's coarser scales: the decoder features pooled to each (those below the
+    // quarter each from the one before), each scale's head, then its filtered radiance;
     // the output pass filters the full scale and composites it with the half scale's filtered
     // radiance and the quarter scale's detail.
-    let d0_eighth = d0_quarter
-        .filter(|_| levels >= 3)
-        .map(|quarter| add_pool(g, quarter, "neural.dec0.pool_eighth"));
-    let d0_sixteenth = d0_eighth
-        .filter(|_| levels >= 4)
-        .map(|eighth| add_pool(g, eighth, "neural.dec0.pool_sixteenth"));
-    let coarse_features: Vec<Tensor> = [d0_half, d0_quarter, d0_eighth, d0_sixteenth]
-        .into_iter()
-        .flatten()
-        .take(levels as usize)
-        .collect();
+    let mut coarse_features: Vec<Tensor> = [d0_half, d0_quarter].into_iter().flatten().collect();
+    while let Some(&finer) = coarse_features.last() {
+        let level = coarse_features.len();
+        if level >= levels as usize {
+            break;
+        }
+        let name = format!("neural.dec0.pool_{}", COARSER_SCALES[level]);
+        coarse_features.push(add_pool(g, finer, &name));
+    }
     let coarse = (!coarse_features.is_empty()).then(|| {
         let heads: Vec<Tensor> = coarse_features
             .into_iter()
