@@ -13,12 +13,6 @@
 #ifndef LUCID_PATH_GLSL
 #define LUCID_PATH_GLSL
 
-struct PathResult {
-    vec3 radiance;       // the path's contribution
-    vec3 first_albedo;   // demodulation albedo of the first hit (white for the sky and dielectrics)
-    vec3 first_emission; // radiance emitted towards the camera by the first hit (or the sky)
-};
-
 // What a path carries from one segment to the next: its throughput and how its last direction was
 // sampled (for MIS where the segment meets an emitter or the sky).
 struct PathState {
@@ -137,14 +131,20 @@ void path_vertex_numbers(inout uint rng, out vec4 u_light, out vec3 u_bsdf) {
     u_bsdf = vec3(rng_next2(rng), rng_next(rng));
 }
 
-// Traces the path starting with the camera ray (o, d), whose cone widens by `spread` radians per
-// unit distance (textures at the first hit are filtered for it); adds the rays it traces to
-// `rays`.
-PathResult trace_path(vec3 o, vec3 d, inout uint rng, uint max_depth, uint rr_depth, float spread, inout uint rays) {
-    PathResult r;
-    r.radiance = vec3(0.0);
-    r.first_albedo = vec3(1.0);
-    r.first_emission = vec3(0.0);
+// trace_path hands the first hit's demodulation albedo (white for the sky and dielectrics) and the
+// radiance it (or the sky) emits towards the camera to the statements PATH_KEEP_FIRST_ALBEDO(v) and
+// PATH_KEEP_FIRST_EMISSION(v), which the including shader defines: the path tracer keeps them in
+// workgroup memory rather than carry them through the whole path in registers (bench/README.md).
+// A shader that defines neither has no trace_path.
+#ifdef PATH_KEEP_FIRST_ALBEDO
+
+// The radiance of the path starting with the camera ray (o, d), whose cone widens by `spread`
+// radians per unit distance (textures at the first hit are filtered for it); adds the rays it
+// traces to `rays`.
+vec3 trace_path(vec3 o, vec3 d, inout uint rng, uint max_depth, uint rr_depth, float spread, inout uint rays) {
+    vec3 radiance = vec3(0.0);
+    PATH_KEEP_FIRST_ALBEDO(vec3(1.0));
+    PATH_KEEP_FIRST_EMISSION(vec3(0.0));
     vec3 beta = vec3(1.0);
     float prev_pdf = 0.0;
     bool prev_delta = true;
@@ -156,9 +156,9 @@ PathResult trace_path(vec3 o, vec3 d, inout uint rng, uint max_depth, uint rr_de
             vec3 sun = sun_radiance(d);
             float w_sun = prev_delta ? 1.0 : power_heuristic(prev_pdf, sun_pdf());
             float w_env = prev_delta || !environment_sampled() ? 1.0 : power_heuristic(prev_pdf, environment_pdf(d));
-            r.radiance += beta * (environment_radiance(d) * w_env + sun * w_sun);
+            radiance += beta * (environment_radiance(d) * w_env + sun * w_sun);
             if (depth == 0u) {
-                r.first_emission = r.radiance;
+                PATH_KEEP_FIRST_EMISSION(radiance);
             }
             break;
         }
@@ -166,10 +166,10 @@ PathResult trace_path(vec3 o, vec3 d, inout uint rng, uint max_depth, uint rr_de
         vec3 emitted = surface_emission(s, d);
         if (max3(emitted) > 0.0) {
             float w = prev_delta ? 1.0 : power_heuristic(prev_pdf, surface_light_pdf(s, prev_p));
-            r.radiance += beta * emitted * w;
+            radiance += beta * emitted * w;
         }
         if (depth == 0u) {
-            r.first_emission = r.radiance;
+            PATH_KEEP_FIRST_EMISSION(radiance);
         }
         if (depth + 1u >= max_depth) {
             break;
@@ -177,7 +177,7 @@ PathResult trace_path(vec3 o, vec3 d, inout uint rng, uint max_depth, uint rr_de
         float footprint = depth == 0u ? cone_lod(s, d, hit.t * spread) : NO_FOOTPRINT;
         BsdfParams m = material_params_lod(s.material, s.uv, s.color, footprint);
         if (depth == 0u) {
-            r.first_albedo = demodulation_albedo(m);
+            PATH_KEEP_FIRST_ALBEDO(demodulation_albedo(m));
         }
         vec3 t;
         vec3 b;
@@ -198,7 +198,7 @@ PathResult trace_path(vec3 o, vec3 d, inout uint rng, uint max_depth, uint rr_de
                     rays += 1u;
                     if (!trace_occluded(origin, dir, t_max)) {
                         float w = ls.delta ? 1.0 : power_heuristic(ls.pdf, bsdf_pdf);
-                        r.radiance += beta * f * ls.radiance * (w * ls.weight);
+                        radiance += beta * f * ls.radiance * (w * ls.weight);
                     }
                 }
             }
@@ -222,7 +222,9 @@ PathResult trace_path(vec3 o, vec3 d, inout uint rng, uint max_depth, uint rr_de
             beta /= q;
         }
     }
-    return r;
+    return radiance;
 }
+
+#endif
 
 #endif

@@ -21,12 +21,22 @@
 #include "common/lights.glsl"
 #include "common/surface.glsl"
 #include "common/camera.glsl"
-#include "common/path.glsl"
-#include "common/replay.glsl"
 #include "common/transport_outputs.glsl"
-#include "common/sample_batch.glsl"
 
 layout(local_size_x = 8, local_size_y = 8) in;
+
+// The first hit's albedo and emission of each invocation's path, which trace_path hands over at the
+// first vertex: kept here in workgroup memory, not carried through the path in registers (96
+// registers instead of 72 on an H100 with the denoiser's outputs on, bench/README.md), and only
+// when the denoiser's outputs are.
+shared vec3 s_first_albedo[64];
+shared vec3 s_first_emission[64];
+#define PATH_KEEP_FIRST_ALBEDO(v) if (SURFACE_OUTPUTS) { s_first_albedo[gl_LocalInvocationIndex] = (v); }
+#define PATH_KEEP_FIRST_EMISSION(v) if (SURFACE_OUTPUTS) { s_first_emission[gl_LocalInvocationIndex] = (v); }
+
+#include "common/path.glsl"
+#include "common/replay.glsl"
+#include "common/sample_batch.glsl"
 
 layout(set = 0, binding = 16, rgba32f) uniform image2D u_radiance;
 layout(set = 0, binding = 17, rgba32f) uniform image2D u_demodulated;
@@ -79,19 +89,21 @@ void main() {
         vec3 origin;
         vec3 dir;
         camera_ray(camera, ndc, aspect, rng_next2(rng), origin, dir);
-        PathResult path = trace_path(origin, dir, rng, max_depth, rr_depth, pixel_spread(camera, float(size.y)), rays);
-        bool finite = !(any(isnan(path.radiance)) || any(isinf(path.radiance)));
+        vec3 path = trace_path(origin, dir, rng, max_depth, rr_depth, pixel_spread(camera, float(size.y)), rays);
+        bool finite = !(any(isnan(path)) || any(isinf(path)));
         dropped += finite ? 0u : 1u;
         bool fresh = first && i == 0u;
         float scale = i + 1u == batch.count ? last_scale : 1.0;
-        vec3 radiance = finite ? path.radiance : vec3(0.0);
+        vec3 radiance = finite ? path : vec3(0.0);
         vec3 sum = (fresh ? vec3(0.0) : imageLoad(u_radiance, pixel).rgb) + radiance;
         imageStore(u_radiance, pixel, vec4(sum * scale, 1.0));
         if (SURFACE_OUTPUTS) {
-            vec3 demodulated = finite ? demodulate(path.radiance, path.first_emission, path.first_albedo) : vec3(0.0);
-            vec3 emission = finite ? path.first_emission : vec3(0.0);
+            vec3 first_albedo = s_first_albedo[gl_LocalInvocationIndex];
+            vec3 first_emission = s_first_emission[gl_LocalInvocationIndex];
+            vec3 demodulated = finite ? demodulate(path, first_emission, first_albedo) : vec3(0.0);
+            vec3 emission = finite ? first_emission : vec3(0.0);
             vec3 demodulated_sum = (fresh ? vec3(0.0) : imageLoad(u_demodulated, pixel).rgb) + demodulated;
-            vec3 albedo_sum = (fresh ? vec3(0.0) : imageLoad(u_albedo, pixel).rgb) + path.first_albedo;
+            vec3 albedo_sum = (fresh ? vec3(0.0) : imageLoad(u_albedo, pixel).rgb) + first_albedo;
             vec3 emission_sum = (fresh ? vec3(0.0) : imageLoad(u_emission, pixel).rgb) + emission;
             imageStore(u_demodulated, pixel, vec4(demodulated_sum * scale, 1.0));
             imageStore(u_albedo, pixel, vec4(albedo_sum * scale, 1.0));
