@@ -134,8 +134,9 @@ void path_vertex_numbers(inout uint rng, out vec4 u_light, out vec3 u_bsdf) {
 // trace_path hands the first hit's demodulation albedo (white for the sky and dielectrics) and the
 // radiance it (or the sky) emits towards the camera to the statements PATH_KEEP_FIRST_ALBEDO(v) and
 // PATH_KEEP_FIRST_EMISSION(v), which the including shader defines: the path tracer keeps them in
-// workgroup memory rather than carry them through the whole path in registers (bench/README.md).
-// A shader that defines neither has no trace_path.
+// workgroup memory where it writes the denoiser's images, rather than carry them through the whole
+// path in registers, and drops them where it does not (shaders/path_trace, bench/README.md). A
+// shader that defines neither has no trace_path.
 #ifdef PATH_KEEP_FIRST_ALBEDO
 
 // The radiance of the path starting with the camera ray (o, d), whose cone widens by `spread`

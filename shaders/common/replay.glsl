@@ -4,7 +4,7 @@
 // frame's camera and exactly the random numbers q drew then (they are a pure function of pixel,
 // frame index and seed). Comparing its radiance with what q produced last frame gives a noise-free
 // temporal gradient: zero where only the camera moved, the change in shading where lights or
-// objects changed. The light transport replays (path_trace.comp); the denoiser compares
+// objects changed. The light transport replays (path_trace/path_trace.glsl); the denoiser compares
 // (svgf/gradient.comp); both pick the same pixels through these functions. Requires rng.glsl.
 #ifndef LUCID_REPLAY_GLSL
 #define LUCID_REPLAY_GLSL

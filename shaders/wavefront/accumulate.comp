@@ -1,6 +1,6 @@
 #version 460
 // Wavefront path tracing, kernel 5 of 5: adds sample `push.sample_index`'s paths to the pixels'
-// sums in the output images as the megakernel adds a sample (shaders/path_trace/path_trace.comp:
+// sums in the output images as the megakernel adds a sample (shaders/path_trace/path_trace.glsl:
 // a non-finite path is dropped and counted, its first hit's albedo kept), the frame's last sample
 // writing the averages; the first invocation adds the rays the sample's queues held (every queued
 // ray was traced) to the counters.

@@ -1,7 +1,7 @@
 #version 460
 // Wavefront path tracing, kernel 1 of 5 (passes/src/light_transport/wavefront/): the camera ray of
 // sample `push.sample_index` of every pixel, exactly as the megakernel draws it (shaders/path_trace/
-// path_trace.comp: the first sample's generator from rng_init, later samples' from where the
+// path_trace.glsl: the first sample's generator from rng_init, later samples' from where the
 // pixel's last path left it; on a replay pick, last frame's pixel, camera and random numbers,
 // common/replay.glsl), into the path state; the first ray queue holds every path. The first
 // invocation resets the queue lengths and the indirect arguments: the first ray queue's to every

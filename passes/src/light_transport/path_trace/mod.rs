@@ -1,5 +1,6 @@
 //! Path tracing: next-event estimation with multiple importance sampling, Russian roulette,
-//! N samples per pixel (`shaders/path_trace/path_trace.comp`, `shaders/common/path.glsl`); replays
+//! N samples per pixel (`shaders/path_trace/path_trace.comp`, `path_trace_surfaces.comp` where the
+//! denoiser's images are written, `shaders/common/path.glsl`); replays
 //! last frame's paths where asked ([`Replay`]); one dispatch per batch of samples
 //! ([`sample_batches`]).
 
@@ -8,12 +9,12 @@ use crate::light_transport::{
 };
 use crate::plumbing::placeholder::add_zero_image;
 use crate::plumbing::scene_buffers::SceneHandles;
-use crate::shaders::path_trace::PATH_TRACE;
+use crate::shaders::path_trace::{PATH_TRACE, PATH_TRACE_SURFACES};
 use lucid_engine::graph::{BufferHandle, RenderGraph};
 use lucid_engine::memory::ImageDesc;
 use lucid_engine::shader::Specialization;
 
-/// The path tracer's push constants (`Push` in `shaders/path_trace/path_trace.comp`).
+/// The path tracer's push constants (`Push` in `shaders/path_trace/path_trace.glsl`).
 #[repr(C)]
 #[derive(Clone, Copy, Debug, bytemuck::Pod, bytemuck::Zeroable)]
 struct Push {
@@ -39,7 +40,12 @@ pub fn add_path_trace(
         // Bound, never read: nothing is replayed, and the pass does not wait for the G-buffer.
         None => add_zero_image(g, "path_trace.no_motion", ImageDesc::rgba16f(1, 1)),
     };
-    let mut pass = g.compute_pass("path_trace", &PATH_TRACE);
+    let shader = if surface {
+        &PATH_TRACE_SURFACES
+    } else {
+        &PATH_TRACE
+    };
+    let mut pass = g.compute_pass("path_trace", shader);
     scene.read(&mut pass);
     pass.specialization(spec).read("b_frame", frame);
     let stats = pass.read_write("b_stats", stats);
