@@ -334,6 +334,8 @@ fn the_learned_denoiser_takes_weights_from_a_file_and_names_a_bad_one() {
         assert!(err.contains(file) && err.contains(says), "{err}");
         assert!(!err.contains("panicked"), "{err}");
     }
+    std::fs::remove_file(&out_file).unwrap();
+    std::fs::remove_file(&bad).unwrap();
 }
 
 #[test]
@@ -427,6 +429,8 @@ fn dataset_writes_records_and_references_with_an_index() {
         "{}",
         stderr(&both)
     );
+    std::fs::remove_dir_all(&dir).unwrap();
+    std::fs::remove_dir_all(&study).unwrap();
 }
 
 #[test]
@@ -782,5 +786,13 @@ fn an_environment_map_lights_the_scene_and_bad_maps_are_named() {
         let err = stderr(&out);
         assert!(!out.status.success(), "{file:?} must fail");
         assert!(err.contains(says) && !err.contains("panicked"), "{err}");
+    }
+    for file in [
+        "env-constant.hdr",
+        "env-constant.exr",
+        "env-furnace.exr",
+        "env-square.hdr",
+    ] {
+        std::fs::remove_file(temp(file)).unwrap();
     }
 }
