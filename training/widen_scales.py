@@ -1,7 +1,7 @@
 """Widens a kernel-decoder weights file to more kernel scales, as `train.py --init` does (the new
 heads fresh, drawn with `--seed`; the formerly coarsest head's new weight `a` of the next scale at
-`--a-bias`, sigmoid(-3) in training, so that the new scale starts almost unused), and writes it
-with the source's metadata and the new layer list. Made the five-scale parity weights
+`--a-bias`, by default train.py's NEW_SCALE_BIAS, so that the new scale starts almost unused),
+and writes it with the source's metadata and the new layer list. Made the five-scale parity weights
 (`tests/references/neural_five_scales_weights.safetensors`) with `--a-bias 0`, so that the
 sixteenth weighs half in its compositing and the parity test sees it:
 
@@ -17,7 +17,7 @@ from safetensors import safe_open
 from safetensors.torch import save_file
 
 from kernel_model import HEAD_NAMES, export_tensors, kernel_layers
-from train import build_model, file_scales, file_widths, load_weights
+from train import NEW_SCALE_BIAS, build_model, file_scales, file_widths, load_weights
 
 # The metadata a weights file keeps from its source: what the renderer reads.
 KEPT = ("format", "decoder", "model", "emission_motion")
@@ -27,7 +27,7 @@ def main():
     ap = argparse.ArgumentParser()
     ap.add_argument("weights")
     ap.add_argument("--scales", type=int, required=True)
-    ap.add_argument("--a-bias", type=float, default=-3.0)
+    ap.add_argument("--a-bias", type=float, default=NEW_SCALE_BIAS)
     ap.add_argument("--seed", type=int, default=0)
     ap.add_argument("--out", required=True)
     args = ap.parse_args()

@@ -780,19 +780,14 @@ fn an_environment_map_lights_the_scene_and_bad_maps_are_named() {
     for (file, says) in [
         (temp("env-missing.hdr"), "env-missing.hdr"),
         (temp("env.png"), ".hdr or .exr"),
-        (wide, "twice as wide as high"),
+        (wide.clone(), "twice as wide as high"),
     ] {
         let out = lucid(&["render", "--env", file.to_str().unwrap(), "--size", "8x8"]);
         let err = stderr(&out);
         assert!(!out.status.success(), "{file:?} must fail");
         assert!(err.contains(says) && !err.contains("panicked"), "{err}");
     }
-    for file in [
-        "env-constant.hdr",
-        "env-constant.exr",
-        "env-furnace.exr",
-        "env-square.hdr",
-    ] {
-        std::fs::remove_file(temp(file)).unwrap();
+    for file in [hdr, exr, temp("env-furnace.exr"), wide] {
+        std::fs::remove_file(file).unwrap();
     }
 }
