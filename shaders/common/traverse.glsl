@@ -11,7 +11,9 @@
 
 layout(constant_id = 100) const bool HAS_SPHERES = true;
 // The scene is packed as exactly one triangle instance (GpuScene::single_instance, e.g. a fully
-// flattened static scene): trace_ray walks its BLAS directly, without the top level.
+// flattened static scene), alone or beside the sphere instance of at most MAX_LOOSE_SPHERES
+// spheres: trace_ray tests the spheres one by one and walks the triangles' BLAS directly, without
+// the top level.
 layout(constant_id = 108) const bool SINGLE_INSTANCE = false;
 // The scene has so few instances (more than one, at most passes/src/plumbing/scene_buffers.rs's
 // MAX_FEW_INSTANCES) that trace_ray walks each one's BLAS in turn rather than the top level.
@@ -102,7 +104,8 @@ float intersect_sphere(uint s, vec3 o, vec3 d, float t_max) {
 bool intersect_primitive(uint inst_index, Instance inst, uint prim, vec3 o, vec3 d, inout Hit hit) {
     vec2 bary = vec2(0.0);
     float t;
-    if (HAS_SPHERES && inst.kind == INSTANCE_SPHERES) {
+    // With SINGLE_INSTANCE no BLAS walk meets a sphere: trace_ray tests them one by one.
+    if (HAS_SPHERES && !SINGLE_INSTANCE && inst.kind == INSTANCE_SPHERES) {
         t = intersect_sphere(prim, o, d, hit.t);
     } else {
         t = intersect_triangle(prim, o, d, hit.t, bary);
@@ -146,6 +149,27 @@ bool intersect_instance(uint inst_index, vec3 origin, vec3 dir, bool any_hit, in
     return traverse_blas(inst_index, inst, o, d, any_hit, hit);
 }
 
+// Tests every sphere of the sphere instance `slot` (world space, as its transform is the identity)
+// one by one, as SINGLE_INSTANCE does. Updates hit when closer; with any_hit, stops at the first hit
+// and returns true.
+bool intersect_loose_spheres(uint slot, vec3 origin, vec3 dir, bool any_hit, inout Hit hit) {
+    bool found = false;
+    for (uint s = 0u; s < b_scene.p.counts0.z; ++s) {
+        float t = intersect_sphere(s, origin, dir, hit.t);
+        if (t < hit.t) {
+            hit.t = t;
+            hit.instance = slot;
+            hit.primitive = s;
+            hit.bary = vec2(0.0);
+            found = true;
+            if (any_hit) {
+                return true;
+            }
+        }
+    }
+    return found;
+}
+
 // Closest hit along origin + t * dir for t in (0, t_max). Returns false on a miss.
 bool trace_ray(vec3 origin, vec3 dir, float t_max, bool any_hit, out Hit hit) {
     hit.t = t_max;
@@ -157,14 +181,26 @@ bool trace_ray(vec3 origin, vec3 dir, float t_max, bool any_hit, out Hit hit) {
         return false;
     }
     if (SINGLE_INSTANCE) {
-        // A flattened instance is in world space; any other keeps its transform (a dynamic one).
-        Instance inst = b_instances.i[0];
+        // The spheres first (their instance, where there is one, is one of the two), then the
+        // triangle instance: a flattened one is in world space; any other keeps its transform (a
+        // dynamic one).
+        uint slot = 0u;
+        bool found = false;
+        if (HAS_SPHERES) {
+            uint spheres = b_instances.i[0].kind == INSTANCE_SPHERES ? 0u : 1u;
+            slot = 1u - spheres;
+            found = intersect_loose_spheres(spheres, origin, dir, any_hit, hit);
+            if (found && any_hit) {
+                return true;
+            }
+        }
+        Instance inst = b_instances.i[slot];
         if (inst.kind == INSTANCE_FLATTENED) {
-            return traverse_blas(0u, inst, origin, dir, any_hit, hit);
+            return traverse_blas(slot, inst, origin, dir, any_hit, hit) || found;
         }
         vec3 o = transform_point(inst.world_to_object, origin);
         vec3 d = transform_vector(inst.world_to_object, dir);
-        return traverse_blas(0u, inst, o, d, any_hit, hit);
+        return traverse_blas(slot, inst, o, d, any_hit, hit) || found;
     }
     if (FEW_INSTANCES) {
         bool found = false;

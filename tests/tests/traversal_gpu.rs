@@ -12,8 +12,8 @@ use lucid_engine::bvh::{HitKind, Ray};
 use lucid_engine::graph::{Executor, RenderGraph};
 use lucid_engine::memory::Buffer;
 use lucid_engine::scene::builtin::{self, BuildOptions};
-use lucid_engine::scene::gpu::{pack_flat, BvhLayout};
-use lucid_engine::scene::{Bvh, FlatScene, Scene};
+use lucid_engine::scene::gpu::{pack_flat, BvhLayout, MAX_LOOSE_SPHERES};
+use lucid_engine::scene::{Bvh, FlatScene, Material, Scene};
 use lucid_engine::shader::{ShaderLibrary, SpecValue, Specialization};
 use lucid_passes::debug::ray_query::{self, QueryHit, QueryRay, SPHERE_BIT};
 use lucid_passes::plumbing::scene_buffers::{traversal_specialization, SceneBuffers};
@@ -280,12 +280,38 @@ fn single_instance_fast_path_matches_cpu() {
     }
 }
 
-/// The single-instance fast path in `layout`: a static Cornell box, and one dynamic instance.
+/// The single-instance fast path in `layout`: a static Cornell box, a static scene with a sphere
+/// beside its triangles (tested one by one), one dynamic instance, alone and beside a sphere; with
+/// more spheres than
+/// [`MAX_LOOSE_SPHERES`], the spheres' BLAS beside the triangles'.
 fn check_single_instance(layout: BvhLayout) {
     assert_eq!(
         check_builtin("cornell-box", |_| false, 4000, layout),
         TopLevel::Single,
         "a static Cornell box is one flattened instance"
+    );
+    assert_eq!(
+        check_builtin("covered-light", |_| false, 4000, layout),
+        TopLevel::Single,
+        "a static scene with one sphere is one flattened instance and a loose sphere"
+    );
+    let mut crowded = builtin::build("cornell-box").unwrap();
+    crowded.name = "Cornell box with many spheres".into();
+    let material = crowded.add_material(Material::diffuse("sphere", Vec3::splat(0.5)));
+    for k in 0..=MAX_LOOSE_SPHERES {
+        let x = -0.8 + 1.6 * k as f32 / MAX_LOOSE_SPHERES as f32;
+        crowded.add_sphere(Vec3::new(x, -0.8, 0.2 * (k % 3) as f32), 0.12, material);
+    }
+    crowded.validate().unwrap();
+    assert_eq!(
+        check_scene(
+            &crowded,
+            &vec![false; crowded.instances.len()],
+            4000,
+            layout
+        ),
+        TopLevel::Few,
+        "more spheres than are tested one by one keep their BLAS"
     );
     // One dynamic instance, mirrored and rotated: the fast path keeps its transform.
     let mut cornell = builtin::build("cornell-box").unwrap();
@@ -301,5 +327,14 @@ fn check_single_instance(layout: BvhLayout) {
         check_scene(&scene, &[true], 4000, layout),
         TopLevel::Single,
         "a lone dynamic instance is a single instance"
+    );
+    let material = scene.add_material(Material::diffuse("sphere", Vec3::splat(0.5)));
+    scene.add_sphere(Vec3::new(0.3, -0.5, 0.1), 0.3, material);
+    scene.name = "moved single instance beside a sphere".into();
+    scene.validate().unwrap();
+    assert_eq!(
+        check_scene(&scene, &[true], 4000, layout),
+        TopLevel::Single,
+        "a lone dynamic instance beside a sphere is a single instance"
     );
 }

@@ -57,6 +57,10 @@ pub const INSTANCE_TRIANGLES: u32 = 0;
 /// `GpuInstance::kind` of the instance of all spheres.
 pub const INSTANCE_SPHERES: u32 = 1;
 
+/// The most spheres [`GpuScene::single_instance`] lets rays test one by one beside its triangle
+/// instance, rather than through their BLAS.
+pub const MAX_LOOSE_SPHERES: usize = 8;
+
 /// Everything the GPU passes need, CPU side.
 #[derive(Clone, Debug, Default)]
 pub struct GpuScene {
@@ -355,11 +359,18 @@ impl GpuScene {
         Ok(())
     }
 
-    /// Whether the packed scene is exactly one triangle instance (no spheres): rays may then skip
-    /// the top level and walk that instance's BLAS directly (the `SINGLE_INSTANCE` specialization
-    /// constant). A fully flattened static scene is one.
+    /// Whether the packed scene is exactly one triangle instance, alone or beside the instance of
+    /// at most [`MAX_LOOSE_SPHERES`] spheres: rays may then skip the top level, walk that
+    /// instance's BLAS directly and test the spheres one by one (the `SINGLE_INSTANCE`
+    /// specialization constant). A fully flattened static scene is one.
     pub fn single_instance(&self) -> bool {
-        matches!(self.instances.as_slice(), [only] if only.kind != INSTANCE_SPHERES)
+        let triangle_instances = self
+            .instances
+            .iter()
+            .filter(|i| i.kind != INSTANCE_SPHERES)
+            .count();
+        triangle_instances == 1
+            && (self.instances.len() == 1 || self.spheres.len() <= MAX_LOOSE_SPHERES)
     }
 
     /// Bytes of vertices, triangles and spheres.
