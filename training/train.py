@@ -449,7 +449,7 @@ def main():
         "skipped_steps": skipped,
         "train_seconds": round(train_seconds, 1),
         "total_seconds": round(time.time() - process_start, 1),
-        "device": torch.cuda.get_device_name() if dev == "cuda" else "cpu",
+        "device": torch.cuda.get_device_name() if str(dev).startswith("cuda") else "cpu",
         **cost,
     }
     with open(args.log, "w") as f:
