@@ -99,6 +99,18 @@ float intersect_sphere(uint s, vec3 o, vec3 d, float t_max) {
     return (t > 1e-5 * cr.w / sqrt(a) && t < t_max) ? t : T_INFINITY;
 }
 
+// Makes (t, instance, primitive, bary) the hit when t is closer; returns whether it was.
+bool record_hit(float t, uint instance, uint primitive, vec2 bary, inout Hit hit) {
+    if (t < hit.t) {
+        hit.t = t;
+        hit.instance = instance;
+        hit.primitive = primitive;
+        hit.bary = bary;
+        return true;
+    }
+    return false;
+}
+
 // Intersects primitive `prim` (a triangle, or a sphere of the sphere instance) of instance
 // `inst_index` in object space; updates hit and returns true when it is closer.
 bool intersect_primitive(uint inst_index, Instance inst, uint prim, vec3 o, vec3 d, inout Hit hit) {
@@ -116,14 +128,7 @@ bool intersect_primitive(uint inst_index, Instance inst, uint prim, vec3 o, vec3
             }
         }
     }
-    if (t < hit.t) {
-        hit.t = t;
-        hit.instance = inst_index;
-        hit.primitive = prim;
-        hit.bary = bary;
-        return true;
-    }
-    return false;
+    return record_hit(t, inst_index, prim, bary, hit);
 }
 
 // Intersects instance `inst_index` (its BLAS, through its transform) with the world-space ray;
@@ -155,12 +160,7 @@ bool intersect_instance(uint inst_index, vec3 origin, vec3 dir, bool any_hit, in
 bool intersect_loose_spheres(uint slot, vec3 origin, vec3 dir, bool any_hit, inout Hit hit) {
     bool found = false;
     for (uint s = 0u; s < b_scene.p.counts0.z; ++s) {
-        float t = intersect_sphere(s, origin, dir, hit.t);
-        if (t < hit.t) {
-            hit.t = t;
-            hit.instance = slot;
-            hit.primitive = s;
-            hit.bary = vec2(0.0);
+        if (record_hit(intersect_sphere(s, origin, dir, hit.t), slot, s, vec2(0.0), hit)) {
             found = true;
             if (any_hit) {
                 return true;

@@ -282,8 +282,7 @@ fn single_instance_fast_path_matches_cpu() {
 
 /// The single-instance fast path in `layout`: a static Cornell box, a static scene with a sphere
 /// beside its triangles (tested one by one), one dynamic instance, alone and beside a sphere; with
-/// more spheres than
-/// [`MAX_LOOSE_SPHERES`], the spheres' BLAS beside the triangles'.
+/// more spheres than [`MAX_LOOSE_SPHERES`], the spheres' BLAS beside the triangles'.
 fn check_single_instance(layout: BvhLayout) {
     assert_eq!(
         check_builtin("cornell-box", |_| false, 4000, layout),
