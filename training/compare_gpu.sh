@@ -127,6 +127,7 @@ for name in names:
     rows.append({
         "name": name, "ok": True, "model": a["model"], "loss": a["loss"], "loss_weights": r["loss_weights"],
         "burn_in": a["burn_in"], "seed": a["seed"], "widths": a.get("widths"), "fireflies": a.get("fireflies"),
+        "crop": a.get("crop"), "batch": a.get("batch"),
         "format": r["format"],
         **{k: r["final"].get(k) for k in keys},
         **({"watch": r["final"]["watch"]} if "watch" in r["final"] else {}),

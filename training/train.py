@@ -267,7 +267,12 @@ def main():
     ap.add_argument(
         "--burn-in-min", type=int, help="draw each step's burn-in from this up to --burn-in (default: fixed)"
     )
-    ap.add_argument("--crop", type=int, default=128)
+    ap.add_argument(
+        "--crop",
+        type=int,
+        help="side of the square tiles windows are cut from (default: the largest the smallest frame holds, "
+        "the whole frame of a square dataset)",
+    )
     ap.add_argument("--lr", type=float, default=2e-3)
     ap.add_argument("--model", choices=MODELS, default="direct")
     ap.add_argument("--loss", choices=LOSSES, default="l1grad")
@@ -339,6 +344,10 @@ def main():
     shortest = min(s["record"].shape[0] for s in train)
     if window > shortest:
         raise SystemExit(f"--burn-in {args.burn_in} + --frames {args.frames} > {shortest}, the shortest sequence")
+    smallest = min(min(s["record"].shape[-2:]) for s in train)
+    args.crop = args.crop or smallest
+    if not 0 < args.crop <= smallest:
+        raise SystemExit(f"--crop {args.crop} is not between 1 and {smallest}, the smallest frame's side")
     widths = tuple(int(w) for w in args.widths.split(","))
     if len(widths) != len(HIDDEN) or any(w <= 0 or w % 16 for w in widths):
         raise SystemExit(f"--widths takes {len(HIDDEN)} multiples of 16")
@@ -430,6 +439,8 @@ def main():
         "blotch": str(args.blotch),
         "blotch_margin": str(args.blotch_margin),
         "cold": str(args.cold),
+        "crop": str(args.crop),
+        "batch": str(args.batch),
         "steps": str(step),
         "processes": str(group.world),
         "data": args.data,
