@@ -8,7 +8,9 @@
 # the procedural training rooms of a shard (32); FRAMES, the frames of a sequence (16); SEQUENCES,
 # the sequences of a scene (2); SEED_OFFSET (default 0), added to the seeds of shards 1 and on, so
 # that a dataset of other training rooms can be rendered with the same validation rooms and built-in
-# scenes (shard 0 keeps seed 0). On a machine of several GPUs shard K renders on GPU K % GPUS
+# scenes (shard 0 keeps seed 0); ROOMS_FIRST, shard 0's procedural training rooms (default ROOMS: with
+# the built-in scenes and the validation rooms it is the slowest shard); SIZE, the frames' size
+# (256x256). On a machine of several GPUs shard K renders on GPU K % GPUS
 # (gpus.sh). compare_gpu.sh calls it.
 set -euo pipefail
 data=${1:?usage: training/dataset_gpu.sh DATA_DIR}
@@ -22,7 +24,9 @@ shards=${SHARDS:-1}
 pids=()
 for ((k = 0; k < shards; k++)); do
   seed=$k
+  rooms=${ROOMS:-32}
   if [ "$k" -eq 0 ]; then
+    rooms=${ROOMS_FIRST:-$rooms}
     extra=(--validation-rooms 4)
   else
     extra=(--validation-rooms 0 --no-builtin)
@@ -31,7 +35,7 @@ for ((k = 0; k < shards; k++)); do
   dest=$data
   if [ "$shards" -gt 1 ]; then dest=$data/shard-$k; fi
   # shellcheck disable=SC2046 # gpu_env's assignments are separate words
-  env $(gpu_env "$k") "$lucid" dataset --out "$dest" --size 256x256 --frames "${FRAMES:-16}" --rooms "${ROOMS:-32}" \
+  env $(gpu_env "$k") "$lucid" dataset --out "$dest" --size "${SIZE:-256x256}" --frames "${FRAMES:-16}" --rooms "$rooms" \
     --sequences "${SEQUENCES:-2}" --reference-spp 256 --seed "$seed" "${extra[@]}" &
   pids+=($!)
 done
