@@ -45,6 +45,8 @@ pub struct DenoiseInputs {
     pub accumulated: ImageHandle,
     /// Frames averaged into `accumulated` before this one.
     pub accumulated_frames: u32,
+    /// Whether the renderer accumulates frames while the view is still (`Settings::accumulate`).
+    pub accumulating: bool,
     /// What the light transport replayed this frame ([`TransportRequest::replay_stratum`]).
     pub replay: ReplayParams,
     /// This frame's index.

@@ -6,6 +6,7 @@ pub mod accumulate;
 pub mod edge_emission;
 mod frame_denoiser;
 pub mod gbuffer;
+pub mod handoff;
 pub mod neural;
 pub mod svgf;
 

@@ -559,6 +559,7 @@ impl Renderer {
                     surface,
                     accumulated: hdr,
                     accumulated_frames: accumulated,
+                    accumulating: self.settings.accumulate,
                     replay,
                     frame_index: self.frame_index,
                     gbuffer,

@@ -46,6 +46,7 @@ pub use weights::{
 };
 
 use crate::denoise::gbuffer::GBuffer;
+use crate::denoise::handoff;
 use crate::denoise::{DenoiseInputs, Denoised, FrameDenoiser, FrameInfo, TransportRequest};
 use crate::light_transport::SurfaceImages;
 use crate::shaders::neural::{
@@ -132,8 +133,9 @@ impl FrameDenoiser for NeuralDenoiser {
     fn add(&mut self, g: &mut RenderGraph, inputs: &DenoiseInputs) -> Denoised {
         let size = (inputs.width, inputs.height);
         let frame = FrameInputs::new(&inputs.surface, &inputs.gbuffer);
+        let denoised = add_neural(g, &self.network, &frame, size, &self.prefix).radiance;
         Denoised {
-            image: add_neural(g, &self.network, &frame, size, &self.prefix).radiance,
+            image: handoff::add_handoff(g, inputs, denoised, &self.prefix),
             gradient: None,
             // Culled unless read back.
             record: Some(add_record(g, &frame, size)),
@@ -141,7 +143,9 @@ impl FrameDenoiser for NeuralDenoiser {
     }
 
     fn reset_on_scene_change(&self) -> Vec<String> {
-        HistoryKeys::new(&self.prefix).all()
+        let mut keys = HistoryKeys::new(&self.prefix).all();
+        keys.push(handoff::history_key(&self.prefix));
+        keys
     }
 }
 

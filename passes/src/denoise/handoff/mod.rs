@@ -1,0 +1,81 @@
+//! The still-camera hand-off from a denoiser's output to the accumulated image
+//! (`shaders/handoff/`). A temporal denoiser's image stops improving once its histories are full,
+//! while plain accumulation keeps converging; no single "worth K samples" weight fits every scene
+//! and metric (`training/README.md`). So the mix is chosen per pixel: the accumulation's variance
+//! of its mean (from a running second moment of the frames' luminance, kept here beside the
+//! accumulate pass's mean) against the denoised image's squared error, estimated as its squared
+//! difference from the accumulation less that variance, both averaged over a 5x5 neighbourhood.
+//! The accumulated image weighs bias^2 / (bias^2 + variance), counted only where the squared
+//! difference exceeds the variance several times over: it takes over where it has converged and
+//! leaves the denoised value where it has not (fireflies, caustics). It fades in after
+//! [`FIRST_FRAMES`] still frames.
+
+use crate::denoise::DenoiseInputs;
+use crate::shaders::handoff::{BLEND, MOMENT};
+use ash::vk;
+use lucid_engine::graph::{ImageHandle, RenderGraph};
+use lucid_engine::memory::ImageDesc;
+
+/// Accumulated frames before the hand-off starts; it fades in over as many more. Until then the
+/// learned denoiser's own running means still grow (they average up to 32 frames), and estimates
+/// from fewer frames misjudged the scenes whose light arrives by rare paths (`blinds-room`,
+/// `covered-light`: twice the denoiser's error after 7 frames on an H100; `training/README.md`).
+pub const FIRST_FRAMES: u32 = 32;
+
+/// Adds the hand-off of `denoised` to `inputs.accumulated` under the history key
+/// `<prefix>.handoff.moment`; returns the image to show. Without accumulation, and for the first
+/// [`FIRST_FRAMES`] frames accumulated (a moving camera among them), `denoised` is returned as it
+/// is.
+pub fn add_handoff(
+    g: &mut RenderGraph,
+    inputs: &DenoiseInputs,
+    denoised: ImageHandle,
+    prefix: &str,
+) -> ImageHandle {
+    if !inputs.accumulating {
+        return denoised;
+    }
+    let (width, height) = (inputs.width, inputs.height);
+    let moment = g.temporal_image(&history_key(prefix), ImageDesc::r32f(width, height));
+    // Runs every frame, so that the second moment covers the frames the accumulated mean does.
+    let mut pass = g.compute_pass(&format!("{prefix}.handoff.moment"), &MOMENT);
+    pass.read("u_radiance", inputs.radiance)
+        .read("u_accumulated", inputs.accumulated)
+        .read("u_denoised", denoised);
+    pass.history("u_prev_moment", "u_cur_moment", moment);
+    let stats = pass.create_image(
+        "u_stats",
+        &format!("{prefix}.handoff.stats"),
+        ImageDesc::new(width, height, vk::Format::R32G32_SFLOAT),
+    );
+    let accumulated = inputs.accumulated_frames;
+    pass.push_with(move |ctx| {
+        if ctx.history_valid(moment.prev) {
+            accumulated
+        } else {
+            0
+        }
+    });
+    pass.dispatch([width, height, 1]);
+    if accumulated < FIRST_FRAMES {
+        return denoised;
+    }
+    let mut pass = g.compute_pass(&format!("{prefix}.handoff.blend"), &BLEND);
+    pass.read("u_accumulated", inputs.accumulated)
+        .read("u_denoised", denoised)
+        .read("u_stats", stats)
+        .specialize("FIRST_FRAMES", FIRST_FRAMES)
+        .push(&accumulated);
+    let output = pass.create_image(
+        "u_output",
+        &format!("{prefix}.handoff.output"),
+        ImageDesc::rgba32f(width, height),
+    );
+    pass.dispatch([width, height, 1]);
+    output
+}
+
+/// The history key of the running second moment under `prefix`.
+pub fn history_key(prefix: &str) -> String {
+    format!("{prefix}.handoff.moment")
+}
