@@ -1,9 +1,9 @@
 #version 460
 // The still-camera hand-off (passes/src/denoise/handoff): per pixel, the mix of the denoised and the
-// accumulated image of least expected error. Over a 5x5 neighbourhood (moment.comp's statistics),
-// the accumulated mean's variance is its error and the squared difference between the two images
-// less that variance estimates the denoised image's squared error (its bias, which more samples do
-// not remove); the accumulated image weighs bias^2 / (bias^2 + variance). So the image moves to the
+// accumulated image of least expected error. The accumulated mean's error is this pixel's variance
+// (moment.comp's statistics); the denoised image's (its bias, which more samples do not remove) is
+// the squared difference between the two images beyond SIGNIFICANCE times the variance, over a 5x5
+// neighbourhood. The accumulated image weighs bias^2 / (bias^2 + variance): the image moves to the
 // accumulation where it has converged, and keeps the denoised value where it has not (fireflies).
 #include "common/image_coords.glsl"
 

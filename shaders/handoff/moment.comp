@@ -24,10 +24,6 @@ layout(push_constant) uniform Params {
 // blend keeps the denoised value there.
 const vec2 UNKNOWN = vec2(0.0, 3.0e38);
 
-// The least standard deviation of a frame's luminance, relative to the denoised value, that the
-// variance estimate assumes.
-const float RELATIVE_SPREAD = 0.0;
-
 float luminance(vec3 c) {
     return dot(c, vec3(0.2126, 0.7152, 0.0722));
 }
@@ -50,11 +46,8 @@ void main() {
     float mean = luminance(imageLoad(u_accumulated, pixel).rgb);
     float denoised = luminance(imageLoad(u_denoised, pixel).rgb);
     float difference = denoised - mean;
-    // The frames' sample variance over n + 1 frames, divided by their number: the mean's variance;
-    // at least that of frames whose standard deviation is RELATIVE_SPREAD times the denoised value,
-    // since a pixel whose rare bright paths were not drawn yet shows a low variance.
-    float floor_variance = RELATIVE_SPREAD * RELATIVE_SPREAD * denoised * denoised / (n + 1.0);
-    float variance = max(max(moment - mean * mean, 0.0) / n, floor_variance);
+    // The frames' sample variance over n + 1 frames, divided by their number: the mean's variance.
+    float variance = max(moment - mean * mean, 0.0) / n;
     vec2 stats = vec2(difference * difference, variance);
     bool finite = !(any(isnan(stats)) || any(isinf(stats)));
     imageStore(u_stats, pixel, vec4(finite ? stats : UNKNOWN, 0.0, 0.0));

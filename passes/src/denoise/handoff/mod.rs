@@ -1,14 +1,13 @@
 //! The still-camera hand-off from a denoiser's output to the accumulated image
 //! (`shaders/handoff/`). A temporal denoiser's image stops improving once its histories are full,
 //! while plain accumulation keeps converging; no single "worth K samples" weight fits every scene
-//! and metric (`training/README.md`). So the mix is chosen per pixel: the accumulation's variance
-//! of its mean (from a running second moment of the frames' luminance, kept here beside the
-//! accumulate pass's mean) against the denoised image's squared error, estimated as its squared
-//! difference from the accumulation less that variance, both averaged over a 5x5 neighbourhood.
-//! The accumulated image weighs bias^2 / (bias^2 + variance), counted only where the squared
-//! difference exceeds the variance several times over: it takes over where it has converged and
-//! leaves the denoised value where it has not (fireflies, caustics). It fades in after
-//! [`FIRST_FRAMES`] still frames.
+//! and metric (`training/README.md`). So the mix is chosen per pixel: the pixel's variance of the
+//! accumulated mean (from a running second moment of the frames' luminance, kept here beside the
+//! accumulate pass's mean) against the denoised image's squared error (bias^2), estimated over a
+//! 5x5 neighbourhood as the squared difference from the accumulation beyond eight times its
+//! variance. The accumulated image weighs bias^2 / (bias^2 + variance): it takes over where it has
+//! converged and leaves the denoised value where it has not (fireflies, caustics). It fades in
+//! after [`FIRST_FRAMES`] still frames.
 
 use crate::denoise::DenoiseInputs;
 use crate::shaders::handoff::{BLEND, MOMENT};
