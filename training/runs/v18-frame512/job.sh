@@ -1,5 +1,6 @@
 #!/usr/bin/env bash
-# Twenty-seventh session (4 GPUs): does more context per training window help further? Whole
+# Prepared in the twenty-seventh session (lost there with its machine), run in the twenty-eighth
+# (4 GPUs): does more context per training window help further? Whole
 # 256x256 frames beat 128x128 crops (twenty-sixth session, runs/v17-crop); here the dataset's
 # frames are 512x512 (the same bytes: 6 procedural rooms a shard instead of 24, shard 0 only the
 # built-in scenes and the validation rooms), and the crop is swept at the same pixels a step
