@@ -19,14 +19,14 @@ layout(push_constant) uniform Params {
     uint accumulated;
 } params;
 
-// The accumulated frames after which the hand-off starts (HANDOFF_FIRST_FRAMES in handoff/mod.rs).
+// The accumulated frames after which the hand-off starts (Handoff::first_frames in handoff/mod.rs).
 layout(constant_id = 0) const uint FIRST_FRAMES = 32u;
+// How many times the accumulation's variance the squared difference must exceed before any of it
+// counts as the denoised image's error (Handoff::significance).
+layout(constant_id = 1) const float SIGNIFICANCE = 8.0;
 
 // Half the side of the neighbourhood the statistics are averaged over.
 const int RADIUS = 2;
-// How many times the accumulation's variance the squared difference must exceed before any of it
-// counts as the denoised image's error.
-const float SIGNIFICANCE = 8.0;
 
 void main() {
     ivec2 pixel = ivec2(gl_GlobalInvocationID.xy);

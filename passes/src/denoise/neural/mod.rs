@@ -46,7 +46,7 @@ pub use weights::{
 };
 
 use crate::denoise::gbuffer::GBuffer;
-use crate::denoise::handoff;
+use crate::denoise::handoff::{self, Handoff};
 use crate::denoise::{DenoiseInputs, Denoised, FrameDenoiser, FrameInfo, TransportRequest};
 use crate::light_transport::SurfaceImages;
 use crate::shaders::neural::{
@@ -135,7 +135,7 @@ impl FrameDenoiser for NeuralDenoiser {
         let frame = FrameInputs::new(&inputs.surface, &inputs.gbuffer);
         let denoised = add_neural(g, &self.network, &frame, size, &self.prefix).radiance;
         Denoised {
-            image: handoff::add_handoff(g, inputs, denoised, &self.prefix),
+            image: handoff::add_handoff(g, inputs, denoised, &self.prefix, Handoff::NEURAL),
             gradient: None,
             // Culled unless read back.
             record: Some(add_record(g, &frame, size)),

@@ -28,6 +28,10 @@
 //! [`Executor::reset_history`](lucid_engine::graph::Executor::reset_history) starts them afresh.
 //! The spatial modes filter the (accumulated) output, demodulated by the first hits' albedo and
 //! emission accumulated over the same frames (`demodulate`).
+//!
+//! With a still camera and accumulation on, the temporal mode's image hands over to the
+//! accumulated one per pixel after [`Handoff::SVGF`]'s frames (`crate::denoise::handoff`), so it
+//! keeps converging where SVGF's moving averages stop.
 
 mod atrous;
 mod demodulate;
@@ -40,6 +44,7 @@ mod temporal;
 pub use params::{SvgfMode, SvgfParams};
 pub use schedule::{Apply, Schedule};
 
+use crate::denoise::handoff::{self, Handoff};
 use crate::denoise::{DenoiseInputs, Denoised, FrameDenoiser, FrameInfo, TransportRequest};
 use crate::light_transport::ReplayParams;
 use lucid_engine::graph::{ImageHandle, RenderGraph, TemporalImage};
@@ -95,6 +100,7 @@ pub struct SvgfDenoiser {
     params: SvgfParams,
     schedule: Schedule,
     keys: HistoryKeys,
+    prefix: String,
     apply: Apply,
 }
 
@@ -105,6 +111,7 @@ impl SvgfDenoiser {
             params,
             schedule: Schedule::default(),
             keys: HistoryKeys::new(prefix),
+            prefix: prefix.to_owned(),
             apply: Apply::Nothing,
         }
     }
@@ -132,11 +139,18 @@ impl FrameDenoiser for SvgfDenoiser {
     }
 
     fn add(&mut self, g: &mut RenderGraph, inputs: &DenoiseInputs) -> Denoised {
-        add_svgf(g, inputs, &self.params, self.apply, &self.keys)
+        let denoised = add_svgf(g, inputs, &self.params, self.apply, &self.keys);
+        if !matches!(self.apply, Apply::Temporal { .. }) {
+            return denoised;
+        }
+        Denoised {
+            image: handoff::add_handoff(g, inputs, denoised.image, &self.prefix, Handoff::SVGF),
+            ..denoised
+        }
     }
 
     fn reset_on_scene_change(&self) -> Vec<String> {
-        Vec::new()
+        vec![handoff::history_key(&self.prefix)]
     }
 }
 
