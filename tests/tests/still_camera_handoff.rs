@@ -96,35 +96,34 @@ fn still_errors(method: Method, handoff: Handoff) -> [f64; 3] {
     [with_handoff, plateau, accumulation]
 }
 
-#[test]
-fn the_learned_denoiser_converges_past_its_plateau() {
-    let [handoff, plateau, accumulation] = still_errors(Method::Neural, Handoff::NEURAL);
-    // Measured on lavapipe: hand-off 0.0619, the denoiser alone 0.1303, accumulation 0.0526 (the
-    // hand-off counts a difference only where it exceeds the noise several times over, so it
-    // trails the accumulation at first and passes it later: relMSE after 1024 frames at 640x360
-    // on an H100, `training/README.md`).
+/// Checks that `method`'s image after its still frames has under `below_plateau` times the error
+/// of `method` alone and under `near_accumulation` times plain accumulation's.
+fn assert_converges(method: Method, handoff: Handoff, below_plateau: f64, near_accumulation: f64) {
+    let [with_handoff, plateau, accumulation] = still_errors(method, handoff);
     assert!(
-        handoff < 0.6 * plateau,
-        "the hand-off ({handoff:.4}) does not improve on the denoiser's plateau ({plateau:.4})"
+        with_handoff < below_plateau * plateau,
+        "{method:?}: the hand-off ({with_handoff:.4}) does not improve on the plateau ({plateau:.4})"
     );
     assert!(
-        handoff < 1.3 * accumulation,
-        "the hand-off ({handoff:.4}) stays far from plain accumulation ({accumulation:.4})"
+        with_handoff < near_accumulation * accumulation,
+        "{method:?}: the hand-off ({with_handoff:.4}) stays far from plain accumulation \
+         ({accumulation:.4})"
     );
 }
 
 #[test]
+fn the_learned_denoiser_converges_past_its_plateau() {
+    // Measured on lavapipe: hand-off 0.0619, the denoiser alone 0.1303, accumulation 0.0526 (the
+    // hand-off counts a difference only where it exceeds the noise several times over, so it
+    // trails the accumulation at first and passes it later: relMSE after 1024 frames at 640x360
+    // on an H100, `training/README.md`).
+    assert_converges(Method::Neural, Handoff::NEURAL, 0.6, 1.3);
+}
+
+#[test]
 fn svgf_converges_past_its_plateau() {
-    let [handoff, plateau, accumulation] = still_errors(Method::Svgf, Handoff::SVGF);
     // Measured on lavapipe after 32 frames: hand-off 0.0659, SVGF alone 0.0944, accumulation
     // 0.0688 (SVGF's blur is its error: a margin of 1 hands over as soon as the accumulation
     // beats it, so the hand-off passes accumulation early).
-    assert!(
-        handoff < 0.8 * plateau,
-        "the hand-off ({handoff:.4}) does not improve on SVGF's plateau ({plateau:.4})"
-    );
-    assert!(
-        handoff < 1.05 * accumulation,
-        "the hand-off ({handoff:.4}) stays behind plain accumulation ({accumulation:.4})"
-    );
+    assert_converges(Method::Svgf, Handoff::SVGF, 0.8, 1.05);
 }
