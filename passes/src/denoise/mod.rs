@@ -1,6 +1,6 @@
 //! Denoising: progressive accumulation while the view is still, SVGF, the learned recurrent
-//! denoiser and its still-camera hand-off to the accumulation, the G-buffer they read and the
-//! emission they add back, supersampled at emitters' edges.
+//! denoiser, the temporal denoisers' still-camera hand-off to the accumulation, the G-buffer they
+//! read and the emission they add back, supersampled at emitters' edges.
 
 pub mod accumulate;
 pub mod edge_emission;
