@@ -7,15 +7,20 @@
 # best variant (four scales, crop 368, batch 4) is fine-tuned from the committed weights for 8
 # minutes at four rates, one a GPU: 2e-3 (the control), 1e-3, 5e-4, 2e-4. Then each result, and its
 # half-and-half blend with the committed weights, is held out at 1080p beside the committed ones.
+# On fewer GPUs (the four-GPU machine was lost before its evaluation and was then not lent): SHARDS
+# and LRS, e.g. SHARDS=8 LRS="2e-3 5e-4" MINUTES=6 on two.
 # .gpu/lucid.xz: the release lucid binary of the commit this file came with.
 set -u
-export GPUS=4
+GPUS=$(nvidia-smi -L | wc -l)
+export GPUS
 mkdir -p /tmp/bin /tmp/out && xz -dc .gpu/lucid.xz > /tmp/bin/lucid && chmod +x /tmp/bin/lucid
 rm -rf /tmp/repo && cp -r . /tmp/repo && cd /tmp/repo
 W=fireflies=5e-5+widths=16,32,64,64,32,16+scales=4+crop=368+batch=4
 cp passes/src/denoise/neural/lucid-rae-v3.safetensors /tmp/committed.safetensors
-LUCID=/tmp/bin/lucid SHARDS=16 SEED_OFFSET=48 SIZE=512x512 ROOMS=6 ROOMS_FIRST=0 FRAMES=32 SEQUENCES=1 \
-  VARIANTS="kernel:l1gradflip:0-12:::$W+lr=2e-3 kernel:l1gradflip:0-12:::$W+lr=1e-3 kernel:l1gradflip:0-12:::$W+lr=5e-4 kernel:l1gradflip:0-12:::$W+lr=2e-4" \
+variants=""
+for lr in ${LRS:-2e-3 1e-3 5e-4 2e-4}; do variants+=" kernel:l1gradflip:0-12:::$W+lr=$lr"; done
+LUCID=/tmp/bin/lucid SHARDS=${SHARDS:-16} SEED_OFFSET=48 SIZE=512x512 ROOMS=6 ROOMS_FIRST=0 FRAMES=32 SEQUENCES=1 \
+  VARIANTS="${variants# }" \
   INIT=/tmp/committed.safetensors MINUTES=${MINUTES:-8} TRAIN_ARGS="--watch covered-light" \
   DATA=/tmp/lucid-dataset training/compare_gpu.sh /tmp/train-out
 echo "TRAIN-END $? $(date +%s)"
