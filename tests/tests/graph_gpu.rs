@@ -236,6 +236,14 @@ fn reflection_finds_bindings_by_name() {
     assert_no_validation_messages(&ctx);
 }
 
+/// Compiles and executes `g`, which must fail; returns the error's message.
+fn execution_error(executor: &mut Executor, g: RenderGraph) -> String {
+    executor
+        .execute(g.compile().unwrap())
+        .expect_err("must fail")
+        .to_string()
+}
+
 fn run_with_binding(executor: &mut Executor, name: &'static str) -> String {
     let mut g = RenderGraph::new();
     let mut p = g.add_pass("bad_binding");
@@ -248,10 +256,7 @@ fn run_with_binding(executor: &mut Executor, name: &'static str) -> String {
             .dispatch_threads([8, 8, 1])
     });
     g.readback(t);
-    executor
-        .execute(g.compile().unwrap())
-        .expect_err("must fail")
-        .to_string()
+    execution_error(executor, g)
 }
 
 #[test]
@@ -296,11 +301,7 @@ fn binding_undeclared_or_missing_resources_are_errors() {
             .dispatch_threads([8, 8, 1])
     });
     g.readback(b);
-    let message = executor
-        .execute(g.compile().unwrap())
-        .err()
-        .unwrap()
-        .to_string();
+    let message = execution_error(&mut executor, g);
     assert!(message.contains("without declaring"), "{message}");
 
     let mut g = RenderGraph::new();
@@ -314,11 +315,7 @@ fn binding_undeclared_or_missing_resources_are_errors() {
             .dispatch_threads([8, 8, 1])
     });
     g.readback(a);
-    let message = executor
-        .execute(g.compile().unwrap())
-        .err()
-        .unwrap()
-        .to_string();
+    let message = execution_error(&mut executor, g);
     assert!(message.contains("\"u_in\" was not bound"), "{message}");
     assert_no_validation_messages(&ctx);
 }
@@ -339,10 +336,7 @@ fn scale_pass_error(
     let out = scale.create_image("u_out", "b", ImageDesc::rgba32f(8, 8));
     scale.dispatch([8, 8, 1]);
     g.readback(out);
-    executor
-        .execute(g.compile().unwrap())
-        .expect_err("must fail")
-        .to_string()
+    execution_error(executor, g)
 }
 
 #[test]
