@@ -50,7 +50,7 @@ mod window_test;
 pub use options::{AppOptions, Screenshot, Startup};
 pub use scene::DEFAULT_SCENE;
 pub use settings::{
-    Algorithm, Denoiser, DisplaySettings, RenderSettings, SamplesPerPixel, ToneCurve,
+    Algorithm, Denoiser, DisplaySettings, EdgeEmission, RenderSettings, SamplesPerPixel, ToneCurve,
 };
 
 use anyhow::Context as _;

@@ -3,7 +3,7 @@
 //! are the renderer's and the engine's own types (with their panel labels), re-exported here.
 
 pub use lucid_engine::capture::ToneCurve;
-pub use lucid_passes::renderer::{Algorithm, Denoiser, SamplesPerPixel};
+pub use lucid_passes::renderer::{Algorithm, Denoiser, EdgeEmission, SamplesPerPixel};
 
 use lucid_engine::capture::PngEncoding;
 
@@ -30,8 +30,8 @@ pub struct RenderSettings {
     pub max_depth: u32,
     /// The denoiser.
     pub denoiser: Denoiser,
-    /// Supersample the emission the denoiser adds back at emitters' edges.
-    pub edge_emission: bool,
+    /// Whether the emission the denoiser adds back is supersampled at emitters' edges.
+    pub edge_emission: EdgeEmission,
     /// Whether samples accumulate over frames while nothing changes.
     pub accumulate: bool,
     /// The image shown: final, or an intermediate of the frame.
@@ -72,7 +72,7 @@ impl Default for RenderSettings {
             spp: SamplesPerPixel::ONE,
             max_depth: 8,
             denoiser: Denoiser::Svgf,
-            edge_emission: false,
+            edge_emission: EdgeEmission::ByDenoiser,
             accumulate: true,
             view: lucid_passes::debug::debug_view::View::Final,
             svgf: lucid_passes::denoise::svgf::SvgfParams::default(),

@@ -222,16 +222,18 @@ fn bench_times_passes_that_share_a_name_as_their_sum() {
     );
 }
 
+/// The edge pass runs for the learned denoiser unless `--edge-emission off`, for SVGF only with
+/// `--edge-emission` (alone: `on`); the report says whether it ran and times it.
 #[test]
 fn bench_with_edge_emission_times_its_pass_and_says_so() {
     let json = temp("bench-edge-emission.json");
-    let run = |edge: bool| {
+    let run = |denoiser: &str, edge: &[&str]| {
         let mut args = vec![
             "bench",
             "--scene",
             "cornell-box",
             "--denoise",
-            "neural",
+            denoiser,
             "--size",
             "32x32",
             "--frames",
@@ -241,9 +243,7 @@ fn bench_with_edge_emission_times_its_pass_and_says_so() {
             "--json",
             json.to_str().unwrap(),
         ];
-        if edge {
-            args.push("--edge-emission");
-        }
+        args.extend_from_slice(edge);
         let out = lucid(&args);
         assert!(out.status.success(), "{}", stderr(&out));
         let report: serde_json::Value =
@@ -251,11 +251,20 @@ fn bench_with_edge_emission_times_its_pass_and_says_so() {
         std::fs::remove_file(&json).unwrap();
         report
     };
-    for edge in [false, true] {
-        let report = run(edge);
-        assert_eq!(report["edge_emission"], edge, "{report}");
+    let cases: [(&str, &[&str], bool); 4] = [
+        ("neural", &[], true),
+        ("neural", &["--edge-emission", "off"], false),
+        ("svgf", &[], false),
+        ("svgf", &["--edge-emission"], true),
+    ];
+    for (denoiser, edge, ran) in cases {
+        let report = run(denoiser, edge);
+        assert_eq!(
+            report["edge_emission"], ran,
+            "{denoiser} {edge:?}: {report}"
+        );
         let passes = report["passes_ms"].as_object().expect("passes_ms");
-        assert_eq!(passes.contains_key("edge_emission"), edge, "{report}");
+        assert_eq!(passes.contains_key("edge_emission"), ran, "{report}");
     }
 }
 

@@ -4,7 +4,7 @@
 
 use lucid_engine::capture::rec709_luminance;
 use lucid_passes::denoise::neural::{record_image, RECORD_EMISSION};
-use lucid_passes::renderer::{Denoiser, Renderer, Settings};
+use lucid_passes::renderer::{Denoiser, EdgeEmission, Renderer, Settings};
 use lucid_tests::render::scene;
 use lucid_tests::{assert_no_validation_messages, context};
 
@@ -12,7 +12,7 @@ const SIZE: u32 = 48;
 
 /// The luminance of the emission the learned denoiser reads in the first frame of a still Cornell
 /// box, per pixel.
-fn first_frame_emission(edge_emission: bool) -> Vec<f32> {
+fn first_frame_emission(edge_emission: EdgeEmission) -> Vec<f32> {
     let ctx = context(false);
     let settings = Settings {
         denoiser: Denoiser::Neural,
@@ -33,8 +33,8 @@ fn first_frame_emission(edge_emission: bool) -> Vec<f32> {
 
 #[test]
 fn the_light_edges_get_their_coverage_and_nothing_else_changes() {
-    let traced = first_frame_emission(false);
-    let supersampled = first_frame_emission(true);
+    let traced = first_frame_emission(EdgeEmission::Off);
+    let supersampled = first_frame_emission(EdgeEmission::On);
     let light = traced.iter().copied().fold(0.0, f32::max);
     assert!(light > 0.0, "the light is in view");
     // One sample a pixel sees the light or not.
@@ -67,4 +67,12 @@ fn the_light_edges_get_their_coverage_and_nothing_else_changes() {
         partial > 0,
         "edge pixels partly covered by the light: {changed:?}"
     );
+}
+
+/// Unless told otherwise, the learned denoiser reads the supersampled emission.
+#[test]
+fn the_learned_denoiser_supersamples_the_edges_by_default() {
+    let by_default = first_frame_emission(EdgeEmission::default());
+    assert_eq!(by_default, first_frame_emission(EdgeEmission::On));
+    assert_ne!(by_default, first_frame_emission(EdgeEmission::Off));
 }

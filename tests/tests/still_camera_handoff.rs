@@ -113,11 +113,12 @@ fn assert_converges(method: Method, handoff: Handoff, below_plateau: f64, near_a
 
 #[test]
 fn the_learned_denoiser_converges_past_its_plateau() {
-    // Measured on lavapipe: hand-off 0.0619, the denoiser alone 0.1303, accumulation 0.0526 (the
-    // hand-off counts a difference only where it exceeds the noise several times over, so it
-    // trails the accumulation at first and passes it later: relMSE after 1024 frames at 640x360
-    // on an H100, `training/README.md`).
-    assert_converges(Method::Neural, Handoff::NEURAL, 0.6, 1.3);
+    // Measured on lavapipe with the emission supersampled at the light's edges (the learned
+    // denoiser's default): hand-off 0.0393, the denoiser alone 0.0525, accumulation 0.0526. The
+    // pass took most of the denoiser's own error away (0.1303 without it, when the hand-off had
+    // 0.0619 and these bounds were 0.6 and 1.3), so the hand-off has less to gain over the
+    // plateau and must now beat plain accumulation outright.
+    assert_converges(Method::Neural, Handoff::NEURAL, 0.8, 0.85);
 }
 
 #[test]

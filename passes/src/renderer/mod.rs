@@ -20,7 +20,7 @@ mod settings;
 mod value_enum;
 
 pub use crate::samples_per_pixel::{SamplesPerPixel, ZeroSamplesPerPixel};
-pub use settings::{Algorithm, Denoiser, Settings};
+pub use settings::{Algorithm, Denoiser, EdgeEmission, Settings};
 
 use crate::denoise::edge_emission;
 use crate::denoise::gbuffer::{self, GBuffer};
@@ -547,7 +547,7 @@ impl Renderer {
         };
         let denoised = match (self.denoiser.as_mut(), traced.surface) {
             (Some(denoiser), Some(surface)) if planned.is_some() => {
-                let surface = if self.settings.edge_emission {
+                let surface = if self.settings.supersamples_edges() {
                     let spec = &self.spec;
                     let images = (&gbuffer, surface);
                     edge_emission::add_edge_emission(g, &scene, frame, images, spec, (w, h))

@@ -1,6 +1,7 @@
 //! What a frame renders: algorithm, samples, depth, accumulation and display settings. The
 //! command line, the sandbox's panels and embedding code all use these types; with the `clap`
-//! feature, [`Algorithm`] and [`Denoiser`] are `clap::ValueEnum`s (`renderer/value_enum.rs`).
+//! feature, [`Algorithm`], [`Denoiser`] and [`EdgeEmission`] are `clap::ValueEnum`s
+//! (`renderer/value_enum.rs`).
 
 use crate::denoise::svgf::SvgfParams;
 use crate::samples_per_pixel::SamplesPerPixel;
@@ -131,6 +132,75 @@ impl Denoiser {
             Denoiser::Neural => "learned",
         }
     }
+
+    /// Whether the denoiser supersamples the emission it adds back at emitters' edges unless told
+    /// otherwise ([`EdgeEmission::ByDenoiser`]). The learned denoiser does: on the held-out
+    /// `classroom` path it flickers 45% less with the pass (`training/README.md`), and the lavapipe
+    /// pan holds it to 0.2x a per-frame filter that has the pass too. SVGF does not: its history,
+    /// cut where the centre's object changes, flickers at 0.216x there.
+    pub fn supersamples_edges_by_default(self) -> bool {
+        matches!(self, Denoiser::Neural)
+    }
+}
+
+/// Whether the emission the denoisers add back is supersampled at emitters' edges
+/// ([`crate::denoise::edge_emission`]).
+///
+/// ```
+/// use lucid_passes::renderer::{Denoiser, EdgeEmission};
+/// assert_eq!(EdgeEmission::ALL.map(EdgeEmission::short_name), ["auto", "on", "off"]);
+/// assert!(EdgeEmission::ByDenoiser.enabled_for(Denoiser::Neural));
+/// assert!(!EdgeEmission::ByDenoiser.enabled_for(Denoiser::Svgf));
+/// assert!(EdgeEmission::On.enabled_for(Denoiser::Svgf));
+/// assert!(!EdgeEmission::Off.enabled_for(Denoiser::Neural));
+/// assert!(!EdgeEmission::On.enabled_for(Denoiser::None), "nothing adds emission back");
+/// ```
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
+pub enum EdgeEmission {
+    /// As the denoiser chooses ([`Denoiser::supersamples_edges_by_default`]).
+    #[default]
+    ByDenoiser,
+    /// For every denoiser.
+    On,
+    /// For none.
+    Off,
+}
+
+impl EdgeEmission {
+    /// Every choice, in the order menus and the command line list them.
+    pub const ALL: [EdgeEmission; 3] = [
+        EdgeEmission::ByDenoiser,
+        EdgeEmission::On,
+        EdgeEmission::Off,
+    ];
+
+    /// The short name used on the command line (`auto`, `on`, `off`).
+    pub fn short_name(self) -> &'static str {
+        match self {
+            EdgeEmission::ByDenoiser => "auto",
+            EdgeEmission::On => "on",
+            EdgeEmission::Off => "off",
+        }
+    }
+
+    /// The name shown in user interfaces.
+    pub fn label(self) -> &'static str {
+        match self {
+            EdgeEmission::ByDenoiser => "as the denoiser chooses",
+            EdgeEmission::On => "on",
+            EdgeEmission::Off => "off",
+        }
+    }
+
+    /// Whether the pass runs under `denoiser` (never without one: nothing adds emission back).
+    pub fn enabled_for(self, denoiser: Denoiser) -> bool {
+        denoiser != Denoiser::None
+            && match self {
+                EdgeEmission::ByDenoiser => denoiser.supersamples_edges_by_default(),
+                EdgeEmission::On => true,
+                EdgeEmission::Off => false,
+            }
+    }
 }
 
 /// Render settings. Changing anything but exposure and tone curve restarts accumulation.
@@ -154,9 +224,8 @@ pub struct Settings {
     pub denoiser: Denoiser,
     /// The SVGF denoiser's parameters.
     pub svgf: SvgfParams,
-    /// Supersample the emission the denoisers add back at emitters' edges
-    /// ([`crate::denoise::edge_emission`]).
-    pub edge_emission: bool,
+    /// Whether the emission the denoisers add back is supersampled at emitters' edges.
+    pub edge_emission: EdgeEmission,
 }
 
 impl Default for Settings {
@@ -174,12 +243,17 @@ impl Default for Settings {
             },
             denoiser: Denoiser::None,
             svgf: SvgfParams::default(),
-            edge_emission: false,
+            edge_emission: EdgeEmission::ByDenoiser,
         }
     }
 }
 
 impl Settings {
+    /// Whether this frame's denoiser supersamples the emission at emitters' edges.
+    pub fn supersamples_edges(&self) -> bool {
+        self.edge_emission.enabled_for(self.denoiser)
+    }
+
     /// Whether going from `self` to `other` invalidates accumulated samples.
     pub fn restarts_accumulation(&self, other: &Settings) -> bool {
         Settings {

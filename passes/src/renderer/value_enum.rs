@@ -1,7 +1,8 @@
-//! `clap::ValueEnum` for [`Algorithm`], [`Denoiser`], [`InferencePath`] and [`Metric`] (the `clap` feature): the command line
+//! `clap::ValueEnum` for [`Algorithm`], [`Denoiser`], [`EdgeEmission`], [`InferencePath`] and
+//! [`Metric`] (the `clap` feature): the command line
 //! accepts their short names, case-insensitively where a caller asks.
 
-use super::{Algorithm, Denoiser};
+use super::{Algorithm, Denoiser, EdgeEmission};
 use crate::denoise::neural::InferencePath;
 use crate::tradeoff::Metric;
 use clap::builder::PossibleValue;
@@ -37,6 +38,23 @@ impl ValueEnum for Denoiser {
             Denoiser::None => "No denoiser",
             Denoiser::Svgf => "SVGF (temporal, with A-SVGF gradients)",
             Denoiser::Neural => "The learned recurrent denoiser",
+        };
+        Some(PossibleValue::new(self.short_name()).help(help))
+    }
+}
+
+impl ValueEnum for EdgeEmission {
+    fn value_variants<'a>() -> &'a [Self] {
+        &Self::ALL
+    }
+
+    fn to_possible_value(&self) -> Option<PossibleValue> {
+        let help = match self {
+            EdgeEmission::ByDenoiser => {
+                "As the denoiser chooses: the learned denoiser's, not SVGF's"
+            }
+            EdgeEmission::On => "For every denoiser",
+            EdgeEmission::Off => "For none",
         };
         Some(PossibleValue::new(self.short_name()).help(help))
     }

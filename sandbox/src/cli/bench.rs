@@ -141,7 +141,7 @@ pub fn run(args: &BenchArgs) -> anyhow::Result<()> {
         "triangles": renderer.scene().triangle_count(),
         "algorithm": settings.algorithm.short_name(),
         "denoiser": settings.denoiser.short_name(),
-        "edge_emission": settings.edge_emission,
+        "edge_emission": settings.supersamples_edges(),
         "neural_path": renderer.neural_path().short_name(),
         "neural_decoder": renderer.neural_decoder().name(),
         "bvh": renderer.bvh_layout().name(),

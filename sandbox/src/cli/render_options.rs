@@ -11,7 +11,9 @@ use lucid_engine::scene::gpu::BvhLayout;
 use lucid_engine::scene::Scene;
 use lucid_engine::Context;
 use lucid_passes::denoise::neural::{InferencePath, NetworkWeights};
-use lucid_passes::renderer::{Algorithm, Denoiser, Renderer, SamplesPerPixel, Settings};
+use lucid_passes::renderer::{
+    Algorithm, Denoiser, EdgeEmission, Renderer, SamplesPerPixel, Settings,
+};
 use std::path::PathBuf;
 
 /// What to render and how.
@@ -60,9 +62,11 @@ pub struct RenderOptions {
     #[arg(long, value_enum)]
     pub neural_path: Option<InferencePath>,
     /// Supersample the emission the denoiser adds back where an emitter's edge crosses a pixel (a
-    /// 4x4 grid of camera rays there): steadier lights and windows under camera motion.
-    #[arg(long)]
-    pub edge_emission: bool,
+    /// 4x4 grid of camera rays there): steadier lights and windows under camera motion. `auto`:
+    /// for the learned denoiser, not for SVGF; the option alone means `on`.
+    #[arg(long, value_enum, value_name = "WHEN", default_value_t = EdgeEmission::ByDenoiser,
+          num_args = 0..=1, default_missing_value = "on")]
+    pub edge_emission: EdgeEmission,
     /// Layout of the BVH nodes on the GPU (both find the same hits; for A/B timing).
     #[arg(long, value_enum, default_value_t = BvhLayout::default())]
     pub bvh: BvhLayout,

@@ -12,7 +12,7 @@ use anyhow::{bail, Context as _};
 use clap::Args;
 use glam::{Affine3A, Vec3};
 use lucid_engine::{Context, ContextDesc, Validation};
-use lucid_passes::renderer::{Algorithm, Denoiser, Renderer, Settings};
+use lucid_passes::renderer::{Algorithm, Denoiser, EdgeEmission, Renderer, Settings};
 use std::path::PathBuf;
 
 /// Options of `lucid soak`.
@@ -132,11 +132,14 @@ pub fn run(args: &SoakArgs) -> anyhow::Result<()> {
         .collect();
     // Every other configuration supersamples the emission at emitters' edges, so that each
     // denoiser runs with and without it and the edge pass comes and goes.
-    let configurations: Vec<(Algorithm, Denoiser, bool)> = algorithms
+    let configurations: Vec<(Algorithm, Denoiser, EdgeEmission)> = algorithms
         .iter()
         .flat_map(|&a| Denoiser::ALL.map(|d| (a, d)))
         .enumerate()
-        .map(|(i, (a, d))| (a, d, i % 2 == 1))
+        .map(|(i, (a, d))| {
+            let edges = [EdgeEmission::Off, EdgeEmission::On][i % 2];
+            (a, d, edges)
+        })
         .collect();
     // The first cycle of configurations creates pipelines and histories; memory is compared from
     // the second on.

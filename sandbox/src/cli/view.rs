@@ -7,8 +7,8 @@ use super::split::SplitSpec;
 use anyhow::Context as _;
 use clap::Args;
 use lucid_sandbox::{
-    Algorithm, AppOptions, Denoiser, RenderSettings, SamplesPerPixel, Screenshot, Startup,
-    DEFAULT_SCENE,
+    Algorithm, AppOptions, Denoiser, EdgeEmission, RenderSettings, SamplesPerPixel, Screenshot,
+    Startup, DEFAULT_SCENE,
 };
 use std::path::PathBuf;
 
@@ -39,9 +39,11 @@ pub struct ViewArgs {
     /// Denoiser (of the left half in a split view).
     #[arg(long, value_enum, default_value_t = Denoiser::Svgf)]
     denoise: Denoiser,
-    /// Supersample the emission the denoisers add back at emitters' edges (also a panel toggle).
-    #[arg(long)]
-    edge_emission: bool,
+    /// Supersample the emission the denoisers add back at emitters' edges (also a panel choice).
+    /// `auto`: for the learned denoiser, not for SVGF; the option alone means `on`.
+    #[arg(long, value_enum, value_name = "WHEN", default_value_t = EdgeEmission::ByDenoiser,
+          num_args = 0..=1, default_missing_value = "on")]
+    edge_emission: EdgeEmission,
     /// Samples per pixel per frame.
     #[arg(long, default_value_t = SamplesPerPixel::ONE, value_parser = samples_per_pixel(1024))]
     spp: SamplesPerPixel,

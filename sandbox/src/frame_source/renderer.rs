@@ -131,7 +131,7 @@ impl FrameSource for RendererSource {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use lucid_passes::renderer::{Algorithm, Denoiser, SamplesPerPixel};
+    use lucid_passes::renderer::{Algorithm, Denoiser, EdgeEmission, SamplesPerPixel};
 
     #[test]
     fn the_panels_settings_reach_the_renderer() {
@@ -140,7 +140,7 @@ mod tests {
             spp: SamplesPerPixel::new(3).unwrap(),
             max_depth: 5,
             denoiser: Denoiser::Neural,
-            edge_emission: true,
+            edge_emission: EdgeEmission::Off,
             accumulate: false,
             ..RenderSettings::default()
         };
@@ -153,7 +153,7 @@ mod tests {
         assert_eq!(settings.samples_per_pixel.get(), 3);
         assert_eq!(settings.max_depth, 5);
         assert_eq!(settings.denoiser, Denoiser::Neural);
-        assert!(settings.edge_emission);
+        assert_eq!(settings.edge_emission, EdgeEmission::Off);
         assert!(!settings.accumulate);
         assert_eq!(settings.seed, 7, "what the panels do not set stays");
     }

@@ -1,7 +1,9 @@
 //! The editable sections: scene, renderer, auto configuration, split view, display and camera.
 
 use super::Requests;
-use crate::settings::{Algorithm, Denoiser, RenderSettings, SamplesPerPixel, ToneCurve};
+use crate::settings::{
+    Algorithm, Denoiser, EdgeEmission, RenderSettings, SamplesPerPixel, ToneCurve,
+};
 use crate::state::{AppState, PathMode};
 use lucid_engine::scene::SceneFeatures;
 
@@ -124,7 +126,13 @@ fn renderer(ui: &mut egui::Ui, r: &mut RenderSettings) {
             }
         });
     if r.denoiser != Denoiser::None {
-        ui.checkbox(&mut r.edge_emission, "supersample emitters' edges");
+        egui::ComboBox::from_label("supersample emitters' edges")
+            .selected_text(r.edge_emission.label())
+            .show_ui(ui, |ui| {
+                for e in EdgeEmission::ALL {
+                    ui.selectable_value(&mut r.edge_emission, e, e.label());
+                }
+            });
     }
     if r.denoiser == Denoiser::Svgf {
         super::svgf_panel::svgf(ui, &mut r.svgf, r.algorithm.replays_paths());
