@@ -268,6 +268,57 @@ fn bench_with_edge_emission_times_its_pass_and_says_so() {
     }
 }
 
+/// SVGF's firefly clamp is on unless `--svgf-firefly-clamp off`, with the headroom
+/// `--svgf-firefly-headroom` gives; the report says both; a value that is neither on nor off, or a
+/// headroom below 1, is an error naming the option.
+#[test]
+fn bench_reports_the_svgf_firefly_clamp() {
+    let json = temp("bench-firefly-clamp.json");
+    let run = |clamp: &[&str]| {
+        let mut args = vec![
+            "bench",
+            "--scene",
+            "caustics",
+            "--denoise",
+            "svgf",
+            "--size",
+            "32x32",
+            "--frames",
+            "2",
+            "--warmup",
+            "1",
+            "--json",
+            json.to_str().unwrap(),
+        ];
+        args.extend_from_slice(clamp);
+        lucid(&args)
+    };
+    for (clamp, on, headroom) in [
+        (&[][..], true, 16.0),
+        (&["--svgf-firefly-clamp", "off"][..], false, 16.0),
+        (&["--svgf-firefly-headroom", "4"][..], true, 4.0),
+    ] {
+        let out = run(clamp);
+        assert!(out.status.success(), "{}", stderr(&out));
+        let report: serde_json::Value =
+            serde_json::from_slice(&std::fs::read(&json).unwrap()).unwrap();
+        std::fs::remove_file(&json).unwrap();
+        assert_eq!(report["svgf_firefly_clamp"], on, "{clamp:?}: {report}");
+        assert_eq!(
+            report["svgf_firefly_headroom"], headroom,
+            "{clamp:?}: {report}"
+        );
+    }
+    for (option, value) in [
+        ("--svgf-firefly-clamp", "sometimes"),
+        ("--svgf-firefly-headroom", "0.5"),
+    ] {
+        let out = run(&[option, value]);
+        assert!(!out.status.success(), "{option} {value} was accepted");
+        assert!(stderr(&out).contains(option), "{}", stderr(&out));
+    }
+}
+
 #[test]
 fn a_short_soak_keeps_memory_flat_without_validation_messages() {
     // 200 frames through every algorithm and denoiser (12 configurations of 5 frames: three cycles;

@@ -6,8 +6,14 @@
 // shading changed (A-SVGF). The first hit's albedo and emission, which the light-transport pass
 // wrote for its jittered samples, are averaged the same way: re-modulating with these means keeps
 // emitter and texture edges antialiased and steady under sub-pixel motion (the emission the edge
-// pass supersampled weighs more as it moves, edge_emission.glsl). Also writes this
-// frame's surface record for the next frame.
+// pass supersampled weighs more as it moves, edge_emission.glsl). A firefly is clamped before it
+// enters the colour and the moments: where the pixel has history, the sample may raise the colour
+// to at most `firefly_headroom` times the brightest history pixel of the same surface in the 3x3
+// neighbourhood last frame (that history is the first a-trous iteration's output, so smooth), or
+// be up to that many times as bright as the brightest of this frame's neighbouring samples on the
+// same object (light that appeared since last frame lights the neighbours too; a firefly is
+// alone). Without history, only the latter bound applies. Also writes this frame's surface
+// record for the next frame.
 #include "common/math.glsl"
 #include "common/image_coords.glsl"
 #include "svgf/common.glsl"
@@ -44,9 +50,13 @@ layout(push_constant) uniform Params {
     uint stratum;         // side of a gradient stratum in pixels
     float max_history;    // cap of the history length
     float surface_alpha;  // albedo and emission blend weight of a long history
-    float pad1;
-    float pad2;
+    float firefly_headroom;  // how far above its neighbours a sample may go; 0: no firefly clamp
+    float pad;
 } params;
+
+// The history length from which a sample is bounded by the history around it: from the second
+// frame a pixel sees its surface on (in a pixel's first frame, only its neighbours bound it).
+const float FIREFLY_MIN_HISTORY = 1.0;
 
 // Whether last frame's pixel `q` saw the surface this pixel sees now.
 bool tap_valid(ivec2 q, ivec2 size, uint object_id, vec3 normal, float expected_depth, float tolerance) {
@@ -61,6 +71,36 @@ bool tap_valid(ivec2 q, ivec2 size, uint object_id, vec3 normal, float expected_
         return true;
     }
     return abs(s.depth - expected_depth) <= tolerance && dot(s.normal, normal) > 0.9;
+}
+
+// The brightest luminance of last frame's colour history among the 3x3 pixels around `centre` that
+// saw this pixel's surface (0 where none did).
+float history_peak(ivec2 centre, ivec2 size, uint object_id, vec3 normal, float expected_depth, float tolerance) {
+    float peak = 0.0;
+    for (int dy = -1; dy <= 1; ++dy) {
+        for (int dx = -1; dx <= 1; ++dx) {
+            ivec2 q = centre + ivec2(dx, dy);
+            if (tap_valid(q, size, object_id, normal, expected_depth, tolerance)) {
+                peak = max(peak, luminance(imageLoad(u_prev_color, q).rgb));
+            }
+        }
+    }
+    return peak;
+}
+
+// The brightest luminance of this frame's illumination among the 8 neighbours of `pixel` that see
+// object `object_id`.
+float neighbour_peak(ivec2 pixel, ivec2 size, uint object_id) {
+    float peak = 0.0;
+    for (int dy = -1; dy <= 1; ++dy) {
+        for (int dx = -1; dx <= 1; ++dx) {
+            ivec2 q = pixel + ivec2(dx, dy);
+            if ((dx != 0 || dy != 0) && pixel_in_bounds(q, size) && imageLoad(u_ids, q).x == object_id) {
+                peak = max(peak, luminance(imageLoad(u_illumination, q).rgb));
+            }
+        }
+    }
+    return peak;
 }
 
 void main() {
@@ -140,6 +180,27 @@ void main() {
         float n = prev_moments.z * (1.0 - lambda);
         float a = mix(max(params.alpha, 1.0 / (n + 1.0)), 1.0, lambda);
         float am = mix(max(params.moments_alpha, 1.0 / (n + 1.0)), 1.0, lambda);
+        // The pixel's own history is among its neighbours': most samples are too dim to need the
+        // search for the bound.
+        float prev_lum = luminance(prev_color);
+        if (params.firefly_headroom > 0.0 && n >= FIREFLY_MIN_HISTORY &&
+            a * lum > (params.firefly_headroom - (1.0 - a)) * prev_lum) {
+            // The largest sample luminance that keeps the blended colour within the bound.
+            ivec2 centre = ivec2(floor(vec2(pixel) + motion.xy + 0.5));
+            float bound = params.firefly_headroom *
+                          history_peak(centre, size, here.object_id, here.normal, motion.z,
+                                       tolerance + 0.02 * motion.z);
+            float largest = max((bound - (1.0 - a) * prev_lum) / a, 0.0);
+            if (lum > largest) {
+                float neighbours = neighbour_peak(pixel, size, here.object_id);
+                largest = max(largest, params.firefly_headroom * neighbours);
+            }
+            if (lum > largest) {
+                illum *= largest / lum;
+                lum = largest;
+                moments = vec2(lum, lum * lum);
+            }
+        }
         color = mix(prev_color, illum, a);
         float a_surface = mix(max(params.surface_alpha, 1.0 / (n + 1.0)), 1.0, lambda);
         albedo = mix(prev_albedo, albedo, a_surface);
@@ -147,6 +208,14 @@ void main() {
         emission = mix(prev_emission, emission, a_emission);
         moments = mix(prev_moments.xy, moments, am);
         history = min(n + 1.0, params.max_history);
+    } else if (params.firefly_headroom > 0.0) {
+        // No history: the sample may be at most `firefly_headroom` times as bright as the
+        // brightest of its neighbours.
+        float largest = params.firefly_headroom * neighbour_peak(pixel, size, here.object_id);
+        if (lum > largest) {
+            color *= largest / lum;
+            moments = vec2(largest, largest * largest);
+        }
     }
     imageStore(u_color, pixel, vec4(color, 0.0));
     imageStore(u_moments, pixel, vec4(moments, history, 0.0));

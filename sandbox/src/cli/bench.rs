@@ -142,6 +142,8 @@ pub fn run(args: &BenchArgs) -> anyhow::Result<()> {
         "algorithm": settings.algorithm.short_name(),
         "denoiser": settings.denoiser.short_name(),
         "edge_emission": settings.supersamples_edges(),
+        "svgf_firefly_clamp": settings.svgf.firefly_clamp,
+        "svgf_firefly_headroom": settings.svgf.firefly_headroom,
         "neural_path": renderer.neural_path().short_name(),
         "neural_decoder": renderer.neural_decoder().name(),
         "bvh": renderer.bvh_layout().name(),

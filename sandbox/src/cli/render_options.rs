@@ -11,6 +11,7 @@ use lucid_engine::scene::gpu::BvhLayout;
 use lucid_engine::scene::Scene;
 use lucid_engine::Context;
 use lucid_passes::denoise::neural::{InferencePath, NetworkWeights};
+use lucid_passes::denoise::svgf::SvgfParams;
 use lucid_passes::renderer::{
     Algorithm, Denoiser, EdgeEmission, Renderer, SamplesPerPixel, Settings,
 };
@@ -67,6 +68,17 @@ pub struct RenderOptions {
     #[arg(long, value_enum, value_name = "WHEN", default_value_t = EdgeEmission::ByDenoiser,
           num_args = 0..=1, default_missing_value = "on")]
     pub edge_emission: EdgeEmission,
+    /// SVGF's firefly clamp (`on` or `off`): a sample may not raise the accumulated colour far
+    /// above the history and samples around it. Off, a rare caustic path stays a bright spot for
+    /// frames, but no light is lost.
+    #[arg(long, value_name = "on|off", default_value = "on", action = clap::ArgAction::Set,
+          value_parser = clap::builder::BoolishValueParser::new())]
+    pub svgf_firefly_clamp: bool,
+    /// How many times brighter than its neighbours (in SVGF's history and in the frame) the
+    /// firefly clamp lets a sample be.
+    #[arg(long, value_name = "RATIO", default_value_t = SvgfParams::default().firefly_headroom,
+          value_parser = finite_f32(1.0, 1e6))]
+    pub svgf_firefly_headroom: f32,
     /// Layout of the BVH nodes on the GPU (both find the same hits; for A/B timing).
     #[arg(long, value_enum, default_value_t = BvhLayout::default())]
     pub bvh: BvhLayout,
@@ -91,6 +103,11 @@ impl RenderOptions {
             display: self.display(),
             denoiser: self.denoise.unwrap_or(Denoiser::None),
             edge_emission: self.edge_emission,
+            svgf: SvgfParams {
+                firefly_clamp: self.svgf_firefly_clamp,
+                firefly_headroom: self.svgf_firefly_headroom,
+                ..SvgfParams::default()
+            },
             ..Settings::default()
         }
     }

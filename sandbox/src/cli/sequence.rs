@@ -98,10 +98,7 @@ impl Method {
 
     /// `base` with this method's denoiser.
     fn settings(self, base: Settings) -> Settings {
-        let svgf = |mode| SvgfParams {
-            mode,
-            ..SvgfParams::default()
-        };
+        let svgf = |mode| SvgfParams { mode, ..base.svgf };
         match self {
             Method::Noisy => Settings {
                 denoiser: Denoiser::None,

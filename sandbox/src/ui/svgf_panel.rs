@@ -60,6 +60,14 @@ pub fn svgf(ui: &mut egui::Ui, params: &mut SvgfParams, gradients_available: boo
             ui.add(egui::Slider::new(&mut params.sigma_z, 0.1..=10.0).text("sigma z"));
             ui.add(egui::Slider::new(&mut params.sigma_n, 1.0..=256.0).text("sigma n"));
             ui.add(egui::Slider::new(&mut params.sigma_l, 0.5..=16.0).text("sigma l"));
+            ui.checkbox(&mut params.firefly_clamp, "clamp fireflies")
+                .on_hover_text("bound each sample by the history and samples around it: no lingering bright spots, but light found only by rare paths is lost");
+            ui.add_enabled(
+                params.firefly_clamp,
+                egui::Slider::new(&mut params.firefly_headroom, 2.0..=64.0)
+                    .logarithmic(true)
+                    .text("firefly headroom"),
+            );
             ui.checkbox(&mut params.gradients, "temporal gradients (A-SVGF)");
             if !gradients_available {
                 ui.label("(this light transport cannot replay paths: history is rejected by geometry only)");

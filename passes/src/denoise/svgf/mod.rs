@@ -208,6 +208,7 @@ pub fn add_svgf_temporal(
     let params = SvgfParams {
         iterations: params.iterations.max(1),
         gradient_stratum: params.gradient_stratum.max(1),
+        firefly_headroom: params.firefly_headroom.max(1.0),
         ..*params
     };
     let size = (inputs.width, inputs.height);

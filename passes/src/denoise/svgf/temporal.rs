@@ -18,7 +18,8 @@ struct Params {
     stratum: u32,
     max_history: f32,
     surface_alpha: f32,
-    pad: [f32; 2],
+    firefly_headroom: f32,
+    pad: f32,
 }
 
 /// Longest history a pixel counts (the moving averages' weights stop falling before this).
@@ -77,7 +78,12 @@ pub(super) fn add(
         stratum: params.gradient_stratum,
         max_history: MAX_HISTORY,
         surface_alpha: params.surface_alpha,
-        pad: [0.0; 2],
+        firefly_headroom: if params.firefly_clamp {
+            params.firefly_headroom
+        } else {
+            0.0
+        },
+        pad: 0.0,
     });
     pass.dispatch([width, height, 1]);
     Integrated {
