@@ -222,35 +222,52 @@ fn bench_times_passes_that_share_a_name_as_their_sum() {
     );
 }
 
+/// Runs a short 32x32 `lucid bench` of `scene` with `denoiser` and the `extra` options, its JSON
+/// report written to `json`.
+fn short_bench(
+    json: &std::path::Path,
+    scene: &str,
+    denoiser: &str,
+    extra: &[&str],
+) -> std::process::Output {
+    let mut args = vec![
+        "bench",
+        "--scene",
+        scene,
+        "--denoise",
+        denoiser,
+        "--size",
+        "32x32",
+        "--frames",
+        "2",
+        "--warmup",
+        "1",
+        "--json",
+        json.to_str().unwrap(),
+    ];
+    args.extend_from_slice(extra);
+    lucid(&args)
+}
+
+/// The JSON report of a [`short_bench`] that must succeed (the file is removed).
+fn short_bench_report(
+    json: &std::path::Path,
+    scene: &str,
+    denoiser: &str,
+    extra: &[&str],
+) -> serde_json::Value {
+    let out = short_bench(json, scene, denoiser, extra);
+    assert!(out.status.success(), "{}", stderr(&out));
+    let report = serde_json::from_slice(&std::fs::read(json).unwrap()).unwrap();
+    std::fs::remove_file(json).unwrap();
+    report
+}
+
 /// The edge pass runs for the learned denoiser unless `--edge-emission off`, for SVGF only with
 /// `--edge-emission` (alone: `on`); the report says whether it ran and times it.
 #[test]
 fn bench_with_edge_emission_times_its_pass_and_says_so() {
     let json = temp("bench-edge-emission.json");
-    let run = |denoiser: &str, edge: &[&str]| {
-        let mut args = vec![
-            "bench",
-            "--scene",
-            "cornell-box",
-            "--denoise",
-            denoiser,
-            "--size",
-            "32x32",
-            "--frames",
-            "2",
-            "--warmup",
-            "1",
-            "--json",
-            json.to_str().unwrap(),
-        ];
-        args.extend_from_slice(edge);
-        let out = lucid(&args);
-        assert!(out.status.success(), "{}", stderr(&out));
-        let report: serde_json::Value =
-            serde_json::from_slice(&std::fs::read(&json).unwrap()).unwrap();
-        std::fs::remove_file(&json).unwrap();
-        report
-    };
     let cases: [(&str, &[&str], bool); 4] = [
         ("neural", &[], true),
         ("neural", &["--edge-emission", "off"], false),
@@ -258,7 +275,7 @@ fn bench_with_edge_emission_times_its_pass_and_says_so() {
         ("svgf", &["--edge-emission"], true),
     ];
     for (denoiser, edge, ran) in cases {
-        let report = run(denoiser, edge);
+        let report = short_bench_report(&json, "cornell-box", denoiser, edge);
         assert_eq!(
             report["edge_emission"], ran,
             "{denoiser} {edge:?}: {report}"
@@ -274,35 +291,12 @@ fn bench_with_edge_emission_times_its_pass_and_says_so() {
 #[test]
 fn bench_reports_the_svgf_firefly_clamp() {
     let json = temp("bench-firefly-clamp.json");
-    let run = |clamp: &[&str]| {
-        let mut args = vec![
-            "bench",
-            "--scene",
-            "caustics",
-            "--denoise",
-            "svgf",
-            "--size",
-            "32x32",
-            "--frames",
-            "2",
-            "--warmup",
-            "1",
-            "--json",
-            json.to_str().unwrap(),
-        ];
-        args.extend_from_slice(clamp);
-        lucid(&args)
-    };
     for (clamp, on, headroom) in [
         (&[][..], true, 16.0),
         (&["--svgf-firefly-clamp", "off"][..], false, 16.0),
         (&["--svgf-firefly-headroom", "4"][..], true, 4.0),
     ] {
-        let out = run(clamp);
-        assert!(out.status.success(), "{}", stderr(&out));
-        let report: serde_json::Value =
-            serde_json::from_slice(&std::fs::read(&json).unwrap()).unwrap();
-        std::fs::remove_file(&json).unwrap();
+        let report = short_bench_report(&json, "caustics", "svgf", clamp);
         assert_eq!(report["svgf_firefly_clamp"], on, "{clamp:?}: {report}");
         assert_eq!(
             report["svgf_firefly_headroom"], headroom,
@@ -313,7 +307,7 @@ fn bench_reports_the_svgf_firefly_clamp() {
         ("--svgf-firefly-clamp", "sometimes"),
         ("--svgf-firefly-headroom", "0.5"),
     ] {
-        let out = run(&[option, value]);
+        let out = short_bench(&json, "caustics", "svgf", &[option, value]);
         assert!(!out.status.success(), "{option} {value} was accepted");
         assert!(stderr(&out).contains(option), "{}", stderr(&out));
     }
