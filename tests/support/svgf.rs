@@ -50,6 +50,17 @@ pub fn settings(method: Method, max_depth: u32) -> Settings {
     }
 }
 
+/// `settings` with SVGF's firefly clamp on or off.
+pub fn with_firefly_clamp(settings: Settings, firefly_clamp: bool) -> Settings {
+    Settings {
+        svgf: SvgfParams {
+            firefly_clamp,
+            ..settings.svgf
+        },
+        ..settings
+    }
+}
+
 /// A renderer of `scene` with `settings`.
 pub fn renderer(ctx: &Context, scene: Scene, settings: Settings) -> Renderer {
     Renderer::new(ctx, scene, SIZE, SIZE, settings).expect("renderer")

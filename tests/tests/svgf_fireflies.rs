@@ -7,9 +7,8 @@
 
 use lucid_engine::capture::{rec709_luminance, ImageData};
 use lucid_engine::scene::builtin::{build_with, BuildOptions};
-use lucid_passes::denoise::svgf::SvgfParams;
 use lucid_passes::renderer::Settings;
-use lucid_tests::svgf::{frame, reference, renderer, settings, Method, SIZE};
+use lucid_tests::svgf::{frame, reference, renderer, settings, with_firefly_clamp, Method, SIZE};
 use lucid_tests::{assert_no_validation_messages, context};
 
 /// The frames whose worst block counts: the eighth to the twelfth (a network can pass one frame by
@@ -48,18 +47,6 @@ fn worst_block_excess(test: &ImageData, reference: &ImageData) -> f64 {
         .flat_map(|by| (0..SIZE / BLOCK).map(move |bx| (bx * BLOCK, by * BLOCK)))
         .map(|(bx, by)| (block_mean(test, bx, by) - block_mean(reference, bx, by)) / mean)
         .fold(0.0, f64::max)
-}
-
-/// SVGF's settings with its firefly clamp off.
-fn svgf_without_firefly_clamp() -> Settings {
-    let svgf = settings(Method::Svgf, 8);
-    Settings {
-        svgf: SvgfParams {
-            firefly_clamp: false,
-            ..svgf.svgf
-        },
-        ..svgf
-    }
 }
 
 /// The worst block excess of each of `methods` over [`FRAMES`] of still sequences of `name`, one
@@ -135,7 +122,11 @@ fn caustics_have_no_blotches() {
 /// firefly that SVGF without it keeps as a blotch for frames (measured 5.66).
 #[test]
 fn without_the_firefly_clamp_svgf_blotches() {
-    let [unclamped] = worst_errors("caustics", &[2], [svgf_without_firefly_clamp()]);
+    let [unclamped] = worst_errors(
+        "caustics",
+        &[2],
+        [with_firefly_clamp(settings(Method::Svgf, 8), false)],
+    );
     eprintln!("caustics worst block excess: SVGF without the firefly clamp {unclamped:.3}");
     assert!(
         unclamped > 2.0 * MAX_EXCESS_CAUSTICS,

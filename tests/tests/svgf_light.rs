@@ -3,11 +3,10 @@
 //! SVGF's firefly clamp, which bounds a sample by the history around it, lets the new light in as
 //! fast as the moving average without the clamp would.
 
-use lucid_passes::denoise::svgf::SvgfParams;
-use lucid_passes::renderer::Settings;
 use lucid_tests::render::scene;
 use lucid_tests::svgf::{
-    everywhere, frame, light_switched_off, mean_luminance, renderer, settings, Method,
+    everywhere, frame, light_switched_off, mean_luminance, renderer, settings, with_firefly_clamp,
+    Method,
 };
 use lucid_tests::{assert_no_validation_messages, context};
 
@@ -83,14 +82,7 @@ fn brightness_after_switch_on(firefly_clamp: bool) -> Vec<f64> {
     let cornell = scene("cornell-box");
     let (light, off) = light_switched_off(&cornell);
     let on = cornell.materials[light].clone();
-    let without_gradients = settings(Method::SvgfWithoutGradients, 8);
-    let clamped = Settings {
-        svgf: SvgfParams {
-            firefly_clamp,
-            ..without_gradients.svgf
-        },
-        ..without_gradients
-    };
+    let clamped = with_firefly_clamp(settings(Method::SvgfWithoutGradients, 8), firefly_clamp);
     let mut r = renderer(&ctx, cornell, clamped);
     r.set_material(light, off).expect("switch the light off");
     for _ in 0..BEFORE {
