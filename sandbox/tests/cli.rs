@@ -292,8 +292,8 @@ fn bench_with_edge_emission_times_its_pass_and_says_so() {
 fn bench_reports_the_svgf_firefly_clamp() {
     let json = temp("bench-firefly-clamp.json");
     for (clamp, on, headroom) in [
-        (&[][..], true, 16.0),
-        (&["--svgf-firefly-clamp", "off"][..], false, 16.0),
+        (&[][..], true, 32.0),
+        (&["--svgf-firefly-clamp", "off"][..], false, 32.0),
         (&["--svgf-firefly-headroom", "4"][..], true, 4.0),
     ] {
         let report = short_bench_report(&json, "caustics", "svgf", clamp);

@@ -7,13 +7,13 @@
 // wrote for its jittered samples, are averaged the same way: re-modulating with these means keeps
 // emitter and texture edges antialiased and steady under sub-pixel motion (the emission the edge
 // pass supersampled weighs more as it moves, edge_emission.glsl). A firefly is clamped before it
-// enters the colour and the moments: where the pixel has history, the sample may raise the colour
-// to at most `firefly_headroom` times the brightest history pixel of the same surface in the 3x3
-// neighbourhood last frame (that history is the first a-trous iteration's output, so smooth), or
-// be up to that many times as bright as the brightest of this frame's neighbouring samples on the
-// same object (light that appeared since last frame lights the neighbours too; a firefly is
-// alone). Without history, only the latter bound applies. Also writes this frame's surface
-// record for the next frame.
+// enters the colour and the moments: where the pixel has history, the sample may be at most
+// `firefly_headroom` times as bright as the brightest history pixel of the same surface in the
+// 3x3 neighbourhood last frame (that history is the first a-trous iteration's output, so smooth),
+// or that many times as bright as the second brightest of this frame's neighbouring samples on
+// the same object (light that appeared since last frame lights the neighbours too; fireflies are
+// alone, or two together). Without history, only the latter bound applies. Also writes this
+// frame's surface record for the next frame.
 #include "common/math.glsl"
 #include "common/image_coords.glsl"
 #include "svgf/common.glsl"
@@ -88,19 +88,23 @@ float history_peak(ivec2 centre, ivec2 size, uint object_id, vec3 normal, float 
     return peak;
 }
 
-// The brightest luminance of this frame's illumination among the 8 neighbours of `pixel` that see
-// object `object_id`.
+// The second brightest luminance of this frame's illumination among the 8 neighbours of `pixel`
+// that see object `object_id`: new light brightens several, while two fireflies side by side,
+// which a single bright neighbour would let through, are no more than one each.
 float neighbour_peak(ivec2 pixel, ivec2 size, uint object_id) {
     float peak = 0.0;
+    float second = 0.0;
     for (int dy = -1; dy <= 1; ++dy) {
         for (int dx = -1; dx <= 1; ++dx) {
             ivec2 q = pixel + ivec2(dx, dy);
             if ((dx != 0 || dy != 0) && pixel_in_bounds(q, size) && imageLoad(u_ids, q).x == object_id) {
-                peak = max(peak, luminance(imageLoad(u_illumination, q).rgb));
+                float l = luminance(imageLoad(u_illumination, q).rgb);
+                second = max(second, min(peak, l));
+                peak = max(peak, l);
             }
         }
     }
-    return peak;
+    return second;
 }
 
 void main() {
@@ -181,16 +185,14 @@ void main() {
         float a = mix(max(params.alpha, 1.0 / (n + 1.0)), 1.0, lambda);
         float am = mix(max(params.moments_alpha, 1.0 / (n + 1.0)), 1.0, lambda);
         // The pixel's own history is among its neighbours': most samples are too dim to need the
-        // search for the bound.
-        float prev_lum = luminance(prev_color);
+        // search for the bound. The bound is on the sample, not on the blended colour, which would
+        // let a sample as much brighter through as the blend weight is small.
         if (params.firefly_headroom > 0.0 && n >= FIREFLY_MIN_HISTORY &&
-            a * lum > (params.firefly_headroom - (1.0 - a)) * prev_lum) {
-            // The largest sample luminance that keeps the blended colour within the bound.
+            lum > params.firefly_headroom * luminance(prev_color)) {
             ivec2 centre = ivec2(floor(vec2(pixel) + motion.xy + 0.5));
-            float bound = params.firefly_headroom *
-                          history_peak(centre, size, here.object_id, here.normal, motion.z,
-                                       tolerance + 0.02 * motion.z);
-            float largest = max((bound - (1.0 - a) * prev_lum) / a, 0.0);
+            float largest = params.firefly_headroom *
+                            history_peak(centre, size, here.object_id, here.normal, motion.z,
+                                         tolerance + 0.02 * motion.z);
             if (lum > largest) {
                 float neighbours = neighbour_peak(pixel, size, here.object_id);
                 largest = max(largest, params.firefly_headroom * neighbours);
@@ -210,7 +212,7 @@ void main() {
         history = min(n + 1.0, params.max_history);
     } else if (params.firefly_headroom > 0.0) {
         // No history: the sample may be at most `firefly_headroom` times as bright as the
-        // brightest of its neighbours.
+        // second brightest of its neighbours.
         float largest = params.firefly_headroom * neighbour_peak(pixel, size, here.object_id);
         if (lum > largest) {
             color *= largest / lum;

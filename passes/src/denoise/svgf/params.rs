@@ -36,19 +36,19 @@ pub struct SvgfParams {
     pub sigma_n: f32,
     /// Luminance edge stopping, in standard deviations of the luminance.
     pub sigma_l: f32,
-    /// Clamp fireflies: a sample may raise the accumulated colour to at most
-    /// [`SvgfParams::firefly_headroom`] times the brightest history pixel of the same surface
-    /// around it (and enters the moments clamped too), unless it is at most that many times as
-    /// bright as a neighbouring sample of this frame on the same object (light that just
-    /// appeared); in a pixel's first frame, only the latter bound holds. A 1-spp path that finds
-    /// a light through a rare caustic would otherwise stay a bright spot for many frames, and its
+    /// Clamp fireflies: a sample may be at most [`SvgfParams::firefly_headroom`] times as bright
+    /// as the brightest history pixel of the same surface around it (and enters the moments
+    /// clamped too), unless it is at most that many times as bright as the second brightest
+    /// neighbouring sample of this frame on the same object (light that just appeared lights
+    /// several); in a pixel's first frame, only the latter bound holds. A 1-spp path that finds a
+    /// light through a rare caustic would otherwise stay a bright spot for many frames, and its
     /// variance would open the luminance edge stopping around it. The price is that light
     /// sampled that rarely is lost (`tests/tests/svgf_fireflies.rs`).
     pub firefly_clamp: bool,
     /// How many times brighter than its neighbours (in the history and in this frame) the firefly
-    /// clamp lets a sample be. On the held-out `caustics` path at 1920x1080 (`training/README.md`,
-    /// thirty-first session), 16 cuts SVGF's relMSE ninefold for 7% more FLIP; 4 cuts it 15-fold
-    /// for 11%, 256 2.5-fold for 3%.
+    /// clamp lets a sample be. 32 holds `caustics` and `covered-light` free of blotches over 32
+    /// still frames at every seed tested on lavapipe (`training/README.md`, thirty-second
+    /// session); 64 let a caustic's firefly through.
     pub firefly_headroom: f32,
     /// Reject history where the temporal gradient shows that shading changed (A-SVGF).
     pub gradients: bool,
@@ -73,7 +73,7 @@ impl Default for SvgfParams {
             sigma_n: 128.0,
             sigma_l: 4.0,
             firefly_clamp: true,
-            firefly_headroom: 16.0,
+            firefly_headroom: 32.0,
             gradients: true,
             gradient_stratum: 4,
             gradients_every_frame: false,
