@@ -91,7 +91,7 @@ float history_peak(ivec2 centre, ivec2 size, uint object_id, vec3 normal, float 
 // The second brightest luminance of this frame's illumination among the 8 neighbours of `pixel`
 // that see object `object_id`: new light brightens several, while two fireflies side by side,
 // which a single bright neighbour would let through, are no more than one each.
-float neighbour_peak(ivec2 pixel, ivec2 size, uint object_id) {
+float second_brightest_neighbour(ivec2 pixel, ivec2 size, uint object_id) {
     float peak = 0.0;
     float second = 0.0;
     for (int dy = -1; dy <= 1; ++dy) {
@@ -194,7 +194,7 @@ void main() {
                             history_peak(centre, size, here.object_id, here.normal, motion.z,
                                          tolerance + 0.02 * motion.z);
             if (lum > largest) {
-                float neighbours = neighbour_peak(pixel, size, here.object_id);
+                float neighbours = second_brightest_neighbour(pixel, size, here.object_id);
                 largest = max(largest, params.firefly_headroom * neighbours);
             }
             if (lum > largest) {
@@ -213,7 +213,8 @@ void main() {
     } else if (params.firefly_headroom > 0.0) {
         // No history: the sample may be at most `firefly_headroom` times as bright as the
         // second brightest of its neighbours.
-        float largest = params.firefly_headroom * neighbour_peak(pixel, size, here.object_id);
+        float largest =
+            params.firefly_headroom * second_brightest_neighbour(pixel, size, here.object_id);
         if (lum > largest) {
             color *= largest / lum;
             moments = vec2(largest, largest * largest);
