@@ -703,6 +703,11 @@ fn evaluate_maps_where_each_method_flickers_and_differs() {
         printed.contains("none: temporal instability 0.0076, 100% of it from pixels over 2x"),
         "{printed}"
     );
+    // No pixel is over 8x the mean: each method keeps all of the (absent) light there.
+    assert!(
+        printed.contains("; 100% of the light over 8x kept"),
+        "{printed}"
+    );
     for method in ["none", "svgf"] {
         let png = image::open(dir.join("maps").join(format!("{method}.png"))).unwrap();
         assert_eq!((png.width(), png.height()), (16, 16));
@@ -720,12 +725,16 @@ fn evaluate_maps_where_each_method_flickers_and_differs() {
     }
     let csv = std::fs::read_to_string(dir.join("maps").join("by_brightness.csv")).unwrap();
     assert!(
-        csv.starts_with("method,from,to,pixels,instability_share,instability,flip_share,flip\n"),
+        csv.starts_with(
+            "method,from,to,pixels,instability_share,instability,flip_share,flip,light\n"
+        ),
         "{csv}"
     );
     assert!(csv.contains("none,2,8,0.015625,1.000000,"), "{csv}");
+    // `none`'s block averages 3.1667 over the frames against the reference's 3.
+    assert!(csv.contains(",1.055556\n"), "{csv}");
     assert!(
-        csv.contains("svgf,2,8,0.015625,0.000000,0.000000,0.000000,0.000000"),
+        csv.contains("svgf,2,8,0.015625,0.000000,0.000000,0.000000,0.000000,1.000000"),
         "{csv}"
     );
     std::fs::remove_dir_all(&dir).unwrap();

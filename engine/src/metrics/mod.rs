@@ -12,6 +12,7 @@ mod error;
 mod flip;
 mod flip_map;
 mod instability_map;
+mod light_map;
 mod pixel_map;
 mod pixelwise;
 mod plane;
@@ -26,6 +27,7 @@ pub use flip::{
 };
 pub use flip_map::flip_map;
 pub use instability_map::instability_map;
+pub use light_map::light_map;
 pub use pixel_map::{BrightnessBand, PixelMap};
 pub use pixelwise::{max_abs_error, mean_per_channel, mse, psnr, rel_mse, DEFAULT_REL_MSE_EPSILON};
 pub use sequence::{

@@ -29,6 +29,10 @@ pub struct BrightnessBand {
     pub pixels: f64,
     /// The share of the measure's sum from them (the shares sum to 1; all 0 where the sum is).
     pub share: f64,
+    /// The measure's mean over them (0 for no pixels).
+    pub mean: f64,
+    /// The reference's brightness averaged over them (0 for no pixels).
+    pub brightness: f64,
 }
 
 impl PixelMap {
@@ -69,17 +73,22 @@ impl PixelMap {
         bounds
             .windows(2)
             .map(|b| {
-                let (pixels, sum) = self
+                let (pixels, sum, light) = self
                     .brightness
                     .iter()
                     .zip(&self.values)
                     .filter(|(&light, _)| light >= b[0] && light < b[1])
-                    .fold((0.0, 0.0), |(n, sum), (_, &v)| (n + 1.0, sum + v));
+                    .fold((0.0, 0.0, 0.0), |(n, sum, lights), (&light, &v)| {
+                        (n + 1.0, sum + v, lights + light)
+                    });
+                let per_pixel = |x: f64| if pixels > 0.0 { x / pixels } else { 0.0 };
                 BrightnessBand {
                     from: b[0].max(0.0),
                     to: b[1],
                     pixels: pixels / count,
                     share: if total > 0.0 { sum / total } else { 0.0 },
+                    mean: per_pixel(sum),
+                    brightness: per_pixel(light),
                 }
             })
             .collect()
@@ -102,6 +111,8 @@ mod tests {
         let shares: Vec<(f64, f64)> = bands.iter().map(|b| (b.pixels, b.share)).collect();
         let third = 1.0 / 3.0;
         assert_eq!(shares, [(third, 0.0), (third, 0.0), (third, 1.0)]);
+        let means: Vec<(f64, f64)> = bands.iter().map(|b| (b.mean, b.brightness)).collect();
+        assert_eq!(means, [(0.0, 0.1), (0.0, 0.9), (0.2, 2.0)]);
         assert_eq!((bands[0].from, bands[2].to), (0.0, f64::INFINITY));
         assert!((map.mean() - 0.2 / 3.0).abs() < 1e-12);
     }

@@ -26,7 +26,7 @@ pub struct EvaluateArgs {
     /// Also map where each method flickers and where it differs: `maps/<method>.png` (per-pixel
     /// temporal instability, one colour scale for all), `maps/<method>.flip.png` (per-pixel FLIP
     /// averaged over the frames, likewise) and `maps/by_brightness.csv` (their shares by the
-    /// reference's brightness).
+    /// reference's brightness, and the share of each band's light each method keeps).
     #[arg(long)]
     maps: bool,
 }
@@ -98,15 +98,18 @@ pub fn evaluate_folder(dir: &Path, display: &PngEncoding, maps: bool) -> anyhow:
     if maps {
         let (maps, folder) = maps::write(dir, &methods, &frames, &reference, display)?;
         let bright = maps::BRIGHTNESS_EDGES[2];
+        let brightest = maps::BRIGHTNESS_EDGES[3];
         for m in &maps {
             println!(
                 "{:>8}: temporal instability {:.4}, {:.0}% of it from pixels over {bright}x the mean \
-                 brightness; FLIP {:.4}, {:.0}% of it from them",
+                 brightness; FLIP {:.4}, {:.0}% of it from them; {:.0}% of the light over \
+                 {brightest}x kept",
                 m.method,
                 m.instability.map.mean(),
                 100.0 * m.instability.share_from(bright),
                 m.flip.map.mean(),
                 100.0 * m.flip.share_from(bright),
+                100.0 * m.light_kept_from(brightest),
             );
         }
         println!(

@@ -5,14 +5,16 @@
 //! among the methods, brighter pixels clipped to its top), and `maps/by_brightness.csv`, the share
 //! of each method's instability and FLIP from the pixels of each band of the reference's
 //! brightness (relative to its mean): flicker on bright pixels weighs more in a measure taken on
-//! HDR luminance.
+//! HDR luminance. The same file has, per band, how much of the reference's light the method keeps
+//! (`light`: its luminance over the reference's, averaged over the frames): a denoiser that clamps
+//! away a caustic that only rare paths find keeps much less than 1 in the brightest band.
 
 use anyhow::Context as _;
 use image::codecs::png::PngEncoder;
 use image::{ExtendedColorType, ImageEncoder};
 use lucid_engine::atomic_write::write_atomic;
 use lucid_engine::capture::{ImageData, PngEncoding};
-use lucid_engine::metrics::{flip_map, instability_map, BrightnessBand, PixelMap};
+use lucid_engine::metrics::{flip_map, instability_map, light_map, BrightnessBand, PixelMap};
 use plotters::prelude::ViridisRGB;
 use rayon::prelude::*;
 use std::fmt::Write as _;
@@ -56,6 +58,29 @@ pub struct MethodMaps {
     pub instability: Measured,
     /// Its FLIP.
     pub flip: Measured,
+    /// Its luminance averaged over the frames, on the reference's brightness scale.
+    pub light: Measured,
+}
+
+impl MethodMaps {
+    /// The share of the reference's light the method keeps in the pixels at least `from` times the
+    /// mean brightness (1 where the reference has none there).
+    pub fn light_kept_from(&self, from: f64) -> f64 {
+        let (kept, reference) = self.light.bands.iter().filter(|b| b.from >= from).fold(
+            (0.0, 0.0),
+            |(kept, reference), b| {
+                (
+                    kept + b.mean * b.pixels,
+                    reference + b.brightness * b.pixels,
+                )
+            },
+        );
+        if reference > 0.0 {
+            kept / reference
+        } else {
+            1.0
+        }
+    }
 }
 
 /// Computes every method's maps against `reference` (FLIP on the frames display-mapped by
@@ -75,10 +100,13 @@ pub fn write(
                 .with_context(|| format!("the instability map of {method}"))?;
             let flip = flip_map(frames, reference, display)
                 .with_context(|| format!("the FLIP map of {method}"))?;
+            let light = light_map(frames, reference)
+                .with_context(|| format!("the light map of {method}"))?;
             Ok(MethodMaps {
                 method: method.clone(),
                 instability: Measured::new(instability),
                 flip: Measured::new(flip),
+                light: Measured::new(light),
             })
         })
         .collect::<anyhow::Result<Vec<_>>>()?;
@@ -132,18 +160,29 @@ fn false_colour_png(map: &PixelMap, top: f64) -> anyhow::Result<Vec<u8>> {
     Ok(png)
 }
 
-/// `method,from,to,pixels,instability_share,instability,flip_share,flip` per method and band
-/// (`instability` and `flip` the band's parts of the method's means), then the colour scales'
-/// tops as a comment.
+/// `method,from,to,pixels,instability_share,instability,flip_share,flip,light` per method and
+/// band (`instability` and `flip` the band's parts of the method's means, `light` the share of the
+/// band's reference light the method keeps), then the colour scales' tops as a comment.
 fn to_csv(maps: &[MethodMaps], tops: (f64, f64)) -> String {
     let mut out =
-        String::from("method,from,to,pixels,instability_share,instability,flip_share,flip\n");
+        String::from("method,from,to,pixels,instability_share,instability,flip_share,flip,light\n");
     for m in maps {
         let (instability, flip) = (m.instability.map.mean(), m.flip.map.mean());
-        for (b, f) in m.instability.bands.iter().zip(&m.flip.bands) {
+        for ((b, f), l) in m
+            .instability
+            .bands
+            .iter()
+            .zip(&m.flip.bands)
+            .zip(&m.light.bands)
+        {
+            let light = if l.brightness > 0.0 {
+                l.mean / l.brightness
+            } else {
+                1.0
+            };
             let _ = writeln!(
                 out,
-                "{},{},{},{:.6},{:.6},{:.6},{:.6},{:.6}",
+                "{},{},{},{:.6},{:.6},{:.6},{:.6},{:.6},{:.6}",
                 m.method,
                 b.from,
                 b.to,
@@ -151,7 +190,8 @@ fn to_csv(maps: &[MethodMaps], tops: (f64, f64)) -> String {
                 b.share,
                 b.share * instability,
                 f.share,
-                f.share * flip
+                f.share * flip,
+                light
             );
         }
     }
