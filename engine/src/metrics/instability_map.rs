@@ -43,16 +43,9 @@ pub fn instability_map(
 
 #[cfg(test)]
 mod tests {
+    use super::super::pixel_map::grey_row as frame;
     use super::super::temporal_instability;
     use super::*;
-
-    fn frame(values: &[f32]) -> ImageData {
-        let mut image = ImageData::new(values.len() as u32, 1);
-        for (p, &v) in image.pixels.iter_mut().zip(values) {
-            *p = [v, v, v, 1.0];
-        }
-        image
-    }
 
     #[test]
     fn the_map_locates_the_flicker_and_averages_to_the_instability() {

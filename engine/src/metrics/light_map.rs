@@ -7,7 +7,7 @@
 use rayon::prelude::*;
 
 use super::pixel_map::PixelMap;
-use super::temporal::{luminances, Luminances, ReferenceLuminance};
+use super::temporal::luminances;
 use super::MetricsError;
 use crate::capture::ImageData;
 
@@ -18,34 +18,24 @@ pub fn light_map(
     test_frames: &[ImageData],
     reference_frames: &[ImageData],
 ) -> Result<PixelMap, MetricsError> {
-    let Luminances {
-        test: test_lum,
-        reference:
-            ReferenceLuminance {
-                frames: ref_lum,
-                mean: ref_mean,
-            },
-    } = luminances(test_frames, reference_frames)?;
-    let frames = test_lum.len() as f64;
-    let first = &reference_frames[0];
-    let values = (0..first.pixels.len())
+    let lum = luminances(test_frames, reference_frames)?;
+    let (frames, mean) = (lum.test.len() as f64, lum.reference.mean);
+    let values = (0..reference_frames[0].pixels.len())
         .into_par_iter()
-        .map(|i| test_lum.iter().map(|t| t[i]).sum::<f64>() / frames / ref_mean)
+        .map(|i| lum.test.iter().map(|t| t[i]).sum::<f64>() / frames / mean)
         .collect();
-    Ok(PixelMap::of_reference(first, values, &ref_lum, ref_mean))
+    Ok(PixelMap::of_reference(
+        &reference_frames[0],
+        values,
+        &lum.reference.frames,
+        mean,
+    ))
 }
 
 #[cfg(test)]
 mod tests {
+    use super::super::pixel_map::grey_row as frame;
     use super::*;
-
-    fn frame(values: &[f32]) -> ImageData {
-        let mut image = ImageData::new(values.len() as u32, 1);
-        for (p, &v) in image.pixels.iter_mut().zip(values) {
-            *p = [v, v, v, 1.0];
-        }
-        image
-    }
 
     #[test]
     fn bands_compare_the_light_kept_with_the_reference() {

@@ -95,6 +95,16 @@ impl PixelMap {
     }
 }
 
+/// A one-row image of grey pixels of `values`, for the maps' tests.
+#[cfg(test)]
+pub(super) fn grey_row(values: &[f32]) -> ImageData {
+    let mut image = ImageData::new(values.len() as u32, 1);
+    for (p, &v) in image.pixels.iter_mut().zip(values) {
+        *p = [v, v, v, 1.0];
+    }
+    image
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
