@@ -25,6 +25,7 @@ MEASURED = (
     "validation_flip",
     "validation_temporal",
     "validation_blotch",
+    "validation_light",
     "watch",
 )
 # Metadata that describes the network rather than its training, which both files must share.

@@ -115,7 +115,7 @@ import json, os, sys
 from pathlib import Path
 
 work, dest, minutes, elapsed, names = Path(sys.argv[1]), sys.argv[2], float(sys.argv[3]), int(sys.argv[4]), sys.argv[5:]
-keys = ("relmse", "ssim", "flip", "temporal", "blotch")
+keys = ("relmse", "ssim", "flip", "temporal", "blotch", "light")
 rows = []
 for name in names:
     log = work / f"{name}.json"

@@ -207,6 +207,23 @@ def relmse(pred, ref):
     return ((pred - ref) ** 2 / (ref**2 + 1e-2)).mean()
 
 
+# The brightness, in multiples of the reference's mean, from which `light_kept` counts (the
+# brightest band of `lucid evaluate --maps`, `BRIGHTNESS_EDGES` in sandbox/src/cli/maps.rs).
+BRIGHT = 8.0
+
+
+def light_kept(pred, ref):
+    """The share of the reference's light that `pred` keeps where the reference, averaged over the
+    frames, is at least `BRIGHT` times its mean, as `lucid evaluate --maps` reports it (`light`, its
+    brightest band): a denoiser that erases a caustic keeps much less than 1. `pred`, `ref` linear
+    [N, 3, H, W], one sequence's frames; None where no pixel is that bright."""
+    ref_lum = luminance(ref).mean(0)
+    bright = ref_lum >= BRIGHT * ref_lum.mean()
+    if not bright.any():
+        return None
+    return (luminance(pred).mean(0)[bright].sum() / ref_lum[bright].sum()).item()
+
+
 # Side of the blocks `worst_block_excess` compares (`BLOCK` in tests/tests/svgf_fireflies.rs).
 BLOCK = 8
 

@@ -45,6 +45,7 @@ from losses import (
     TERM_NAMES,
     display_ssim,
     flip,
+    light_kept,
     log_tonemap,
     loss_fn,
     relmse,
@@ -201,11 +202,14 @@ def validate(model, sequences):
     """Over whole sequences, from no history: mean relMSE, mean SSIM and FLIP (per frame, as
     `lucid evaluate` computes them: SSIM on the luminance of the ACES + sRGB display images, FLIP
     on the ACES-mapped ones), temporal instability (mean |frame difference| of output minus
-    reference's, in log space) and blotches (the worst 8x8 block's excess brightness per frame, as
-    the lavapipe blotch test measures it, `losses.worst_block_excess`)."""
+    reference's, in log space), blotches (the worst 8x8 block's excess brightness per frame, as
+    the lavapipe blotch test measures it, `losses.worst_block_excess`) and the share of the light
+    kept in the brightest pixels (`losses.light_kept`, over the sequences that have such pixels; 1
+    where none has)."""
     model.eval()
     keys = ("relmse", "ssim", "flip", "temporal", "blotch")
     sums = dict.fromkeys(keys, 0.0)
+    kept = []
     for s in sequences:
         rec = s["record"].float().unsqueeze(0)
         ref = s["reference"].float().unsqueeze(0)
@@ -215,8 +219,13 @@ def validate(model, sequences):
         sums["flip"] += flip(out[0], ref[0]).mean().item()
         sums["temporal"] += temporal_l1(log_tonemap(out), log_tonemap(ref)).item()
         sums["blotch"] += worst_block_excess(out[0], ref[0]).mean().item()
+        share = light_kept(out[0], ref[0])
+        if share is not None:
+            kept.append(share)
     model.train()
-    return {k: v / len(sequences) for k, v in sums.items()}
+    means = {k: v / len(sequences) for k, v in sums.items()}
+    means["light"] = sum(kept) / len(kept) if kept else 1.0
+    return means
 
 
 def watched(root, scenes, device):
@@ -450,6 +459,7 @@ def main():
         "validation_flip": f"{final['flip']:.5f}",
         "validation_temporal": f"{final['temporal']:.5f}",
         "validation_blotch": f"{final['blotch']:.5f}",
+        "validation_light": f"{final['light']:.5f}",
         "watch": json.dumps({"scenes": args.watch, **final["watch"]}) if watch else "",
     }
     save_file(tensors, args.out, metadata=meta)
