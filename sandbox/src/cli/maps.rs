@@ -66,20 +66,23 @@ impl MethodMaps {
     /// The share of the reference's light the method keeps in the pixels at least `from` times the
     /// mean brightness (1 where the reference has none there).
     pub fn light_kept_from(&self, from: f64) -> f64 {
-        let (kept, reference) = self.light.bands.iter().filter(|b| b.from >= from).fold(
-            (0.0, 0.0),
-            |(kept, reference), b| {
-                (
-                    kept + b.mean * b.pixels,
-                    reference + b.brightness * b.pixels,
-                )
-            },
-        );
-        if reference > 0.0 {
-            kept / reference
-        } else {
-            1.0
-        }
+        light_kept(self.light.bands.iter().filter(|b| b.from >= from))
+    }
+}
+
+/// The share of the reference's light that `bands` of a light map keep (1 where the reference has
+/// none in them).
+fn light_kept<'a>(bands: impl IntoIterator<Item = &'a BrightnessBand>) -> f64 {
+    let (kept, reference) = bands.into_iter().fold((0.0, 0.0), |(kept, reference), b| {
+        (
+            kept + b.mean * b.pixels,
+            reference + b.brightness * b.pixels,
+        )
+    });
+    if reference > 0.0 {
+        kept / reference
+    } else {
+        1.0
     }
 }
 
@@ -175,11 +178,6 @@ fn to_csv(maps: &[MethodMaps], tops: (f64, f64)) -> String {
             .zip(&m.flip.bands)
             .zip(&m.light.bands)
         {
-            let light = if l.brightness > 0.0 {
-                l.mean / l.brightness
-            } else {
-                1.0
-            };
             let _ = writeln!(
                 out,
                 "{},{},{},{:.6},{:.6},{:.6},{:.6},{:.6},{:.6}",
@@ -191,7 +189,7 @@ fn to_csv(maps: &[MethodMaps], tops: (f64, f64)) -> String {
                 b.share * instability,
                 f.share,
                 f.share * flip,
-                light
+                light_kept([l])
             );
         }
     }
