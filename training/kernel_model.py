@@ -20,6 +20,13 @@ the recurrent state. The output layer `out` is replaced by `KernelOutput`:
   bilinear upsampling and `a = sigmoid(.)` a per-pixel weight predicted by the finer scale's head
   (`out_half` for quarter into half, `out` for half into full): the coarse result replaces the
   fine result's low frequencies where `a` is 1.
+- **Linear mix** (thirty-fourth session, optional: a file whose `out` has one channel more): a
+  log-space mean of a bright, rare sample and its dark neighbours keeps almost none of its light
+  (a caustic at 1 sample per pixel is such samples), a linear mean keeps all of it and every
+  firefly too. With `linear_mix` the kernels and the compositing run twice, on log(1 + radiance)
+  and on the radiance itself (the expansion of the same rounded log values), and `out`'s last
+  channel weighs the two per pixel: `log = log + m * (log(1 + max(linear, 0)) - log)`,
+  `m = sigmoid(.)`.
 - **The rest as `model.py`**: `out`'s remaining channels are the direct model's output channels
   after its 3 radiance channels (the blend weight, and any later additions): the combined kernel
   result takes the place of the predicted log radiance, and `RecurrentDenoiser.step` does the
@@ -28,7 +35,7 @@ the recurrent state. The output layer `out` is replaced by `KernelOutput`:
   defines them.
 
 Export (`export_tensors`): the layers of `model.unet_layers` under their names (`out` with its
-25 + 1 + (outputs - 3) channels) plus the coarser heads (`heads`), float32.
+25 + 1 + (outputs - 3) channels, and one more with the linear mix) plus the coarser heads (`heads`), float32.
 
 With `fp16_storage` the heads' outputs are rounded to half precision, as the shaders store them;
 the filtered scales stay float32, as the shaders keep them.
@@ -46,20 +53,26 @@ TAPS = KERNEL * KERNEL
 EXTRA = unet_layers()[-1][2] - 3
 
 
+# The bias of the linear mix's logit when weights without it start a model with it: sigmoid(-3), so
+# that the mix starts at about 5% linear everywhere (`train.load_weights`).
+LINEAR_MIX_BIAS = -3.0
+
+
 # The kernel heads' names, finest first; a network has the first `scales` of them (by default the
 # committed network's 4, since the twentieth session; 3 before).
 HEAD_NAMES = ("out", "out_half", "out_quarter", "out_eighth", "out_sixteenth")
 SCALES = 4
 
 
-def heads(features, scales=SCALES):
+def heads(features, scales=SCALES, linear_mix=False):
     """(name, input channels, output channels, resolution divisor) of the kernel heads on
     `features` channels of decoder features: each predicts its 25 kernel logits, every one but the
-    coarsest the weight `a` of the next coarser scale, and the finest the model's other outputs."""
+    coarsest the weight `a` of the next coarser scale, and the finest the model's other outputs and,
+    with `linear_mix`, the logit of the linear mix."""
     if not 3 <= scales <= len(HEAD_NAMES):
         raise ValueError(f"{scales} scales: the kernel decoder has 3 to {len(HEAD_NAMES)}")
     return [
-        (name, features, TAPS + (s < scales - 1) + (EXTRA if s == 0 else 0), 2**s)
+        (name, features, TAPS + (s < scales - 1) + ((EXTRA + linear_mix) if s == 0 else 0), 2**s)
         for s, name in enumerate(HEAD_NAMES[:scales])
     ]
 
@@ -67,6 +80,12 @@ def heads(features, scales=SCALES):
 def scales_of(names):
     """How many scales a weights file's tensor `names` hold."""
     return max(s + 1 for s, name in enumerate(HEAD_NAMES) if f"{name}.weight" in names)
+
+
+def linear_mix_of(out_channels, scales):
+    """Whether a weights file whose `out` head has `out_channels` (of a network of `scales`) has
+    the linear mix."""
+    return out_channels == heads(1, scales, linear_mix=True)[0][2]
 
 
 def apply_kernel(x, logits):
@@ -96,11 +115,12 @@ class KernelOutput(nn.Module):
     radiance in channels 0-2, then the other output channels), the radiance here being the
     multi-scale kernel-filtered input."""
 
-    def __init__(self, features, scales=SCALES):
+    def __init__(self, features, scales=SCALES, linear_mix=False):
         super().__init__()
         self.scales = scales
+        self.linear_mix = linear_mix
         self.heads = nn.ModuleDict(
-            {name: nn.Conv2d(cin, cout, 3, padding=1) for name, cin, cout, _ in heads(features, scales)}
+            {name: nn.Conv2d(cin, cout, 3, padding=1) for name, cin, cout, _ in heads(features, scales, linear_mix)}
         )
 
     def forward(self, d0, radiance, fp16):
@@ -110,23 +130,38 @@ class KernelOutput(nn.Module):
             radiance.append(pool(radiance[-1]))
             features.append(half(pool(features[-1]), fp16))
         logits = [half(head(f), fp16) for head, f in zip(self.heads.values(), features)]
-        y = None
+        y = linear = None
         for r, o in reversed(list(zip(radiance, logits))):
-            filtered = apply_kernel(half(torch.log1p(r), fp16), o[:, :TAPS])
-            y = filtered if y is None else combine(filtered, y, torch.sigmoid(o[:, TAPS : TAPS + 1].float()))
-        return torch.cat([y, logits[0][:, TAPS + 1 :].float()], 1)
+            log_r = half(torch.log1p(r), fp16)
+            filtered = apply_kernel(log_r, o[:, :TAPS])
+            filtered_linear = apply_kernel(torch.expm1(log_r.float()), o[:, :TAPS]) if self.linear_mix else None
+            if y is None:
+                y, linear = filtered, filtered_linear
+            else:
+                a = torch.sigmoid(o[:, TAPS : TAPS + 1].float())
+                y = combine(filtered, y, a)
+                linear = combine(filtered_linear, linear, a) if self.linear_mix else None
+        extra = logits[0][:, TAPS + 1 : TAPS + 1 + EXTRA].float()
+        if self.linear_mix:
+            m = torch.sigmoid(logits[0][:, TAPS + 1 + EXTRA :].float())
+            y = y + m * (torch.log1p(linear.clamp_min(0.0)) - y)
+        return torch.cat([y, extra], 1)
 
 
 class KernelDenoiser(RecurrentDenoiser):
     """`RecurrentDenoiser` with the kernel-predicting output layer; same `step`, `forward`, state."""
 
-    def __init__(self, widths=WIDTHS, scales=SCALES):
+    def __init__(self, widths=WIDTHS, scales=SCALES, linear_mix=False):
         super().__init__(widths)
-        self.convs["out"] = KernelOutput(self.widths[-1], scales)
+        self.convs["out"] = KernelOutput(self.widths[-1], scales, linear_mix)
 
     @property
     def scales(self):
         return self.convs["out"].scales
+
+    @property
+    def linear_mix(self):
+        return self.convs["out"].linear_mix
 
     def predict(self, d0, rec, accum, fp16_storage):
         return self.convs["out"](d0, rec["demodulated"], fp16_storage)
@@ -141,16 +176,16 @@ class KernelDenoiser(RecurrentDenoiser):
     def EXTRA_MACS_PER_PIXEL(self):
         """Multiply-adds per full-resolution pixel outside the convolutions: a 5x5 filter on 3
         channels at each scale (1, 1/4, 1/16... of the pixels) and a compositing step into each
-        but the coarsest."""
+        but the coarsest (twice each with the linear mix)."""
         shares = [4.0**-s for s in range(self.scales)]
-        return 3 * TAPS * sum(shares) + 3 * 2 * sum(shares[:-1])
+        return (1 + self.linear_mix) * (3 * TAPS * sum(shares) + 3 * 2 * sum(shares[:-1]))
 
 
-def kernel_layers(widths=WIDTHS, scales=SCALES):
-    """(name, input channels, output channels) of every exported layer of a network of `widths`
-    and `scales`, in execution order."""
+def kernel_layers(widths=WIDTHS, scales=SCALES, linear_mix=False):
+    """(name, input channels, output channels) of every exported layer of a network of `widths`,
+    `scales` and `linear_mix`, in execution order."""
     layers = [(n, cin, cout) for n, cin, cout in unet_layers(widths) if n != "out"]
-    return layers + [(n, cin, cout) for n, cin, cout, _ in heads(widths[-1], scales)]
+    return layers + [(n, cin, cout) for n, cin, cout, _ in heads(widths[-1], scales, linear_mix)]
 
 
 def export_tensors(model):

@@ -224,6 +224,18 @@ def light_kept(pred, ref):
     return (luminance(pred).mean(0)[bright].sum() / ref_lum[bright].sum()).item()
 
 
+# Side of the blocks `energy_l1` compares.
+ENERGY_BLOCK = 8
+
+
+def energy_l1(pred, ref):
+    """L1 between log(1 + the 8x8 blocks' mean radiance) of `pred` and `ref` (linear [N, 3, H, W]):
+    the light a block keeps, wherever in the block it lies. The log-space L1 of each pixel charges
+    a caustic erased from a few pixels little; this charges it as the light the block lost."""
+    blocks = lambda x: torch.log1p(F.avg_pool2d(x.clamp_min(0.0), ENERGY_BLOCK))  # noqa: E731
+    return (blocks(pred) - blocks(ref)).abs().mean()
+
+
 # Side of the blocks `worst_block_excess` compares (`BLOCK` in tests/tests/svgf_fireflies.rs).
 BLOCK = 8
 

@@ -3,7 +3,7 @@
     python3 train.py --data DIR --minutes 6 --out weights.safetensors --log train.json [--init W]
         [--model direct|kernel] [--loss l1grad|l1msssim|l1gradflip] [--burn-in K [--burn-in-min J]]
         [--widths E0,E1,E2,B,D1,D0] [--scales N] [--fireflies RATE] [--watch SCENES]
-        [--blotch WEIGHT [--blotch-margin M]] [--cold P]
+        [--blotch WEIGHT [--blotch-margin M]] [--cold P] [--linear-mix] [--energy WEIGHT]
 
 `--model kernel` trains `kernel_model.KernelDenoiser` (both export as `lucid-rae-v3`, the decoder
 named in the file's `decoder` metadata; the renderer runs either); `--loss` picks a loss of `losses.py`; `--burn-in K` runs the first K
@@ -18,7 +18,11 @@ loss, with `--blotch-margin M` only what exceeds M, so that blocks a little brig
 only blotches are pushed down; `--cold P` starts a window at the cut (no burn-in, its first frame
 without history) with probability P before the burn-in is drawn, and then weighs its frames alike
 rather than the later ones more, so that the first frames after a cut count as much as the settled
-ones. A step whose loss is not finite is skipped (and counted); past 1% of the steps, training stops.
+ones. `--linear-mix` gives the kernel decoder its per-pixel mix of log-space and linear-space
+filtering (`kernel_model.py`; weights without it start it at sigmoid(LINEAR_MIX_BIAS); an `--init`
+that has it implies it); `--energy W`
+adds W times `losses.energy_l1` (the light of 8x8 blocks against the reference's, what a denoiser
+that erases a caustic loses) to the loss. A step whose loss is not finite is skipped (and counted); past 1% of the steps, training stops.
 
 Started by `python3 parallel.py N train.py ...` it trains data-parallel on N GPUs (`parallel.py`): each
 process loads its share of the sequences, the gradients are averaged, the batch is N times
@@ -37,13 +41,23 @@ from safetensors import safe_open
 from safetensors.torch import load_file, save_file
 
 from data import add_fireflies, load_split, sample_batch
-from kernel_model import HEAD_NAMES, SCALES, TAPS, KernelDenoiser, kernel_layers, scales_of
+from kernel_model import (
+    HEAD_NAMES,
+    LINEAR_MIX_BIAS,
+    SCALES,
+    TAPS,
+    KernelDenoiser,
+    kernel_layers,
+    linear_mix_of,
+    scales_of,
+)
 from kernel_model import export_tensors as kernel_export_tensors
 from losses import (
     DEFAULT_WEIGHTS,
     LOSSES,
     TERM_NAMES,
     display_ssim,
+    energy_l1,
     flip,
     light_kept,
     log_tonemap,
@@ -73,9 +87,9 @@ NEW_SCALE_BIAS = -3.0
 PROCESS_SEED_STRIDE = 7919
 
 
-def build_model(name, widths=WIDTHS, scales=SCALES):
-    """The `name`d decoder's model of `widths` (`scales` for the kernel decoder)."""
-    return KernelDenoiser(widths, scales) if name == "kernel" else RecurrentDenoiser(widths)
+def build_model(name, widths=WIDTHS, scales=SCALES, linear_mix=False):
+    """The `name`d decoder's model of `widths` (`scales` and `linear_mix` for the kernel decoder)."""
+    return KernelDenoiser(widths, scales, linear_mix) if name == "kernel" else RecurrentDenoiser(widths)
 
 
 def file_widths(path):
@@ -88,6 +102,13 @@ def file_scales(path):
     """The kernel decoder's scales in a weights file train.py wrote."""
     with safe_open(path, "pt") as f:
         return scales_of(set(f.keys()))
+
+
+def file_linear_mix(path):
+    """Whether a kernel-decoder weights file train.py wrote has the linear mix."""
+    with safe_open(path, "pt") as f:
+        scales = scales_of(set(f.keys()))
+        return scales >= 3 and linear_mix_of(int(f.get_slice("out.weight").get_shape()[0]), scales)
 
 
 def named_convs(model):
@@ -141,7 +162,8 @@ def load_weights(model, path):
     `emission_motion` metadata, when there, sets the model's. A file of a wider network starts a
     narrower model from the channels its layers weigh most (`narrow`). A file of fewer kernel scales
     starts a model of more: its coarsest head gains the weight `a` of the new scale, at
-    sigmoid(NEW_SCALE_BIAS) everywhere, so that the new scale starts almost unused."""
+    sigmoid(NEW_SCALE_BIAS) everywhere, so that the new scale starts almost unused. A file without
+    the linear mix starts a model with it at sigmoid(LINEAR_MIX_BIAS) everywhere."""
     tensors = load_file(path)
     widths = widths_of(tensors) if all(f"{name}.weight" in tensors for name in HIDDEN) else model.widths
     if widths != model.widths:
@@ -160,6 +182,9 @@ def load_weights(model, path):
             if name in HEAD_NAMES and w is not None and w.shape[0] == TAPS == conv.weight.shape[0] - 1:
                 w = torch.cat([w, w.new_zeros(1, *w.shape[1:])])
                 b = torch.cat([b, b.new_full((1,), NEW_SCALE_BIAS)])
+            elif name == "out" and w is not None and w.shape[0] == conv.weight.shape[0] - 1:
+                w = torch.cat([w, w.new_zeros(1, *w.shape[1:])])
+                b = torch.cat([b, b.new_full((1,), LINEAR_MIX_BIAS)])
             if w is None or b is None or w.shape != conv.weight.shape or b.shape != conv.bias.shape:
                 skipped.append(name)
                 continue
@@ -328,6 +353,17 @@ def main():
         default=0.0,
         help="probability that a window starts at the cut, without burn-in, its frames weighed alike",
     )
+    ap.add_argument(
+        "--linear-mix",
+        action="store_true",
+        help="the kernel decoder mixes log-space and linear-space filtering per pixel (kernel_model.py)",
+    )
+    ap.add_argument(
+        "--energy",
+        type=float,
+        default=0.0,
+        help="weight of the light of 8x8 blocks against the reference's (losses.energy_l1) added to the loss",
+    )
     ap.add_argument("--val-every", type=int, default=250, help="validate every this many steps")
     ap.add_argument(
         "--watch",
@@ -360,7 +396,11 @@ def main():
     widths = tuple(int(w) for w in args.widths.split(","))
     if len(widths) != len(HIDDEN) or any(w <= 0 or w % 16 for w in widths):
         raise SystemExit(f"--widths takes {len(HIDDEN)} multiples of 16")
-    model = build_model(args.model, widths, args.scales).to(dev)
+    if args.linear_mix and args.model != "kernel":
+        raise SystemExit("--linear-mix is the kernel decoder's (--model kernel)")
+    if args.init and args.model == "kernel" and file_linear_mix(args.init):
+        args.linear_mix = True
+    model = build_model(args.model, widths, args.scales, args.linear_mix).to(dev)
     if args.init:
         load_weights(model, args.init)
     group.same_start(model)
@@ -404,6 +444,10 @@ def main():
             blotch = (excess - args.blotch_margin).clamp_min(0.0).mean()
             loss = loss + args.blotch * blotch
             terms = (*terms, blotch)
+        if args.energy:
+            energy = energy_l1(out.flatten(0, 1), ref.flatten(0, 1))
+            loss = loss + args.energy * energy
+            terms = (*terms, energy)
         if not group.all_finite(loss):
             # A window that breaks the arithmetic (a non-finite input, an overflow) must not poison
             # the weights.
@@ -419,7 +463,7 @@ def main():
         step += 1
         if step % args.val_every == 0 and group.first:
             entry = {"step": step, "seconds": round(time.time() - start, 1), "loss": loss.item()}
-            names = TERM_NAMES[args.loss] + (("blotch",) if args.blotch else ())
+            names = TERM_NAMES[args.loss] + (("blotch",) if args.blotch else ()) + (("energy",) if args.energy else ())
             entry["loss_terms"] = {k: round(v.item(), 6) for k, v in zip(names, terms)}
             entry.update(validation(model, val, watch))
             history.append(entry)
@@ -431,7 +475,8 @@ def main():
         return
     final = validation(model, val, watch)
     if isinstance(model, KernelDenoiser):
-        layers, tensors = kernel_layers(model.widths, model.scales), kernel_export_tensors(model)
+        layers = kernel_layers(model.widths, model.scales, model.linear_mix)
+        tensors = kernel_export_tensors(model)
     else:
         layers, tensors = model.layers, export_tensors(model)
     fmt = FORMAT
@@ -448,6 +493,7 @@ def main():
         "blotch": str(args.blotch),
         "blotch_margin": str(args.blotch_margin),
         "cold": str(args.cold),
+        "energy": str(args.energy),
         "crop": str(args.crop),
         "batch": str(args.batch),
         "steps": str(step),

@@ -1,10 +1,14 @@
 // One scale's filter of the kernel-predicting decoder (training/kernel_model.py, `apply_kernel`):
 // the log radiance of that scale filtered by the per-pixel 5x5 kernel whose weights are the
 // softmax of the first 25 channels of the head's output (taps row-major, borders replicated),
-// float32. The includer defines the head's output and the radiance it filters (prototypes below):
+// float32; with LINEAR_MIX the same kernel also filters the radiance itself (exp(log) - 1). The
+// includer defines the head's output and the radiance it filters (prototypes below):
 // kernel_filter.comp at half and quarter resolution, output.comp at full resolution.
 #ifndef LUCID_NEURAL_KERNEL_GLSL
 #define LUCID_NEURAL_KERNEL_GLSL
+
+// Whether the decoder also filters in linear space (the weights' `linear_mix`).
+layout(constant_id = 8) const bool LINEAR_MIX = false;
 
 const int KERNEL_RADIUS = 2;
 const uint KERNEL_TAPS = 25u;
@@ -15,8 +19,15 @@ vec4 kernel_logits(ivec2 pixel, uint c4);
 // The log radiance the kernels filter at `pixel`.
 vec3 kernel_radiance(ivec2 pixel);
 
-// The filtered log radiance at `pixel` of a scale of `size`.
-vec3 apply_kernel(ivec2 pixel, ivec2 size) {
+// A scale's filtered radiance at a pixel: the mean of the log radiance and, with LINEAR_MIX, of
+// the radiance (else 0).
+struct KernelMeans {
+    vec3 log_mean;
+    vec3 linear_mean;
+};
+
+// The filtered radiance at `pixel` of a scale of `size`.
+KernelMeans apply_kernel(ivec2 pixel, ivec2 size) {
     float logits[KERNEL_TAPS];
     float largest = -1e30;
     for (uint c4 = 0u; c4 < (KERNEL_TAPS + 3u) / 4u; ++c4) {
@@ -27,15 +38,20 @@ vec3 apply_kernel(ivec2 pixel, ivec2 size) {
         }
     }
     vec3 sum = vec3(0.0);
+    vec3 linear_sum = vec3(0.0);
     float weight_sum = 0.0;
     for (uint t = 0u; t < KERNEL_TAPS; ++t) {
         ivec2 offset = ivec2(int(t % 5u) - KERNEL_RADIUS, int(t / 5u) - KERNEL_RADIUS);
         ivec2 q = clamp(pixel + offset, ivec2(0), size - 1);
         float w = exp(logits[t] - largest);
-        sum += w * kernel_radiance(q);
+        vec3 r = kernel_radiance(q);
+        sum += w * r;
+        if (LINEAR_MIX) {
+            linear_sum += w * (exp(r) - 1.0);
+        }
         weight_sum += w;
     }
-    return sum / weight_sum;
+    return KernelMeans(sum / weight_sum, linear_sum / weight_sum);
 }
 
 #endif

@@ -5,7 +5,9 @@
 // Scales are composited coarse to fine (`combine`: fine + a * (up(coarse) - up(pool(fine))), `up`
 // bilinear and linear, `a` the sigmoid of the finer head's channel 25), as differences:
 //   detail = filtered [+ sigmoid(a) * up(coarser detail) (COARSER)] - pool(finer filtered) (DETAIL),
-// which the next finer scale upsamples (output.comp for the half scale's).
+// which the next finer scale upsamples (output.comp for the half scale's). With LINEAR_MIX every
+// pixel of the output (and of the finer and coarser scales' buffers) holds two vec4s, the log
+// space's result and then the linear space's, each composited alike.
 #include "neural/tensor.glsl"
 #include "neural/kernel.glsl"
 #include "neural/upsample.glsl"
@@ -44,14 +46,43 @@ vec3 kernel_radiance(ivec2 q) {
     return b_radiance.v[q.y * int(params.width) + q.x].rgb;
 }
 
-// The next coarser scale's detail bilinearly upsampled to `pixel` of this scale.
-vec3 upsampled_coarser(ivec2 pixel, ivec2 size) {
+// The vec4s a pixel of the output, finer and coarser buffers holds.
+const int RESULTS = LINEAR_MIX ? 2 : 1;
+
+// Where result `k` (0 log, 1 linear) of `pixel` lies in a buffer of rows `width` wide.
+int result_index(ivec2 pixel, int width, int k) {
+    return (pixel.y * width + pixel.x) * RESULTS + k;
+}
+
+// The next coarser scale's detail (result `k`) bilinearly upsampled to `pixel` of this scale.
+vec3 upsampled_coarser(ivec2 pixel, ivec2 size, int k) {
     ivec2 coarse = ivec2(params.coarser_width, params.coarser_height);
     ivec2 i0, i1;
     vec2 f;
     bilinear_taps(pixel, size, coarse, i0, i1, f);
-    return bilinear_mix(b_coarser.v[i0.y * coarse.x + i0.x].rgb, b_coarser.v[i0.y * coarse.x + i1.x].rgb,
-                        b_coarser.v[i1.y * coarse.x + i0.x].rgb, b_coarser.v[i1.y * coarse.x + i1.x].rgb, f);
+    return bilinear_mix(b_coarser.v[result_index(i0, coarse.x, k)].rgb,
+                        b_coarser.v[result_index(ivec2(i1.x, i0.y), coarse.x, k)].rgb,
+                        b_coarser.v[result_index(ivec2(i0.x, i1.y), coarse.x, k)].rgb,
+                        b_coarser.v[result_index(i1, coarse.x, k)].rgb, f);
+}
+
+// Result `k` of this scale: `filtered` with the coarser detail composited (COARSER) and the finer
+// scale's pooled result taken away (DETAIL).
+vec3 composited(ivec2 pixel, ivec2 size, vec3 filtered, int k) {
+    if (COARSER) {
+        float a = kernel_logits(pixel, BLEND_CHANNEL / 4u)[BLEND_CHANNEL % 4u];
+        filtered += upsampled_coarser(pixel, size, k) / (1.0 + exp(-a));
+    }
+    if (DETAIL) {
+        ivec2 finer = ivec2(params.finer_width, params.finer_height);
+        vec3 pooled = vec3(0.0);
+        for (int i = 0; i < 4; ++i) {
+            ivec2 q = min(pixel * 2 + ivec2(i & 1, i >> 1), finer - 1);
+            pooled += b_finer.v[result_index(q, finer.x, k)].rgb;
+        }
+        filtered -= 0.25 * pooled;
+    }
+    return filtered;
 }
 
 void main() {
@@ -60,19 +91,9 @@ void main() {
     if (any(greaterThanEqual(pixel, size))) {
         return;
     }
-    vec3 filtered = apply_kernel(pixel, size);
-    if (COARSER) {
-        float a = kernel_logits(pixel, BLEND_CHANNEL / 4u)[BLEND_CHANNEL % 4u];
-        filtered += upsampled_coarser(pixel, size) / (1.0 + exp(-a));
+    KernelMeans means = apply_kernel(pixel, size);
+    b_out.v[result_index(pixel, size.x, 0)] = vec4(composited(pixel, size, means.log_mean, 0), 0.0);
+    if (LINEAR_MIX) {
+        b_out.v[result_index(pixel, size.x, 1)] = vec4(composited(pixel, size, means.linear_mean, 1), 0.0);
     }
-    if (DETAIL) {
-        ivec2 finer = ivec2(params.finer_width, params.finer_height);
-        vec3 pooled = vec3(0.0);
-        for (int i = 0; i < 4; ++i) {
-            ivec2 q = min(pixel * 2 + ivec2(i & 1, i >> 1), finer - 1);
-            pooled += b_finer.v[q.y * finer.x + q.x].rgb;
-        }
-        filtered -= 0.25 * pooled;
-    }
-    b_out.v[pixel.y * size.x + pixel.x] = vec4(filtered, 0.0);
 }

@@ -10,7 +10,9 @@
 // by channel 25 of the full scale's head (a), its blend weight channel 26. A workgroup filters the
 // full scale over its tile and the margin that the half scale's detail under the tile pools (in
 // shared memory, float32), then that detail, then composites; the half scale's filtered radiance
-// and the quarter's detail come from kernel_filter.comp.
+// and the quarter's detail come from kernel_filter.comp. With LINEAR_MIX (kernel.glsl) all of this
+// runs in linear space too (the coarser scales' buffers hold both results a pixel), and the
+// head's channel 27 (m) mixes the two: log + sigmoid(m) * (log(1 + max(linear, 0)) - log).
 #include "common/image_coords.glsl"
 #include "neural/tensor.glsl"
 #include "neural/kernel.glsl"
@@ -48,8 +50,12 @@ const uint BLEND_CHANNEL = 25u;  // a, the weight of the coarser scale's detail
 // first (tile / 2 - 1) on; and the full scale's pixels they pool.
 const int HALF_REGION = TILE / 2 + 2;
 const int FULL_REGION = 2 * HALF_REGION;
-shared vec3 s_filtered[FULL_REGION][FULL_REGION];
-shared vec3 s_half_detail[HALF_REGION][HALF_REGION];
+// Index 0 the log space's, 1 the linear space's (LINEAR_MIX).
+shared vec3 s_filtered[2][FULL_REGION][FULL_REGION];
+shared vec3 s_half_detail[2][HALF_REGION][HALF_REGION];
+
+// The vec4s a pixel of the half scale's filtered radiance and the quarter's detail holds.
+const int RESULTS = LINEAR_MIX ? 2 : 1;
 
 vec4 kernel_logits(ivec2 pixel, uint c4) {
     return unpack_channels(b_net.v[tensor_index(pixel, params.width, NET_CHANNELS / 4u, c4)]);
@@ -59,16 +65,21 @@ vec3 kernel_radiance(ivec2 q) {
     return unpack_channels(b_features.v[tensor_index(q, params.width, FEATURE_GROUPS, 0u)]).rgb;
 }
 
-// The quarter scale's detail bilinearly upsampled to `pixel` of the half scale.
-vec3 upsampled_quarter(ivec2 pixel, ivec2 half_size) {
+// Where result `k` (0 log, 1 linear) of `pixel` lies in a coarser scale's buffer `width` wide.
+int result_index(ivec2 pixel, int width, int k) {
+    return (pixel.y * width + pixel.x) * RESULTS + k;
+}
+
+// The quarter scale's detail (result `k`) bilinearly upsampled to `pixel` of the half scale.
+vec3 upsampled_quarter(ivec2 pixel, ivec2 half_size, int k) {
     ivec2 coarse = (half_size + 1) / 2;
     ivec2 i0, i1;
     vec2 f;
     bilinear_taps(pixel, half_size, coarse, i0, i1, f);
-    vec3 c00 = b_quarter_detail.v[i0.y * coarse.x + i0.x].rgb;
-    vec3 c01 = b_quarter_detail.v[i0.y * coarse.x + i1.x].rgb;
-    vec3 c10 = b_quarter_detail.v[i1.y * coarse.x + i0.x].rgb;
-    vec3 c11 = b_quarter_detail.v[i1.y * coarse.x + i1.x].rgb;
+    vec3 c00 = b_quarter_detail.v[result_index(i0, coarse.x, k)].rgb;
+    vec3 c01 = b_quarter_detail.v[result_index(ivec2(i1.x, i0.y), coarse.x, k)].rgb;
+    vec3 c10 = b_quarter_detail.v[result_index(ivec2(i0.x, i1.y), coarse.x, k)].rgb;
+    vec3 c11 = b_quarter_detail.v[result_index(i1, coarse.x, k)].rgb;
     return bilinear_mix(c00, c01, c10, c11, f);
 }
 
@@ -82,7 +93,9 @@ void filter_tile(ivec2 full_origin, ivec2 half_origin) {
         ivec2 r = ivec2(i % uint(FULL_REGION), i / uint(FULL_REGION));
         ivec2 q = full_origin + r;
         if (all(greaterThanEqual(q, ivec2(0))) && pixel_in_bounds(q, size)) {
-            s_filtered[r.y][r.x] = apply_kernel(q, size);
+            KernelMeans means = apply_kernel(q, size);
+            s_filtered[0][r.y][r.x] = means.log_mean;
+            s_filtered[1][r.y][r.x] = means.linear_mean;
         }
     }
     barrier();
@@ -90,34 +103,36 @@ void filter_tile(ivec2 full_origin, ivec2 half_origin) {
         ivec2 r = ivec2(local % uint(HALF_REGION), local / uint(HALF_REGION));
         ivec2 h = half_origin + r;
         if (all(greaterThanEqual(h, ivec2(0))) && pixel_in_bounds(h, half_size)) {
-            vec3 detail = b_half_filtered.v[h.y * half_size.x + h.x].rgb;
             uint at = tensor_index(h, uint(half_size.x), HALF_CHANNELS / 4u, BLEND_CHANNEL / 4u);
             float a = unpack_channels(b_half_logits.v[at])[BLEND_CHANNEL % 4u];
-            detail += upsampled_quarter(h, half_size) / (1.0 + exp(-a));
-            vec3 pooled = vec3(0.0);
-            for (int i = 0; i < 4; ++i) {
-                ivec2 q = min(h * 2 + ivec2(i & 1, i >> 1), size - 1) - full_origin;
-                pooled += s_filtered[q.y][q.x];
+            for (int k = 0; k < RESULTS; ++k) {
+                vec3 detail = b_half_filtered.v[result_index(h, half_size.x, k)].rgb;
+                detail += upsampled_quarter(h, half_size, k) / (1.0 + exp(-a));
+                vec3 pooled = vec3(0.0);
+                for (int i = 0; i < 4; ++i) {
+                    ivec2 q = min(h * 2 + ivec2(i & 1, i >> 1), size - 1) - full_origin;
+                    pooled += s_filtered[k][q.y][q.x];
+                }
+                s_half_detail[k][r.y][r.x] = detail - 0.25 * pooled;
             }
-            s_half_detail[r.y][r.x] = detail - 0.25 * pooled;
         }
     }
     barrier();
 }
 
-// The kernel decoder's log radiance at `pixel` (before rounding): filtered + sigmoid(a) * up(half
+// Result `k` of the kernel decoder at `pixel` (before rounding): filtered + sigmoid(a) * up(half
 // detail), from the workgroup's regions.
-vec3 composited(ivec2 pixel, float a, ivec2 full_origin, ivec2 half_origin) {
+vec3 composited(ivec2 pixel, float a, ivec2 full_origin, ivec2 half_origin, int k) {
     ivec2 size = ivec2(params.width, params.height);
     ivec2 i0, i1;
     vec2 f;
     bilinear_taps(pixel, size, (size + 1) / 2, i0, i1, f);
     i0 -= half_origin;
     i1 -= half_origin;
-    vec3 up = bilinear_mix(s_half_detail[i0.y][i0.x], s_half_detail[i0.y][i1.x],
-                           s_half_detail[i1.y][i0.x], s_half_detail[i1.y][i1.x], f);
+    vec3 up = bilinear_mix(s_half_detail[k][i0.y][i0.x], s_half_detail[k][i0.y][i1.x],
+                           s_half_detail[k][i1.y][i0.x], s_half_detail[k][i1.y][i1.x], f);
     ivec2 r = pixel - full_origin;
-    return s_filtered[r.y][r.x] + up / (1.0 + exp(-a));
+    return s_filtered[k][r.y][r.x] + up / (1.0 + exp(-a));
 }
 
 void main() {
@@ -139,9 +154,15 @@ void main() {
     vec3 predicted;
     float blend_logit;
     if (KERNEL) {
-        // Channels 24-27: the last kernel tap, the compositing weight, the blend weight, padding.
+        // Channels 24-27: the last kernel tap, the compositing weight, the blend weight, the linear
+        // mix (LINEAR_MIX; else padding).
         vec4 o = kernel_logits(pixel, 6u);
-        vec3 radiance = composited(pixel, o.y, full_origin, half_origin);
+        vec3 radiance = composited(pixel, o.y, full_origin, half_origin, 0);
+        if (LINEAR_MIX) {
+            vec3 linear = composited(pixel, o.y, full_origin, half_origin, 1);
+            float m = 1.0 / (1.0 + exp(-o.w));
+            radiance += m * (log(vec3(1.0) + max(linear, vec3(0.0))) - radiance);
+        }
         predicted = unpack_channels(pack_channels(vec4(radiance, 0.0))).rgb;
         blend_logit = o.z;
     } else {

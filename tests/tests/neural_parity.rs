@@ -18,7 +18,11 @@
 //! of five scales (`references/neural_five_scales_weights.safetensors`: the committed weights
 //! widened to five by `training/train.py`'s `load_weights`, the sixteenth's head fresh and the
 //! eighth's weight of it at sigmoid(0), where it changes the output by up to 3%), so the
-//! sixteenth's radiance pooling and head are checked too; `the_emission_stays_on_its_object`
+//! sixteenth's radiance pooling and head are checked too; the seventh (the first's frames) is of the
+//! linear mix (`references/neural_linear_mix_weights.safetensors`: the committed weights widened
+//! by `training/widen_scales.py --linear-mix 0`, the mix at about half and varying from pixel to
+//! pixel), so the filtering and compositing in linear space and the mix are checked too;
+//! `the_emission_stays_on_its_object`
 //! checks what that average is for over more frames.
 //! The running means of the noisy radiance and their
 //! second moments (reprojected in the second frame) are also compared directly, so they are checked
@@ -98,8 +102,8 @@ fn fixture(name: &'static str, weights: NetworkWeights) -> Fixture {
 }
 
 /// The committed weights' fixture, the other decoder's, the emitters', a narrower network's, one
-/// of three scales and one of five.
-fn fixtures() -> [Fixture; 6] {
+/// of three scales, one of five and one with the linear mix.
+fn fixtures() -> [Fixture; 7] {
     let load = |file: &str| {
         NetworkWeights::load(std::path::Path::new(&references(file)))
             .unwrap_or_else(|e| panic!("load {file}: {e}"))
@@ -126,6 +130,10 @@ fn fixtures() -> [Fixture; 6] {
             "neural_parity_five_scales.safetensors",
             load("neural_five_scales_weights.safetensors"),
         ),
+        fixture(
+            "neural_parity_linear_mix.safetensors",
+            load("neural_linear_mix_weights.safetensors"),
+        ),
     ];
     let decoders = fixtures.each_ref().map(|f| f.weights.decoder());
     assert!(
@@ -141,6 +149,10 @@ fn fixtures() -> [Fixture; 6] {
     assert!(
         (3..=5).all(|n| scales.contains(&n)),
         "the fixtures cover kernel decoders of three, four and five scales: {scales:?}"
+    );
+    assert!(
+        fixtures.iter().any(|f| f.weights.linear_mix()),
+        "the fixtures cover the linear mix"
     );
     fixtures
 }

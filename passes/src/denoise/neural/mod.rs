@@ -421,7 +421,8 @@ pub fn add_neural(
             .enumerate()
             .map(|(level, features)| conv(g, 7 + level, features, None, 0).0)
             .collect();
-        let (half_filtered, quarter_detail) = add_kernel_scales(g, &pooled_radiance, &heads);
+        let (half_filtered, quarter_detail) =
+            add_kernel_scales(g, &pooled_radiance, &heads, network.linear_mix);
         (heads[0], half_filtered, quarter_detail)
     });
 
@@ -438,6 +439,7 @@ pub fn add_neural(
         .specialize("KERNEL", kernel)
         .specialize("NET_CHANNELS", net.channels)
         .specialize("HALF_CHANNELS", half_net.channels)
+        .specialize("LINEAR_MIX", network.linear_mix)
         .push(&[width, height]);
     p.write("u_output", output_history.cur);
     let radiance = p.create_image(
@@ -483,12 +485,15 @@ fn add_radiance_pool(
 /// (`kernel_filter.comp`); the coarsest as the difference it adds to the next finer scale, and each
 /// between the coarsest and the half as its own difference with the coarser ones' composited in.
 /// Returns the half scale's filtered radiance and the quarter scale's difference, which the output
-/// pass composites with the full scale it filters.
+/// pass composites with the full scale it filters. With `linear_mix` every scale is filtered and
+/// composited in linear space too, each buffer holding both results a pixel.
 fn add_kernel_scales(
     g: &mut RenderGraph,
     radiance: &[BufferHandle],
     heads: &[Tensor],
+    linear_mix: bool,
 ) -> (BufferHandle, BufferHandle) {
+    let results = 1 + u64::from(linear_mix);
     // Scale `index` (0 the half) filtered; a difference from `finer`, with `coarser`'s composited.
     let filter = |g: &mut RenderGraph,
                   index: usize,
@@ -510,6 +515,7 @@ fn add_kernel_scales(
             .specialize("LOGIT_CHANNELS", head.channels)
             .specialize("DETAIL", finer.is_some())
             .specialize("COARSER", coarser.is_some())
+            .specialize("LINEAR_MIX", linear_mix)
             .push(&[
                 head.size.0,
                 head.size.1,
@@ -518,7 +524,8 @@ fn add_kernel_scales(
                 coarser_size.0,
                 coarser_size.1,
             ]);
-        let out = p.create_buffer("b_out", "neural.kernel_filtered", vec4_bytes(head.size));
+        let bytes = results * vec4_bytes(head.size);
+        let out = p.create_buffer("b_out", "neural.kernel_filtered", bytes);
         p.dispatch([head.size.0, head.size.1, 1]);
         out
     };

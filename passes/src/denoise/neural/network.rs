@@ -72,6 +72,8 @@ pub struct Network {
     pub(super) decoder: Decoder,
     /// [`NetworkWeights::scales`].
     pub(super) scales: u32,
+    /// [`NetworkWeights::linear_mix`].
+    pub(super) linear_mix: bool,
     /// [`NetworkWeights::emission_motion`].
     pub(super) emission_motion: f32,
     /// The layers, in execution order ([`Decoder::layers`]).
@@ -113,6 +115,7 @@ impl Network {
         Ok(Self {
             decoder: weights.decoder(),
             scales: weights.scales(),
+            linear_mix: weights.linear_mix(),
             emission_motion: weights.emission_motion(),
             layers: weights.layers().to_vec(),
             buffer,

@@ -118,9 +118,11 @@ const FEWEST_SCALES: u32 = 3;
 
 /// Output channels of the kernel decoder's head `level` (0 the full resolution's) in a network of
 /// `scales`: its kernel's 25 logits, the weight `a` of the next coarser scale (all but the
-/// coarsest) and at full resolution the blend weight.
-fn head_channels(level: u32, scales: u32) -> u32 {
-    KERNEL_TAPS + u32::from(level + 1 < scales) + u32::from(level == 0)
+/// coarsest) and at full resolution the blend weight and, with `linear_mix`, the linear mix's
+/// logit.
+fn head_channels(level: u32, scales: u32, linear_mix: bool) -> u32 {
+    let full = u32::from(level == 0);
+    KERNEL_TAPS + u32::from(level + 1 < scales) + full + full * u32::from(linear_mix)
 }
 
 /// What the network's last layers predict (the weights file's `decoder` metadata; measured
@@ -151,16 +153,17 @@ impl Decoder {
     }
 
     /// Every layer of a network of `widths` with this decoder (the kernel decoder's of `scales`,
-    /// 3 to 5), in execution order: [`Widths::unet`], then the output layers on the last decoder
-    /// features (the kernel decoder's finest first, [`KERNEL_HEADS`]).
-    pub fn layers(self, widths: Widths, scales: u32) -> Vec<Layer> {
+    /// 3 to 5, with or without the [`NetworkWeights::linear_mix`]), in execution order:
+    /// [`Widths::unet`], then the output layers on the last decoder features (the kernel decoder's
+    /// finest first, [`KERNEL_HEADS`]).
+    pub fn layers(self, widths: Widths, scales: u32, linear_mix: bool) -> Vec<Layer> {
         let features = widths.0[5];
         let outputs = match self {
             Decoder::Direct => vec![Layer::output("out", features, 4)],
             Decoder::Kernel => (0..scales)
                 .map(|level| {
                     let name = KERNEL_HEADS[level as usize];
-                    Layer::output(name, features, head_channels(level, scales))
+                    Layer::output(name, features, head_channels(level, scales, linear_mix))
                 })
                 .collect(),
         };
@@ -242,6 +245,7 @@ pub const EMISSION_MOTION: f32 = 0.0;
 pub struct NetworkWeights {
     decoder: Decoder,
     scales: u32,
+    linear_mix: bool,
     emission_motion: f32,
     widths: Widths,
     layers: Vec<Layer>,
@@ -309,11 +313,14 @@ impl NetworkWeights {
         };
         let tensors = SafeTensors::deserialize(bytes).map_err(|e| format_error(e.to_string()))?;
         let widths = read_widths(&tensors, file)?;
-        let scales = match decoder {
-            Decoder::Direct => KERNEL_SCALES,
-            Decoder::Kernel => read_scales(&tensors),
+        let (scales, linear_mix) = match decoder {
+            Decoder::Direct => (KERNEL_SCALES, false),
+            Decoder::Kernel => {
+                let scales = read_scales(&tensors);
+                (scales, read_linear_mix(&tensors, scales))
+            }
         };
-        let layers = decoder.layers(widths, scales);
+        let layers = decoder.layers(widths, scales, linear_mix);
         let mut packed = Vec::with_capacity(layers.iter().map(Layer::packed_len).sum());
         let mut offsets = Vec::with_capacity(layers.len());
         for layer in &layers {
@@ -341,6 +348,7 @@ impl NetworkWeights {
         Ok(Self {
             decoder,
             scales,
+            linear_mix,
             emission_motion,
             widths,
             layers,
@@ -357,6 +365,12 @@ impl NetworkWeights {
     /// The kernel decoder's scales, 3 to 5 (for the direct decoder [`KERNEL_SCALES`], unused).
     pub fn scales(&self) -> u32 {
         self.scales
+    }
+
+    /// Whether the kernel decoder mixes its log-space and linear-space results per pixel by a last
+    /// channel of its full-resolution head (`training/kernel_model.py`, `linear_mix`).
+    pub fn linear_mix(&self) -> bool {
+        self.linear_mix
     }
 
     /// The least weight of this frame's emission per pixel of motion in its average over time
@@ -424,6 +438,14 @@ fn read_scales(tensors: &SafeTensors<'_>) -> u32 {
     FEWEST_SCALES + coarser as u32
 }
 
+/// Whether the kernel decoder's full-resolution head has the linear mix's channel: one more output
+/// channel than without (any other count is refused with the head's shape when it is read).
+fn read_linear_mix(tensors: &SafeTensors<'_>, scales: u32) -> bool {
+    let name = format!("{}.weight", KERNEL_HEADS[0]);
+    tensors.tensor(&name).ok().and_then(|t| t.shape().first().copied())
+        == Some(head_channels(0, scales, true) as usize)
+}
+
 /// The float32 values of tensor `name`, which must have `shape` and be finite.
 fn read_tensor(
     tensors: &SafeTensors<'_>,
@@ -476,7 +498,7 @@ mod tests {
         file_with_layers(
             FORMAT,
             Decoder::Kernel,
-            &Decoder::Kernel.layers(Widths::COMMITTED, scales),
+            &Decoder::Kernel.layers(Widths::COMMITTED, scales, false),
             &[],
             |_, _, _| true,
         )
@@ -490,7 +512,7 @@ mod tests {
         extra: &[(&str, &str)],
         edit: impl Fn(&str, &mut Vec<usize>, &mut Vec<f32>) -> bool,
     ) -> Vec<u8> {
-        let layers = decoder.layers(widths, KERNEL_SCALES);
+        let layers = decoder.layers(widths, KERNEL_SCALES, false);
         file_with_layers(format, decoder, &layers, extra, edit)
     }
 
@@ -556,7 +578,7 @@ mod tests {
             let good = file_for(FORMAT, decoder, |_, _, _| true);
             let loaded = NetworkWeights::from_bytes(&good, "w").expect("loads");
             assert_eq!(loaded.decoder(), decoder);
-            let layers = decoder.layers(Widths::COMMITTED, KERNEL_SCALES);
+            let layers = decoder.layers(Widths::COMMITTED, KERNEL_SCALES, false);
             assert_eq!(loaded.layers(), layers);
         }
     }
@@ -598,7 +620,7 @@ mod tests {
         let bytes = file_with_layers(
             FORMAT,
             Decoder::Kernel,
-            &Decoder::Kernel.layers(Widths::COMMITTED, 4),
+            &Decoder::Kernel.layers(Widths::COMMITTED, 4, false),
             &[],
             |name, shape, values| {
                 if name == "out_eighth.weight" {
@@ -611,6 +633,38 @@ mod tests {
         let message = error(&bytes);
         assert!(
             message.contains("out_eighth.weight") && message.contains("expected [25, 16, 3, 3]"),
+            "{message}"
+        );
+    }
+
+    #[test]
+    fn the_linear_mix_comes_from_the_full_heads_channels() {
+        assert!(!NetworkWeights::builtin().linear_mix());
+        for scales in 3..=5 {
+            let layers = Decoder::Kernel.layers(Widths::COMMITTED, scales, true);
+            let bytes = file_with_layers(FORMAT, Decoder::Kernel, &layers, &[], |_, _, _| true);
+            let weights = NetworkWeights::from_bytes(&bytes, "w").expect("loads");
+            assert!(weights.linear_mix(), "{scales} scales");
+            assert_eq!(weights.layers()[6].out, 28);
+            assert_eq!(weights.layers()[6].out_padded(), 28);
+        }
+        // Two channels more is neither network: refused, naming the head.
+        let bytes = file_with_layers(
+            FORMAT,
+            Decoder::Kernel,
+            &Decoder::Kernel.layers(Widths::COMMITTED, 4, true),
+            &[],
+            |name, shape, values| {
+                if name.starts_with("out.") {
+                    shape[0] = 29;
+                    values.resize(shape.iter().product(), 0.5);
+                }
+                true
+            },
+        );
+        let message = error(&bytes);
+        assert!(
+            message.contains("out.weight") && message.contains("expected [27, 16, 3, 3]"),
             "{message}"
         );
     }
@@ -650,7 +704,7 @@ mod tests {
         assert_eq!(weights.widths(), slim);
         assert_eq!(
             weights.layers(),
-            Decoder::Kernel.layers(slim, KERNEL_SCALES)
+            Decoder::Kernel.layers(slim, KERNEL_SCALES, false)
         );
         let dec0 = weights.layers()[5];
         assert_eq!((dec0.in0, dec0.in1, dec0.out), (32, 32, 16));
