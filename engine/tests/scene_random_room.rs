@@ -1,9 +1,9 @@
 //! Procedural rooms (`random-room-<seed>`): determinism, variety,
-//! validity, lighting, camera paths and the mix of materials.
+//! validity, lighting, camera paths, the mix of materials and the caustics.
 
 use std::collections::HashSet;
 
-use lucid_engine::scene::builtin::{self, random_room};
+use lucid_engine::scene::builtin::{self, random_room, CAUSTIC_GLASS, CAUSTIC_LAMP};
 use lucid_engine::scene::{Material, MaterialKind, Scene, SceneError};
 
 const SEEDS: std::ops::Range<u64> = 0..200;
@@ -156,4 +156,70 @@ fn every_material_kind_appears() {
         .filter(|s| !s.materials.iter().any(|m| m.name.starts_with("light-")))
         .count();
     assert!(sun_only > 0, "no room is lit only through its windows");
+}
+
+/// About two rooms of five have a caustic: a smooth glass sphere resting on the floor, and a small
+/// lamp facing down from above its top and beside its centre (so that the focused light falls on
+/// the floor next to it), the two clear of every other sphere; the rooms without one are the same
+/// as before it was added (their layout drawn from the same stream).
+#[test]
+fn some_rooms_have_a_caustic() {
+    let scenes = rooms(0..50);
+    let mut with = 0;
+    for s in &scenes {
+        let glass = s.materials.iter().position(|m| m.name == CAUSTIC_GLASS);
+        let lamp = s.materials.iter().position(|m| m.name == CAUSTIC_LAMP);
+        assert_eq!(glass.is_some(), lamp.is_some(), "{}", s.name);
+        let (Some(glass), Some(lamp)) = (glass, lamp) else {
+            continue;
+        };
+        with += 1;
+        let material = &s.materials[glass];
+        assert_eq!(material.kind, MaterialKind::Dielectric, "{}", s.name);
+        assert_eq!(material.alpha, 0.0, "{}: a rough caustic glass", s.name);
+        assert!(s.materials[lamp].is_emissive(), "{}", s.name);
+        let spheres: Vec<_> = s
+            .spheres
+            .iter()
+            .filter(|sp| sp.material == glass as u32)
+            .collect();
+        assert_eq!(spheres.len(), 1, "{}", s.name);
+        let sphere = spheres[0];
+        assert!(
+            (sphere.center.y - sphere.radius).abs() < 1e-5,
+            "{}: not on the floor",
+            s.name
+        );
+        let panel = s
+            .meshes
+            .iter()
+            .find(|m| m.name == CAUSTIC_LAMP)
+            .unwrap_or_else(|| panic!("{}: no lamp mesh", s.name));
+        let lowest = panel.positions.iter().map(|p| p.y).fold(f32::MAX, f32::min);
+        let middle =
+            panel.positions.iter().copied().sum::<glam::Vec3>() / panel.positions.len() as f32;
+        assert!(
+            lowest > sphere.center.y + sphere.radius + 0.3,
+            "{}: the lamp is not above",
+            s.name
+        );
+        let beside =
+            glam::Vec2::new(middle.x - sphere.center.x, middle.z - sphere.center.z).length();
+        assert!(
+            beside > 0.2 * sphere.radius && beside < 1.3 * sphere.radius,
+            "{}: {beside}",
+            s.name
+        );
+        for other in s.spheres.iter().filter(|sp| sp.material != glass as u32) {
+            assert!(
+                other.center.distance(sphere.center) > other.radius + sphere.radius,
+                "{}: a sphere inside the caustic's glass",
+                s.name
+            );
+        }
+    }
+    assert!(
+        (10..=30).contains(&with),
+        "{with} of 50 rooms have a caustic"
+    );
 }

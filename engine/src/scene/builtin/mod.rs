@@ -19,7 +19,9 @@ pub mod shapes;
 mod teapot;
 mod teapot_data;
 
-pub use random_room::{random_room, NAME_PREFIX as RANDOM_ROOM_PREFIX};
+pub use random_room::{
+    random_room, CAUSTIC_GLASS, CAUSTIC_LAMP, NAME_PREFIX as RANDOM_ROOM_PREFIX,
+};
 pub use teapot::teapot;
 
 use super::{Scene, SceneError};

@@ -10,7 +10,9 @@
 //! glass (IOR 1.5, smooth or rough) or emissive, and its lights: one to
 //! three emissive panels or hanging boxes, or, in rooms with windows in the
 //! back wall, the sun and sky of `blinds-room` shining in plus up to two of
-//! those (so some rooms are lit only through the windows). The default
+//! those (so some rooms are lit only through the windows); and in about
+//! two rooms of five a caustic: a smooth glass sphere on the floor under a
+//! small, bright lamp hanging beside it. The default
 //! camera path is one continuous 4 to 6 s move inside the room: a slow
 //! pan, a dolly forward or back, a fast turn (a large yaw within about
 //! half a second) or an orbit around an object. Scenes stay well under
@@ -24,6 +26,7 @@
 //! the same.
 
 mod camera_moves;
+mod caustic;
 mod lights;
 mod materials;
 mod objects;
@@ -45,6 +48,13 @@ pub const NAME_PREFIX: &str = "random-room-";
 /// finish left every seed's room otherwise as it was.
 const FLOOR_FINISH_STREAM: u64 = 0x666c_6f6f_7246_494e;
 
+/// Mixed into the seed for the caustic, drawn apart from the layout so that adding it left the
+/// rooms without one as they were (those with one differ only where the camera steers clear of
+/// it).
+const CAUSTIC_STREAM: u64 = 0x6361_7573_7469_6373;
+
+pub use caustic::{GLASS as CAUSTIC_GLASS, LAMP as CAUSTIC_LAMP};
+
 /// Builds the random room of `seed`, named `random-room-<seed>`.
 pub fn random_room(seed: u64) -> Result<Scene, SceneError> {
     let mut rng = Rng::new(seed);
@@ -55,6 +65,12 @@ pub fn random_room(seed: u64) -> Result<Scene, SceneError> {
     let mut meshes = SharedMeshes::default();
     let mut obstacles = lights::add(&mut scene, &mut rng, &room, windows, &mut meshes);
     objects::add(&mut scene, &mut rng, &room, &mut obstacles, &mut meshes);
+    caustic::add(
+        &mut scene,
+        &mut Rng::new(seed ^ CAUSTIC_STREAM),
+        &room,
+        &mut obstacles,
+    );
     let path = camera_moves::random_path(&mut rng, &room, &obstacles)?;
     let first = path.keys()[0];
     scene.camera = Camera::look_at(first.position, first.target, Vec3::Y, first.vfov_degrees);

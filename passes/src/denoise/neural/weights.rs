@@ -442,7 +442,10 @@ fn read_scales(tensors: &SafeTensors<'_>) -> u32 {
 /// channel than without (any other count is refused with the head's shape when it is read).
 fn read_linear_mix(tensors: &SafeTensors<'_>, scales: u32) -> bool {
     let name = format!("{}.weight", KERNEL_HEADS[0]);
-    tensors.tensor(&name).ok().and_then(|t| t.shape().first().copied())
+    tensors
+        .tensor(&name)
+        .ok()
+        .and_then(|t| t.shape().first().copied())
         == Some(head_channels(0, scales, true) as usize)
 }
 
