@@ -95,7 +95,9 @@ void filter_tile(ivec2 full_origin, ivec2 half_origin) {
         if (all(greaterThanEqual(q, ivec2(0))) && pixel_in_bounds(q, size)) {
             KernelMeans means = apply_kernel(q, size);
             s_filtered[0][r.y][r.x] = means.log_mean;
-            s_filtered[1][r.y][r.x] = means.linear_mean;
+            if (LINEAR_MIX) {
+                s_filtered[1][r.y][r.x] = means.linear_mean;
+            }
         }
     }
     barrier();
