@@ -6,6 +6,10 @@ other without its losses. The shipped weights since the twentieth session are su
 
     python3 blend.py A.safetensors B.safetensors --t 0.1 --out W.safetensors
 
+With `--mix-from-b`, the linear mix's channel of the `out` head (its last) comes from B whole
+rather than blended: A may hold the mix only as a start (`widen_scales.py --linear-mix`) that B
+trained, and a blend would move B's trained mix back toward that start.
+
 The output keeps A's metadata but its validation figures (measured on A alone), and adds `blend`:
 both files' names, `t`, and B's training options that differ from A's.
 """
@@ -17,6 +21,8 @@ from pathlib import Path
 import torch
 from safetensors import safe_open
 from safetensors.torch import load_file, save_file
+
+from kernel_model import HEAD_NAMES, linear_mix_of
 
 # Metadata measured on one file, which a blend does not inherit.
 MEASURED = (
@@ -51,11 +57,19 @@ def blend(a, b, t):
     return {k: ((1.0 - t) * a[k] + t * b[k]).contiguous() for k in a}
 
 
+def take_mix(tensors, b):
+    """`tensors` with the `out` head's last channel (the linear mix) replaced by `b`'s."""
+    for name in ("out.weight", "out.bias"):
+        tensors[name][-1] = b[name][-1]
+    return tensors
+
+
 def main():
     ap = argparse.ArgumentParser()
     ap.add_argument("a", help="weights a train.py run wrote")
     ap.add_argument("b", help="weights of the same network")
     ap.add_argument("--t", type=float, required=True, help="B's share, from 0 to 1")
+    ap.add_argument("--mix-from-b", action="store_true", help="the linear mix's channel from B, not blended")
     ap.add_argument("--out", required=True)
     args = ap.parse_args()
     if not 0.0 <= args.t <= 1.0:
@@ -64,13 +78,20 @@ def main():
     differing = [k for k in SHARED if meta_a.get(k) != meta_b.get(k)]
     if differing:
         raise SystemExit(f"{args.a} and {args.b} differ in {differing}: not one network")
+    a, b = load_file(args.a), load_file(args.b)
     try:
-        tensors = blend(load_file(args.a), load_file(args.b), args.t)
+        tensors = blend(a, b, args.t)
     except ValueError as e:
         raise SystemExit(f"{args.a}, {args.b}: {e}") from None
+    if args.mix_from_b:
+        if not linear_mix_of(b["out.weight"].shape[0], sum(f"{name}.weight" in b for name in HEAD_NAMES)):
+            raise SystemExit(f"--mix-from-b: {args.b} has no linear mix (its `out` head, out.weight)")
+        tensors = take_mix(tensors, b)
     meta = {k: v for k, v in meta_a.items() if k not in MEASURED}
     b_options = {k: v for k, v in meta_b.items() if k not in MEASURED and k not in SHARED and meta_a.get(k) != v}
-    meta["blend"] = json.dumps({"a": Path(args.a).name, "b": Path(args.b).name, "t": args.t, "b_options": b_options})
+    meta["blend"] = json.dumps(
+        {"a": Path(args.a).name, "b": Path(args.b).name, "t": args.t, "mix_from_b": args.mix_from_b, "b_options": b_options}
+    )
     save_file(tensors, args.out, metadata=meta)
     print(json.dumps({"out": args.out, "t": args.t, "tensors": len(tensors), "b_options": b_options}))
 

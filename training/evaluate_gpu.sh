@@ -9,8 +9,10 @@
 # a weights file to use instead of the committed ones; ALSO, more weights files (space-separated),
 # each evaluated as one more method `neural-<file stem>` on the same frames; SECOND_REFERENCE set, the
 # reference rendered again with another seed as one more method (the reference's own noise);
-# OPTIONS, more options of `lucid sequence` (e.g. --edge-emission). On a machine of several GPUs
-# the scenes run at once, one a GPU (gpus.sh).
+# OPTIONS, more options of `lucid sequence` (e.g. --edge-emission); OIDN=0 skips OIDN; MAPS=1 adds
+# `lucid evaluate --maps` (OUT_DIR/summary_<scene>.txt and by_brightness_<scene>.csv, the light
+# kept by brightness); SCENES, the held-out scenes (classroom caustics). On a machine of several
+# GPUs the scenes run at once, one a GPU (gpus.sh).
 set -euo pipefail
 out=${1:?usage: training/evaluate_gpu.sh OUT_DIR}
 lucid=$(realpath "${LUCID:-target/release/lucid}")
@@ -30,11 +32,16 @@ evaluate_scene() {
   env $(gpu_env "$2") "$lucid" sequence --scene "$scene" --size 1920x1080 --frames "$frames" --reference-spp 1024 \
     --out "$dir" --no-evaluate ${SECOND_REFERENCE:+--second-reference} ${OPTIONS:-} ${WEIGHTS:+--neural-weights "$(realpath "$WEIGHTS")"} \
     $(for w in ${ALSO:-}; do echo "--also-neural-weights $(realpath "$w")"; done)
-  if python3 -c "import pyoidn" 2>/dev/null; then
+  if [ "${OIDN:-1}" != 0 ] && python3 -c "import pyoidn" 2>/dev/null; then
     # shellcheck disable=SC2046
     env $(gpu_env "$2") python3 "$(dirname "$0")/oidn_baseline.py" "$dir"
   fi
-  "$lucid" evaluate "$dir"
+  if [ "${MAPS:-0}" != 0 ]; then
+    "$lucid" evaluate "$dir" --maps | tee "$out/summary_$scene.txt"
+    cp "$dir/maps/by_brightness.csv" "$out/by_brightness_$scene.csv"
+  else
+    "$lucid" evaluate "$dir"
+  fi
   cp "$dir/metrics.csv" "$out/metrics_$scene.csv"
 }
 # The scenes one after another on one GPU, at once on several (scene K on GPU K % GPUS).
