@@ -22,7 +22,7 @@ import torch
 from safetensors import safe_open
 from safetensors.torch import load_file, save_file
 
-from kernel_model import HEAD_NAMES, linear_mix_of
+from train import file_linear_mix
 
 # Metadata measured on one file, which a blend does not inherit.
 MEASURED = (
@@ -84,7 +84,7 @@ def main():
     except ValueError as e:
         raise SystemExit(f"{args.a}, {args.b}: {e}") from None
     if args.mix_from_b:
-        if not linear_mix_of(b["out.weight"].shape[0], sum(f"{name}.weight" in b for name in HEAD_NAMES)):
+        if not file_linear_mix(args.b):
             raise SystemExit(f"--mix-from-b: {args.b} has no linear mix (its `out` head, out.weight)")
         tensors = take_mix(tensors, b)
     meta = {k: v for k, v in meta_a.items() if k not in MEASURED}
