@@ -79,9 +79,10 @@ DEPTH_TOLERANCE = 0.05
 NORMAL_COS = 0.9
 MIN_WEIGHT = 0.01
 
-# The running mean of the noisy radiance: the longest history it averages (after that, an
-# exponential moving average with weight 1/N_MAX), and the luminance its moments are taken of
-# (Rec. 709, `luminance` in shaders/common/math.glsl).
+# The running mean of the noisy radiance: what the network's input divides its history length by,
+# and the longest history it may average (after that, an exponential moving average; a weights
+# file's `history_frames` metadata can set fewer frames, the model's `history_frames`), and the
+# luminance its moments are taken of (Rec. 709, `luminance` in shaders/common/math.glsl).
 N_MAX = 32.0
 # The first hits' albedo and emission that re-modulate the output are averaged over time as SVGF's
 # temporal pass averages them, from taps of the same object: each frame's values weigh at least
@@ -198,9 +199,9 @@ def expand(rgb):
 EXPAND_MIN = 1e-3
 
 
-def accumulate(demodulated, warped_accum, warped_moment, warped_robust, mask):
+def accumulate(demodulated, warped_accum, warped_moment, warped_robust, mask, history_frames=N_MAX):
     """This frame's running means of the noisy demodulated radiance, as SVGF's temporal pass keeps
-    them: where reprojection holds (`mask`), the history length n = min(n' + 1, N_MAX) of the
+    them: where reprojection holds (`mask`), the history length n = min(n' + 1, history_frames) of the
     warped length n', and every mean moves towards this frame's value by 1/n; elsewhere n = 1 and
     they are this frame's. Two means: of the radiance (with the second moment of its luminance)
     and, robust to fireflies, of the radiance range-compressed by `compress` (with the second
@@ -211,7 +212,7 @@ def accumulate(demodulated, warped_accum, warped_moment, warped_robust, mask):
     squeezed = compress(current)
     squeezed_lum = luminance(squeezed)
     ok = mask > 0.0
-    n = torch.where(ok, torch.clamp(warped_accum[:, 3:4] + 1.0, max=N_MAX), torch.ones_like(mask))
+    n = torch.where(ok, torch.clamp(warped_accum[:, 3:4] + 1.0, max=float(history_frames)), torch.ones_like(mask))
     alpha = 1.0 / n
 
     def toward(prev, value):
@@ -309,6 +310,8 @@ class RecurrentDenoiser(nn.Module):
         # `antialias_surface`'s weight of this frame's emission per pixel of motion (the weights
         # file's `emission_motion` metadata).
         self.emission_motion = EMISSION_MOTION
+        # `accumulate`'s longest history (the weights file's `history_frames` metadata).
+        self.history_frames = int(N_MAX)
 
     def step(self, record, state, fp16_storage=False, objects=None):
         """One frame. `record` [B,RECORD_SIZE,H,W]; `objects` [B,1,H,W] the object id of each
@@ -343,7 +346,12 @@ class RecurrentDenoiser(nn.Module):
             warped_albedo, warped_emission = history[:, 12:15], history[:, 15:18]
         # The accumulation depends on the records only (no weights): no gradient through it.
         accum, moment, robust = accumulate(
-            rec["demodulated"], warped_accum.detach(), warped_moment.detach(), warped_robust.detach(), mask
+            rec["demodulated"],
+            warped_accum.detach(),
+            warped_moment.detach(),
+            warped_robust.detach(),
+            mask,
+            self.history_frames,
         )
         albedo, emission = antialias_surface(
             rec, warped_albedo.detach(), warped_emission.detach(), accum[:, 3:4], surface_mask, self.emission_motion

@@ -70,6 +70,7 @@ from model import (
     DECODERS,
     FORMAT,
     HIDDEN,
+    N_MAX,
     RECORD_SIZE,
     WIDTHS,
     RecurrentDenoiser,
@@ -159,7 +160,7 @@ def load_weights(model, path):
     layers; the kernel model takes every layer whose shapes match (so direct weights start its
     shared layers) and starts the others afresh. A `lucid-rae-v2` file's first layer, which has
     fewer inputs, starts the first layer with the new inputs' weights at zero. The file's
-    `emission_motion` metadata, when there, sets the model's. A file of a wider network starts a
+    `emission_motion` and `history_frames` metadata, when there, set the model's. A file of a wider network starts a
     narrower model from the channels its layers weigh most (`narrow`). A file of fewer kernel scales
     starts a model of more: its coarsest head gains the weight `a` of the new scale, at
     sigmoid(NEW_SCALE_BIAS) everywhere, so that the new scale starts almost unused. A file without
@@ -170,9 +171,11 @@ def load_weights(model, path):
         print(f"--init: {path}'s widths {widths} narrowed to {model.widths}", flush=True)
         tensors = narrow(tensors, model.widths)
     with safe_open(path, "pt") as f:
-        motion = (f.metadata() or {}).get("emission_motion")
-    if motion is not None:
-        model.emission_motion = float(motion)
+        meta = f.metadata() or {}
+    if "emission_motion" in meta:
+        model.emission_motion = float(meta["emission_motion"])
+    if "history_frames" in meta:
+        model.history_frames = int(meta["history_frames"])
     loaded, skipped = [], []
     with torch.no_grad():
         for name, conv in named_convs(model).items():
@@ -364,6 +367,12 @@ def main():
         default=0.0,
         help="weight of the light of 8x8 blocks against the reference's (losses.energy_l1) added to the loss",
     )
+    ap.add_argument(
+        "--history-frames",
+        type=int,
+        help="the most frames the running means average before they become moving averages "
+        f"(1 to {int(N_MAX)}; default: --init's, else {int(N_MAX)})",
+    )
     ap.add_argument("--val-every", type=int, default=250, help="validate every this many steps")
     ap.add_argument(
         "--watch",
@@ -403,6 +412,10 @@ def main():
     model = build_model(args.model, widths, args.scales, args.linear_mix).to(dev)
     if args.init:
         load_weights(model, args.init)
+    if args.history_frames is not None:
+        if not 1 <= args.history_frames <= N_MAX:
+            raise SystemExit(f"--history-frames {args.history_frames} is not between 1 and {int(N_MAX)}")
+        model.history_frames = args.history_frames
     group.same_start(model)
     cost = model_cost(model, dev)
     if group.first:
@@ -488,6 +501,7 @@ def main():
         "loss": args.loss,
         "loss_weights": ",".join(str(w) for w in ws),
         "emission_motion": str(model.emission_motion),
+        "history_frames": str(model.history_frames),
         "burn_in": str(args.burn_in) if burn_in_min == args.burn_in else f"{burn_in_min}-{args.burn_in}",
         "fireflies": str(args.fireflies),
         "blotch": str(args.blotch),

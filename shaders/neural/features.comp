@@ -64,12 +64,16 @@ layout(push_constant) uniform Params {
     // The least weight of this frame's emission in its average, per pixel of motion (the weights
     // file's, passes/src/denoise/neural/weights.rs).
     float emission_motion;
+    // The most frames the running means average before they become exponential moving averages
+    // (the weights file's `history_frames`, at most N_MAX).
+    float history_frames;
 } params;
 
 const float DEPTH_TOLERANCE = 0.05;
 const float NORMAL_COS = 0.9;
 const float MIN_WEIGHT = 0.01;
-// The longest history the running mean averages; after that it is an exponential moving average.
+// What the network's input divides the history length by: the longest history a weights file may
+// ask the running means to average (HISTORY_FRAMES in passes/src/denoise/neural/weights.rs).
 const float N_MAX = 32.0;
 // The least weight of this frame's albedo and emission in their averages over time.
 const float SURFACE_ALPHA = 0.1;
@@ -261,7 +265,7 @@ void main() {
     float moment = lum * lum;
     vec4 robust = vec4(squeezed, squeezed_lum * squeezed_lum);
     if (mask > 0.0) {
-        n = min(warped_accum.a + 1.0, N_MAX);
+        n = min(warped_accum.a + 1.0, params.history_frames);
         float alpha = 1.0 / n;
         mean = warped_accum.rgb + (demodulated - warped_accum.rgb) * alpha;
         moment = warped_moment + (lum * lum - warped_moment) * alpha;

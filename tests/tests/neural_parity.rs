@@ -21,7 +21,10 @@
 //! sixteenth's radiance pooling and head are checked too; the seventh (the first's frames) is of the
 //! linear mix (`references/neural_linear_mix_weights.safetensors`: the committed weights widened
 //! by `training/widen_scales.py --linear-mix 0`, the mix at about half and varying from pixel to
-//! pixel), so the filtering and compositing in linear space and the mix are checked too;
+//! pixel), so the filtering and compositing in linear space and the mix are checked too; the
+//! eighth (the first's frames) is of the committed weights with `history_frames` 1 in their
+//! metadata (made by `training/set_metadata.py`, rebuilt here from the committed ones), so the
+//! running means' cap is checked too (in the second frame they hold that frame's values alone);
 //! `the_emission_stays_on_its_object`
 //! checks what that average is for over more frames.
 //! The running means of the noisy radiance and their
@@ -101,9 +104,22 @@ fn fixture(name: &'static str, weights: NetworkWeights) -> Fixture {
     }
 }
 
+/// The committed weights with their metadata's `history_frames` set to `frames`, as
+/// `training/set_metadata.py` writes them.
+fn builtin_with_history_frames(frames: u32) -> NetworkWeights {
+    let (_, header) = SafeTensors::read_metadata(neural::BUILTIN).expect("parse the weights");
+    let mut metadata = header.metadata().clone().unwrap_or_default();
+    metadata.insert("history_frames".into(), frames.to_string());
+    let tensors = SafeTensors::deserialize(neural::BUILTIN).expect("parse the weights");
+    let rewritten =
+        safetensors::serialize(tensors.tensors(), &Some(metadata)).expect("write the weights");
+    NetworkWeights::from_bytes(&rewritten, "history_frames").expect("load the weights")
+}
+
 /// The committed weights' fixture, the other decoder's, the emitters', a narrower network's, one
-/// of three scales, one of five and one with the linear mix.
-fn fixtures() -> [Fixture; 7] {
+/// of three scales, one of five, one with the linear mix and one whose running means hold one
+/// frame.
+fn fixtures() -> [Fixture; 8] {
     let load = |file: &str| {
         NetworkWeights::load(std::path::Path::new(&references(file)))
             .unwrap_or_else(|e| panic!("load {file}: {e}"))
@@ -134,6 +150,10 @@ fn fixtures() -> [Fixture; 7] {
             "neural_parity_linear_mix.safetensors",
             load("neural_linear_mix_weights.safetensors"),
         ),
+        fixture(
+            "neural_parity_short_history.safetensors",
+            builtin_with_history_frames(1),
+        ),
     ];
     let decoders = fixtures.each_ref().map(|f| f.weights.decoder());
     assert!(
@@ -153,6 +173,12 @@ fn fixtures() -> [Fixture; 7] {
     assert!(
         fixtures.iter().any(|f| f.weights.linear_mix()),
         "the fixtures cover the linear mix"
+    );
+    assert!(
+        fixtures
+            .iter()
+            .any(|f| f.weights.history_frames() < neural::HISTORY_FRAMES),
+        "the fixtures cover running means of fewer frames"
     );
     fixtures
 }

@@ -5,7 +5,8 @@
 # whose rooms have caustics in about two of five (random_room/caustic.rs; `SEED_OFFSET` 80; the
 # validation rooms come from the same generator). Runs in the foreground of one command, writing into
 # OUT: compare.json, <variant>.json, weights.tgz. MIX=0: the control, the same two fine-tunings of
-# the committed weights without the mix (weights w-no-mix*.safetensors; not yet run).
+# the committed weights without the mix (weights w-no-mix*.safetensors; run in the thirty-sixth
+# session: control/, its held-out evaluation by eval.sh in control/eval/).
 # .gpu/lucid.xz: the release lucid binary of the commit this file came with.
 set -u
 out=${1:?usage: job.sh OUT}

@@ -42,7 +42,7 @@ mod weights;
 pub use network::{InferencePath, Network};
 pub use weights::{
     Decoder, Layer, NetworkWeights, WeightsError, Widths, BUILTIN, EMISSION_MOTION, FEATURES,
-    FORMAT, HIDDEN, KERNEL_HEADS, KERNEL_SCALES, KERNEL_TAPS,
+    FORMAT, HIDDEN, HISTORY_FRAMES, KERNEL_HEADS, KERNEL_SCALES, KERNEL_TAPS,
 };
 
 use crate::denoise::gbuffer::GBuffer;
@@ -290,6 +290,8 @@ struct FeaturesParams {
     history_valid: u32,
     /// [`NetworkWeights::emission_motion`].
     emission_motion: f32,
+    /// [`NetworkWeights::history_frames`].
+    history_frames: f32,
 }
 
 /// Adds the denoiser over the frame's `inputs` at `width` x `height`, with its history under the
@@ -333,6 +335,7 @@ pub fn add_neural(
         emission_history.prev,
     ];
     let emission_motion = network.emission_motion;
+    let history_frames = network.history_frames as f32;
     inputs.read(&mut p);
     p.read("u_prev_output", prev[0])
         .read("u_ids", inputs.ids)
@@ -341,6 +344,7 @@ pub fn add_neural(
             height,
             history_valid: u32::from(prev.iter().all(|&h| ctx.history_valid(h))),
             emission_motion,
+            history_frames,
         });
     p.history("u_prev_surface", "u_surface", surface_history);
     let accum = p.history("u_prev_accum", "u_accum", accum_history);

@@ -76,6 +76,8 @@ pub struct Network {
     pub(super) linear_mix: bool,
     /// [`NetworkWeights::emission_motion`].
     pub(super) emission_motion: f32,
+    /// [`NetworkWeights::history_frames`].
+    pub(super) history_frames: u32,
     /// The layers, in execution order ([`Decoder::layers`]).
     pub(super) layers: Vec<Layer>,
     /// Every layer's float32 weights and bias (`conv.comp`'s layout).
@@ -117,6 +119,7 @@ impl Network {
             scales: weights.scales(),
             linear_mix: weights.linear_mix(),
             emission_motion: weights.emission_motion(),
+            history_frames: weights.history_frames(),
             layers: weights.layers().to_vec(),
             buffer,
             offsets: (0..weights.layers().len())

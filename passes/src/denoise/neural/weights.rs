@@ -240,6 +240,11 @@ pub enum WeightsError {
 /// only taps of the same object (measured in training/README.md).
 pub const EMISSION_MOTION: f32 = 0.0;
 
+/// The most frames the running means average before they become exponential moving averages
+/// (`N_MAX` in training/model.py), where the weights file's `history_frames` metadata does not set
+/// a smaller number; the network's input divides the history length by it either way.
+pub const HISTORY_FRAMES: u32 = 32;
+
 /// Weights ready for upload: every layer's weights and bias, packed.
 #[derive(Clone, Debug, PartialEq)]
 pub struct NetworkWeights {
@@ -247,6 +252,7 @@ pub struct NetworkWeights {
     scales: u32,
     linear_mix: bool,
     emission_motion: f32,
+    history_frames: u32,
     widths: Widths,
     layers: Vec<Layer>,
     packed: Vec<f32>,
@@ -311,6 +317,21 @@ impl NetworkWeights {
                     expected: "a finite number from 0 up".into(),
                 })?
         };
+        let found = entry("history_frames");
+        let history_frames = if found.is_empty() {
+            HISTORY_FRAMES
+        } else {
+            found
+                .parse::<u32>()
+                .ok()
+                .filter(|v| (1..=HISTORY_FRAMES).contains(v))
+                .ok_or_else(|| WeightsError::Metadata {
+                    file: file.to_owned(),
+                    key: "history_frames".into(),
+                    found,
+                    expected: format!("a whole number from 1 to {HISTORY_FRAMES}"),
+                })?
+        };
         let tensors = SafeTensors::deserialize(bytes).map_err(|e| format_error(e.to_string()))?;
         let widths = read_widths(&tensors, file)?;
         let (scales, linear_mix) = match decoder {
@@ -350,6 +371,7 @@ impl NetworkWeights {
             scales,
             linear_mix,
             emission_motion,
+            history_frames,
             widths,
             layers,
             packed,
@@ -377,6 +399,12 @@ impl NetworkWeights {
     /// (the file's `emission_motion` metadata, else [`EMISSION_MOTION`]).
     pub fn emission_motion(&self) -> f32 {
         self.emission_motion
+    }
+
+    /// The most frames the running means average before they become exponential moving averages
+    /// (the file's `history_frames` metadata, else [`HISTORY_FRAMES`]).
+    pub fn history_frames(&self) -> u32 {
+        self.history_frames
     }
 
     /// The U-Net's widths (its tensors' shapes).
@@ -693,6 +721,32 @@ mod tests {
             assert!(
                 message.contains("w.safetensors")
                     && message.contains(&format!("metadata emission_motion \"{bad}\"")),
+                "{message}"
+            );
+        }
+    }
+
+    #[test]
+    fn the_history_frames_come_from_the_metadata_when_it_is_there() {
+        let plain = file_for(FORMAT, Decoder::Kernel, |_, _, _| true);
+        let weights = NetworkWeights::from_bytes(&plain, "w").expect("loads");
+        assert_eq!(weights.history_frames(), HISTORY_FRAMES);
+        let set = |value: &str| {
+            file_with_metadata(
+                FORMAT,
+                Decoder::Kernel,
+                Widths::COMMITTED,
+                &[("history_frames", value)],
+                |_, _, _| true,
+            )
+        };
+        let weights = NetworkWeights::from_bytes(&set("20"), "w").expect("loads");
+        assert_eq!(weights.history_frames(), 20);
+        for bad in ["0", "33", "-1", "20.5", "long"] {
+            let message = error(&set(bad));
+            assert!(
+                message.contains("w.safetensors")
+                    && message.contains(&format!("metadata history_frames \"{bad}\"")),
                 "{message}"
             );
         }
