@@ -245,6 +245,31 @@ pub const EMISSION_MOTION: f32 = 0.0;
 /// a smaller number; the network's input divides the history length by it either way.
 pub const HISTORY_FRAMES: u32 = 32;
 
+/// A number from the metadata entry `key` of `file` (its text `found`): `default` where the entry
+/// is absent, an error saying what was `expected` where it does not parse or is not `valid`.
+fn metadata_number<T: std::str::FromStr>(
+    file: &str,
+    key: &str,
+    found: String,
+    default: T,
+    valid: impl Fn(&T) -> bool,
+    expected: &str,
+) -> Result<T, WeightsError> {
+    if found.is_empty() {
+        return Ok(default);
+    }
+    found
+        .parse::<T>()
+        .ok()
+        .filter(valid)
+        .ok_or_else(|| WeightsError::Metadata {
+            file: file.to_owned(),
+            key: key.into(),
+            found,
+            expected: expected.into(),
+        })
+}
+
 /// Weights ready for upload: every layer's weights and bias, packed.
 #[derive(Clone, Debug, PartialEq)]
 pub struct NetworkWeights {
@@ -302,36 +327,22 @@ impl NetworkWeights {
             file: file.to_owned(),
             found,
         })?;
-        let found = entry("emission_motion");
-        let emission_motion = if found.is_empty() {
-            EMISSION_MOTION
-        } else {
-            found
-                .parse::<f32>()
-                .ok()
-                .filter(|v| v.is_finite() && *v >= 0.0)
-                .ok_or_else(|| WeightsError::Metadata {
-                    file: file.to_owned(),
-                    key: "emission_motion".into(),
-                    found,
-                    expected: "a finite number from 0 up".into(),
-                })?
-        };
-        let found = entry("history_frames");
-        let history_frames = if found.is_empty() {
-            HISTORY_FRAMES
-        } else {
-            found
-                .parse::<u32>()
-                .ok()
-                .filter(|v| (1..=HISTORY_FRAMES).contains(v))
-                .ok_or_else(|| WeightsError::Metadata {
-                    file: file.to_owned(),
-                    key: "history_frames".into(),
-                    found,
-                    expected: format!("a whole number from 1 to {HISTORY_FRAMES}"),
-                })?
-        };
+        let emission_motion = metadata_number(
+            file,
+            "emission_motion",
+            entry("emission_motion"),
+            EMISSION_MOTION,
+            |v: &f32| v.is_finite() && *v >= 0.0,
+            "a finite number from 0 up",
+        )?;
+        let history_frames = metadata_number(
+            file,
+            "history_frames",
+            entry("history_frames"),
+            HISTORY_FRAMES,
+            |v| (1..=HISTORY_FRAMES).contains(v),
+            &format!("a whole number from 1 to {HISTORY_FRAMES}"),
+        )?;
         let tensors = SafeTensors::deserialize(bytes).map_err(|e| format_error(e.to_string()))?;
         let widths = read_widths(&tensors, file)?;
         let (scales, linear_mix) = match decoder {
@@ -700,56 +711,60 @@ mod tests {
         );
     }
 
-    #[test]
-    fn the_emission_motion_comes_from_the_metadata_when_it_is_there() {
+    /// Checks one metadata entry the renderer reads: `read` gives `default` without it and `value`
+    /// with it set to `text`, and each of `bad` is refused with an error naming the file, the key
+    /// and what it found.
+    fn check_metadata_entry<T: PartialEq + std::fmt::Debug>(
+        key: &str,
+        read: impl Fn(&NetworkWeights) -> T,
+        default: T,
+        (text, value): (&str, T),
+        bad: &[&str],
+    ) {
         let plain = file_for(FORMAT, Decoder::Kernel, |_, _, _| true);
         let weights = NetworkWeights::from_bytes(&plain, "w").expect("loads");
-        assert_eq!(weights.emission_motion(), EMISSION_MOTION);
-        let set = |value: &str| {
+        assert_eq!(read(&weights), default);
+        let set = |text: &str| {
             file_with_metadata(
                 FORMAT,
                 Decoder::Kernel,
                 Widths::COMMITTED,
-                &[("emission_motion", value)],
+                &[(key, text)],
                 |_, _, _| true,
             )
         };
-        let weights = NetworkWeights::from_bytes(&set("0.25"), "w").expect("loads");
-        assert_eq!(weights.emission_motion(), 0.25);
-        for bad in ["-1", "NaN", "inf", "fast"] {
+        let weights = NetworkWeights::from_bytes(&set(text), "w").expect("loads");
+        assert_eq!(read(&weights), value);
+        for bad in bad {
             let message = error(&set(bad));
             assert!(
                 message.contains("w.safetensors")
-                    && message.contains(&format!("metadata emission_motion \"{bad}\"")),
+                    && message.contains(&format!("metadata {key} \"{bad}\"")),
                 "{message}"
             );
         }
     }
 
     #[test]
+    fn the_emission_motion_comes_from_the_metadata_when_it_is_there() {
+        check_metadata_entry(
+            "emission_motion",
+            NetworkWeights::emission_motion,
+            EMISSION_MOTION,
+            ("0.25", 0.25),
+            &["-1", "NaN", "inf", "fast"],
+        );
+    }
+
+    #[test]
     fn the_history_frames_come_from_the_metadata_when_it_is_there() {
-        let plain = file_for(FORMAT, Decoder::Kernel, |_, _, _| true);
-        let weights = NetworkWeights::from_bytes(&plain, "w").expect("loads");
-        assert_eq!(weights.history_frames(), HISTORY_FRAMES);
-        let set = |value: &str| {
-            file_with_metadata(
-                FORMAT,
-                Decoder::Kernel,
-                Widths::COMMITTED,
-                &[("history_frames", value)],
-                |_, _, _| true,
-            )
-        };
-        let weights = NetworkWeights::from_bytes(&set("20"), "w").expect("loads");
-        assert_eq!(weights.history_frames(), 20);
-        for bad in ["0", "33", "-1", "20.5", "long"] {
-            let message = error(&set(bad));
-            assert!(
-                message.contains("w.safetensors")
-                    && message.contains(&format!("metadata history_frames \"{bad}\"")),
-                "{message}"
-            );
-        }
+        check_metadata_entry(
+            "history_frames",
+            NetworkWeights::history_frames,
+            HISTORY_FRAMES,
+            ("20", 20),
+            &["0", "33", "-1", "20.5", "long"],
+        );
     }
 
     #[test]
