@@ -12,6 +12,9 @@
 # with training/job_gpu.sh (README, Commands):
 #   source .gpu/env.sh && training/job_gpu.sh start training/runs/v31-long-windows/job.sh
 #   source .gpu/env.sh && training/job_gpu.sh wait
+# On a machine of two GPUs (nvidia-h200-x2, when lent) the variants and the two scenes spread over
+# both (gpus.sh): the same device time does twice the work. On one H200, about 500 s to train
+# (runs/v29's two variants took 492 s with the dataset) and 500 s to evaluate.
 # .gpu/lucid.xz: the release lucid binary of the commit this file came with.
 set -u
 mkdir -p /tmp/bin /tmp/out && xz -dc .gpu/lucid.xz > /tmp/bin/lucid && chmod +x /tmp/bin/lucid
