@@ -10,7 +10,8 @@
 # that a dataset of other training rooms can be rendered with the same validation rooms and built-in
 # scenes (shard 0 keeps seed 0); ROOMS_FIRST, shard 0's procedural training rooms (default ROOMS: with
 # the built-in scenes and the validation rooms it is the slowest shard); SIZE, the frames' size
-# (256x256). On a machine of several GPUs shard K renders on GPU K % GPUS
+# (256x256); STOPS, the share of sequences whose camera comes to rest (`lucid dataset --stops`,
+# default 0). On a machine of several GPUs shard K renders on GPU K % GPUS
 # (gpus.sh). compare_gpu.sh calls it.
 set -euo pipefail
 data=${1:?usage: training/dataset_gpu.sh DATA_DIR}
@@ -36,7 +37,7 @@ for ((k = 0; k < shards; k++)); do
   if [ "$shards" -gt 1 ]; then dest=$data/shard-$k; fi
   # shellcheck disable=SC2046 # gpu_env's assignments are separate words
   env $(gpu_env "$k") "$lucid" dataset --out "$dest" --size "${SIZE:-256x256}" --frames "${FRAMES:-16}" --rooms "$rooms" \
-    --sequences "${SEQUENCES:-2}" --reference-spp 256 --seed "$seed" "${extra[@]}" &
+    --sequences "${SEQUENCES:-2}" --reference-spp 256 --seed "$seed" --stops "${STOPS:-0}" "${extra[@]}" &
   pids+=($!)
 done
 for pid in "${pids[@]}"; do

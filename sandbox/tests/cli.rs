@@ -424,6 +424,8 @@ fn dataset_writes_records_and_references_with_an_index() {
     assert_eq!(splits, ["train", "validation"]);
     for entry in sequences {
         assert!(entry["scene"].as_str().unwrap().starts_with("random-room-"));
+        // Without --stops no camera comes to rest.
+        assert!(entry["stop"].is_null(), "{entry}");
         let bytes = std::fs::read(dir.join(entry["file"].as_str().unwrap())).unwrap();
         let tensors = safetensors::SafeTensors::deserialize(&bytes).unwrap();
         let record = tensors.tensor("record").unwrap();
@@ -647,6 +649,17 @@ fn non_finite_float_options_are_refused_with_their_range() {
         assert_clear_failure(
             &["sequence", "--size", "8x8", &fps],
             "'--fps <FPS>': must be a finite number from 0.01 to 1000",
+        );
+    }
+}
+
+#[test]
+fn dataset_refuses_a_share_of_stops_outside_0_to_1() {
+    for value in ["1.5", "-0.1", "NaN", "often"] {
+        let stops = format!("--stops={value}");
+        assert_clear_failure(
+            &["dataset", "--out", "unused", &stops],
+            &format!("'--stops <STOPS>': \"{value}\" is not a number from 0 to 1"),
         );
     }
 }

@@ -9,8 +9,9 @@
 //! `caustics`, which stay held out for evaluation; or, with `--scenes`, only the scenes named, in
 //! the split `study` that training never reads (to study the model on held-out frames, e.g.
 //! `training/surface_study.py`). Each sequence follows the scene's camera path
-//! from a random start at a random speed, with a random extra turn (slow pans to fast turns); a
-//! new sequence is a camera cut.
+//! from a random start at a random speed, with a random extra turn (slow pans to fast turns); with
+//! `--stops`, some sequences slow down until the camera comes to rest and stays there; a new
+//! sequence is a camera cut.
 
 use super::output_path;
 use super::progress::Progress;
@@ -70,7 +71,25 @@ pub struct DatasetArgs {
     /// included), `--sequences` each, in the split `study`, which training never reads.
     #[arg(long, value_delimiter = ',', conflicts_with_all = ["rooms", "validation_rooms", "no_builtin"])]
     scenes: Vec<String>,
+    /// The share of sequences whose camera slows down evenly until it comes to rest, after 0.1 to
+    /// 0.8 s, and stays there (the denoiser's long histories; drawn apart from the other camera
+    /// choices, which stay the same).
+    #[arg(long, default_value_t = 0.0, value_parser = share)]
+    stops: f32,
 }
+
+/// Parses a share from 0 to 1.
+fn share(text: &str) -> Result<f32, String> {
+    text.parse::<f32>()
+        .ok()
+        .filter(|v| (0.0..=1.0).contains(v))
+        .ok_or_else(|| format!("{text:?} is not a number from 0 to 1"))
+}
+
+/// Seeds the stream of `--stops`' draws apart from the other camera choices'.
+const STOPS_STREAM: u64 = 0x5707_5707_5707_5707;
+/// The shortest and longest time a stopping sequence's camera takes to come to rest, in seconds.
+const STOP_SECONDS: (f32, f32) = (0.1, 0.8);
 
 /// One sequence to render.
 struct Job {
@@ -79,6 +98,8 @@ struct Job {
     start: f32,
     speed: f32,
     turn: f32,
+    /// Seconds until the camera comes to rest (`--stops`), if it does.
+    stop: Option<f32>,
 }
 
 /// Renders every sequence and writes the index.
@@ -120,6 +141,7 @@ pub fn run(args: &DatasetArgs) -> anyhow::Result<()> {
             "start": job.start,
             "speed": job.speed,
             "turn": job.turn,
+            "stop": job.stop,
         }));
     }
     progress.finish();
@@ -181,6 +203,7 @@ fn scene_splits(args: &DatasetArgs) -> Vec<(String, &'static str)> {
 /// The sequences: one job per scene of [`scene_splits`] and sequence, with random camera choices.
 fn plan(args: &DatasetArgs) -> Vec<Job> {
     let mut random = Random(args.seed);
+    let mut stops = Random(args.seed ^ STOPS_STREAM);
     let mut jobs = Vec::new();
     for (scene, split) in scene_splits(args) {
         for _ in 0..args.sequences {
@@ -191,16 +214,28 @@ fn plan(args: &DatasetArgs) -> Vec<Job> {
                 1 => (random.next() - 0.5) * 0.8,
                 _ => (random.next() - 0.5) * 6.0,
             };
+            let stops_here = stops.next() < args.stops;
+            let seconds = stops.next();
+            let stop =
+                stops_here.then_some(STOP_SECONDS.0 + (STOP_SECONDS.1 - STOP_SECONDS.0) * seconds);
             jobs.push(Job {
                 scene: scene.clone(),
                 split,
                 start: random.next(),
                 speed,
                 turn,
+                stop,
             });
         }
     }
     jobs
+}
+
+/// How far the camera of a sequence that comes to rest after `stop` seconds has moved at `seconds`,
+/// in seconds of its motion at full speed: its speed falls evenly from full to zero.
+fn slowed_clock(seconds: f32, stop: f32) -> f32 {
+    let t = seconds.min(stop);
+    t - t * t / (2.0 * stop)
 }
 
 /// The cameras of `job`'s frames at 30 frames per second.
@@ -212,7 +247,8 @@ fn cameras(scene: &Scene, job: &Job, frames: u32) -> anyhow::Result<Vec<Camera>>
     let duration = path.duration().max(1e-3);
     Ok((0..frames)
         .map(|i| {
-            let seconds = i as f32 / 30.0;
+            let real = i as f32 / 30.0;
+            let seconds = job.stop.map_or(real, |stop| slowed_clock(real, stop));
             let t = (job.start * duration + seconds * job.speed) % duration;
             let mut camera = path.sample(t);
             camera.orientation = Quat::from_rotation_y(job.turn * seconds) * camera.orientation;
@@ -343,5 +379,73 @@ mod tests {
         assert_eq!(back, [1.5, 65504.0, -65504.0, 65504.0]);
         let err = half_saturated([0.0, f32::NAN]).unwrap_err().to_string();
         assert!(err.contains("value 1 is NaN"), "{err}");
+    }
+
+    fn args(stops: f32) -> DatasetArgs {
+        DatasetArgs {
+            out: PathBuf::from("unused"),
+            size: "64x64".parse().expect("size"),
+            frames: 32,
+            rooms: 40,
+            validation_rooms: 4,
+            sequences: 2,
+            reference_spp: SamplesPerPixel::new(4).expect("spp"),
+            no_builtin: true,
+            seed: 7,
+            scenes: Vec::new(),
+            stops,
+        }
+    }
+
+    #[test]
+    fn stops_leave_the_other_camera_choices_as_they_were() {
+        let plain = plan(&args(0.0));
+        assert!(plain.iter().all(|job| job.stop.is_none()));
+        let stopping = plan(&args(0.5));
+        assert_eq!(plain.len(), stopping.len());
+        for (a, b) in plain.iter().zip(&stopping) {
+            assert_eq!(
+                (&a.scene, a.start, a.speed, a.turn),
+                (&b.scene, b.start, b.speed, b.turn)
+            );
+        }
+        let stopped: Vec<f32> = stopping.iter().filter_map(|job| job.stop).collect();
+        // 88 sequences, half of them expected to stop: far from none and from all.
+        assert!((24..=64).contains(&stopped.len()), "{}", stopped.len());
+        assert!(stopped
+            .iter()
+            .all(|s| (STOP_SECONDS.0..=STOP_SECONDS.1).contains(s)));
+        assert!(plan(&args(1.0)).iter().all(|job| job.stop.is_some()));
+    }
+
+    #[test]
+    fn a_stopping_camera_slows_evenly_and_rests() {
+        let stop = 0.5;
+        assert_eq!(slowed_clock(0.0, stop), 0.0);
+        assert_eq!(slowed_clock(stop, stop), stop / 2.0);
+        assert_eq!(slowed_clock(0.9, stop), stop / 2.0);
+        // Full speed at the start, none at the stop: the steps between frames shrink evenly.
+        let step = |s: f32| slowed_clock(s + 0.01, stop) - slowed_clock(s, stop);
+        assert!((step(0.0) - 0.01).abs() < 1e-3);
+        assert!(step(0.2) < step(0.1) && step(0.4) < step(0.2));
+        assert!(step(stop - 0.01) < 1e-3 && step(stop) == 0.0);
+
+        let scene = builtin::build("random-room-7").expect("room");
+        let job = Job {
+            scene: scene.name.clone(),
+            split: "train",
+            start: 0.3,
+            speed: 2.0,
+            turn: 0.5,
+            stop: Some(0.4),
+        };
+        let frames = cameras(&scene, &job, 32).expect("cameras");
+        // At rest from frame 12 (0.4 s) on; moving before.
+        assert!(frames[12..].iter().all(|c| c == &frames[12]));
+        assert!(frames[10] != frames[11]);
+        let moving = Job { stop: None, ..job };
+        let free = cameras(&scene, &moving, 32).expect("cameras");
+        assert_eq!(frames[0], free[0]);
+        assert!(free[20] != free[12]);
     }
 }

@@ -1,8 +1,10 @@
 #!/usr/bin/env bash
 # Thirty-sixth session, for the next session's device time (one H200; not yet run). The thirtieth
 # session's fine-tuning against blotches from the committed weights (the recipe runs/v22 and v29
-# used, without the energy term) on a fresh dataset (4 shards, SEED_OFFSET 96), three variants at
-# once on the one GPU:
+# used, without the energy term) on a fresh dataset (4 shards, SEED_OFFSET 96) in which three
+# sequences of ten slow down until the camera rests (`lucid dataset --stops 0.3`: the held-out
+# `caustics` sway ends so, and the procedural paths never stop), three variants at once on the one
+# GPU:
 #   control  burn-in 0-12 and 8 frames with a loss: no pixel's running means pass 20 frames
 #   long     burn-in 0-24: windows of up to 32 frames, so the running means reach their 32
 #   capped   burn-in 0-12, trained with `--history-frames 12`
@@ -22,7 +24,7 @@ rm -rf /tmp/repo && cp -r . /tmp/repo && cd /tmp/repo
 committed=passes/src/denoise/neural/lucid-rae-v3.safetensors
 W=fireflies=5e-5+widths=16,32,64,64,32,16+scales=4+crop=368+batch=4+lr=5e-4+cold=0.25+blotch-margin=0.3+blotch=0.2
 echo "START $(date +%s)"
-LUCID=/tmp/bin/lucid SHARDS=4 SEED_OFFSET=96 SIZE=512x512 ROOMS=6 ROOMS_FIRST=0 FRAMES=32 SEQUENCES=1 \
+LUCID=/tmp/bin/lucid SHARDS=4 SEED_OFFSET=96 STOPS=0.3 SIZE=512x512 ROOMS=6 ROOMS_FIRST=0 FRAMES=32 SEQUENCES=1 \
   VARIANTS="kernel:l1gradflip:0-12:::$W kernel:l1gradflip:0-24:::$W kernel:l1gradflip:0-12:::$W+history-frames=12" \
   INIT="$committed" MINUTES=${MINUTES:-4.5} TRAIN_ARGS="--watch covered-light" \
   DATA=/tmp/lucid-dataset training/compare_gpu.sh /tmp/train-out
