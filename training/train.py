@@ -160,11 +160,12 @@ def load_weights(model, path):
     layers; the kernel model takes every layer whose shapes match (so direct weights start its
     shared layers) and starts the others afresh. A `lucid-rae-v2` file's first layer, which has
     fewer inputs, starts the first layer with the new inputs' weights at zero. The file's
-    `emission_motion` and `history_frames` metadata, when there, set the model's. A file of a wider network starts a
-    narrower model from the channels its layers weigh most (`narrow`). A file of fewer kernel scales
-    starts a model of more: its coarsest head gains the weight `a` of the new scale, at
-    sigmoid(NEW_SCALE_BIAS) everywhere, so that the new scale starts almost unused. A file without
-    the linear mix starts a model with it at sigmoid(LINEAR_MIX_BIAS) everywhere."""
+    `emission_motion` and `history_frames` metadata, when there, set the model's. A file of a
+    wider network starts a narrower model from the channels its layers weigh most (`narrow`). A
+    file of fewer kernel scales starts a model of more: its coarsest head gains the weight `a` of
+    the new scale, at sigmoid(NEW_SCALE_BIAS) everywhere, so that the new scale starts almost
+    unused. A file without the linear mix starts a model with it at sigmoid(LINEAR_MIX_BIAS)
+    everywhere."""
     tensors = load_file(path)
     widths = widths_of(tensors) if all(f"{name}.weight" in tensors for name in HIDDEN) else model.widths
     if widths != model.widths:
