@@ -1,5 +1,6 @@
 #!/usr/bin/env bash
-# Thirty-sixth session, for the next session's device time (one H200; not yet run). The thirtieth
+# Thirty-sixth session, run in the thirty-seventh on one H200 (training/README.md, "Training windows
+# that reach 32 frames"). The thirtieth
 # session's fine-tuning against blotches from the committed weights (the recipe runs/v22 and v29
 # used, without the energy term) on a fresh dataset (4 shards, SEED_OFFSET 96) in which three
 # sequences of ten slow down until the camera rests (`lucid dataset --stops 0.3`: the held-out
