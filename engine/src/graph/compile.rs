@@ -133,27 +133,11 @@ fn next_barrier(
 ) -> Option<Barrier> {
     let info = access.info();
     let layout_change = is_image && track.layout != info.layout;
-    let barrier = if info.writes {
+    // Whether a barrier is needed, and the earlier stages it waits for.
+    let (needed, stage) = if info.writes {
         // Write after write (memory dependency) and write after read (execution dependency).
         let stage = track.write_stage | track.read_stage;
-        let needed = layout_change || !stage.is_empty();
-        let b = needed.then(|| Barrier {
-            resource: id,
-            src: BarrierSrc::Earlier {
-                stage: if stage.is_empty() { info.stage } else { stage },
-                access: track.write_access,
-            },
-            dst_stage: info.stage,
-            dst_access: info.access,
-            old_layout: Some(track.layout),
-            new_layout: info.layout,
-        });
-        track.write_stage = info.stage;
-        track.write_access = info.access;
-        track.visible_stage = vk::PipelineStageFlags2::NONE;
-        track.visible_access = vk::AccessFlags2::NONE;
-        track.read_stage = vk::PipelineStageFlags2::NONE;
-        b
+        (layout_change || !stage.is_empty(), stage)
     } else {
         let covered = track.write_stage.is_empty()
             || (track.visible_stage.contains(info.stage)
@@ -164,18 +148,27 @@ fn next_barrier(
         } else {
             track.write_stage
         };
-        let b = (layout_change || !covered).then(|| Barrier {
-            resource: id,
-            src: BarrierSrc::Earlier {
-                stage: if stage.is_empty() { info.stage } else { stage },
-                access: track.write_access,
-            },
-            dst_stage: info.stage,
-            dst_access: info.access,
-            old_layout: Some(track.layout),
-            new_layout: info.layout,
-        });
-        if b.is_some() {
+        (layout_change || !covered, stage)
+    };
+    let barrier = needed.then(|| Barrier {
+        resource: id,
+        src: BarrierSrc::Earlier {
+            stage: if stage.is_empty() { info.stage } else { stage },
+            access: track.write_access,
+        },
+        dst_stage: info.stage,
+        dst_access: info.access,
+        old_layout: Some(track.layout),
+        new_layout: info.layout,
+    });
+    if info.writes {
+        track.write_stage = info.stage;
+        track.write_access = info.access;
+        track.visible_stage = vk::PipelineStageFlags2::NONE;
+        track.visible_access = vk::AccessFlags2::NONE;
+        track.read_stage = vk::PipelineStageFlags2::NONE;
+    } else {
+        if needed {
             track.visible_stage |= info.stage;
             track.visible_access |= info.access;
         }
@@ -183,8 +176,7 @@ fn next_barrier(
             track.read_stage = vk::PipelineStageFlags2::NONE;
         }
         track.read_stage |= info.stage;
-        b
-    };
+    }
     track.layout = info.layout;
     barrier
 }
