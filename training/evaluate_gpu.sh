@@ -11,8 +11,10 @@
 # reference rendered again with another seed as one more method (the reference's own noise);
 # OPTIONS, more options of `lucid sequence` (e.g. --edge-emission); OIDN=0 skips OIDN; MAPS=1 adds
 # `lucid evaluate --maps` (OUT_DIR/summary_<scene>.txt and by_brightness_<scene>.csv, the light
-# kept by brightness); SCENES, the held-out scenes (classroom caustics). On a machine of several
-# GPUs the scenes run at once, one a GPU (gpus.sh).
+# kept by brightness); SCENES, the held-out scenes (classroom caustics); FIRST, shorter lengths
+# (space-separated) also evaluated from the same frames (`lucid evaluate --frames N`:
+# OUT_DIR/metrics_<scene>_first<N>.csv, with MAPS the summary and by_brightness likewise). On a
+# machine of several GPUs the scenes run at once, one a GPU (gpus.sh).
 set -euo pipefail
 out=${1:?usage: training/evaluate_gpu.sh OUT_DIR}
 lucid=$(realpath "${LUCID:-target/release/lucid}")
@@ -36,13 +38,23 @@ evaluate_scene() {
     # shellcheck disable=SC2046
     env $(gpu_env "$2") python3 "$(dirname "$0")/oidn_baseline.py" "$dir"
   fi
+  evaluate_copy "$dir" "$scene" "$dir"
+  for n in ${FIRST:-}; do
+    evaluate_copy "$dir" "${scene}_first$n" "$dir/first-$n" --frames "$n"
+  done
+}
+# `lucid evaluate DIR ARGS...`, then from RESULTS (where it wrote) its metrics, and with MAPS its
+# summary and light by brightness, into OUT_DIR under SUFFIX: evaluate_copy DIR SUFFIX RESULTS ARGS...
+evaluate_copy() {
+  local dir=$1 suffix=$2 results=$3
+  shift 3
   if [ "${MAPS:-0}" != 0 ]; then
-    "$lucid" evaluate "$dir" --maps | tee "$out/summary_$scene.txt"
-    cp "$dir/maps/by_brightness.csv" "$out/by_brightness_$scene.csv"
+    "$lucid" evaluate "$dir" --maps "$@" | tee "$out/summary_$suffix.txt"
+    cp "$results/maps/by_brightness.csv" "$out/by_brightness_$suffix.csv"
   else
-    "$lucid" evaluate "$dir"
+    "$lucid" evaluate "$dir" "$@"
   fi
-  cp "$dir/metrics.csv" "$out/metrics_$scene.csv"
+  cp "$results/metrics.csv" "$out/metrics_$suffix.csv"
 }
 # The scenes one after another on one GPU, at once on several (scene K on GPU K % GPUS).
 pids=()

@@ -1,6 +1,7 @@
 //! The `lucid` command line on the machine's device (lavapipe in CI): listings, headless renders of
 //! each algorithm and denoiser, and clear one-line errors with a non-zero exit for bad input.
 
+use std::path::Path;
 use std::process::Command;
 
 mod run_lucid;
@@ -751,6 +752,76 @@ fn evaluate_maps_where_each_method_flickers_and_differs() {
         "{csv}"
     );
     std::fs::remove_dir_all(&dir).unwrap();
+}
+
+#[test]
+fn evaluate_the_first_frames_as_a_shorter_sequence() {
+    // 16x16 frames of one grey each, 3 frames; the reference brightens at frame 2, so the mean
+    // brightness that divides the instability differs between the first 2 frames and all 3.
+    let write = |dir: &Path, frames: &[(&str, &[f32])]| {
+        for (method, greys) in frames {
+            std::fs::create_dir_all(dir.join(method)).unwrap();
+            for (i, grey) in greys.iter().enumerate() {
+                let pixels = vec![[*grey, *grey, *grey, 1.0]; 256];
+                let image = lucid_engine::capture::ImageData::from_pixels(16, 16, pixels).unwrap();
+                let path = dir.join(method).join(format!("{i:04}.exr"));
+                lucid_engine::capture::save(path, &image).unwrap();
+            }
+        }
+    };
+    let long = temp("evaluate-first-long");
+    write(
+        &long,
+        &[
+            ("reference", &[1.0, 1.0, 4.0]),
+            ("none", &[1.0, 1.5, 2.0]),
+            ("svgf", &[1.0, 1.2, 3.0]),
+        ],
+    );
+    let short = temp("evaluate-first-short");
+    write(
+        &short,
+        &[
+            ("reference", &[1.0, 1.0]),
+            ("none", &[1.0, 1.5]),
+            ("svgf", &[1.0, 1.2]),
+        ],
+    );
+    let out = lucid(&[
+        "evaluate",
+        long.to_str().unwrap(),
+        "--frames",
+        "2",
+        "--maps",
+    ]);
+    assert!(out.status.success(), "{}", stderr(&out));
+    assert!(
+        !long.join("metrics.csv").exists(),
+        "the whole sequence's untouched"
+    );
+    let first = long.join("first-2");
+    assert!(first.join("maps").join("none.png").exists());
+    let out = lucid(&["evaluate", short.to_str().unwrap()]);
+    assert!(out.status.success(), "{}", stderr(&out));
+    let csv = |dir: &Path| std::fs::read_to_string(dir.join("metrics.csv")).unwrap();
+    assert_eq!(csv(&first), csv(&short));
+    let out = lucid(&["evaluate", long.to_str().unwrap()]);
+    assert!(out.status.success(), "{}", stderr(&out));
+    assert_ne!(
+        csv(&long),
+        csv(&short),
+        "the third frame counts without --frames"
+    );
+    assert_fails_at_once(
+        &["evaluate", long.to_str().unwrap(), "--frames", "4"],
+        "reference/ has 3 frames, fewer than the 4 to evaluate",
+    );
+    assert_clear_failure(
+        &["evaluate", long.to_str().unwrap(), "--frames", "1"],
+        "'--frames <N>': 1 is not in 2..",
+    );
+    std::fs::remove_dir_all(&long).unwrap();
+    std::fs::remove_dir_all(&short).unwrap();
 }
 
 #[test]

@@ -29,6 +29,11 @@ pub struct EvaluateArgs {
     /// reference's brightness, and the share of each band's light each method keeps).
     #[arg(long)]
     maps: bool,
+    /// Evaluate only the first N frames (at least 2), as if the sequences had been rendered N
+    /// frames long, into `DIR/first-N/` (the same files), so that one longer sequence also gives
+    /// a shorter one's figures and its own stay.
+    #[arg(long, value_name = "N", value_parser = clap::value_parser!(u32).range(2..))]
+    frames: Option<u32>,
 }
 
 /// Evaluates the folder.
@@ -37,7 +42,12 @@ pub fn run(args: &EvaluateArgs) -> anyhow::Result<()> {
         exposure: args.exposure,
         tone: capture::ToneCurve::Aces,
     };
-    evaluate_folder(&args.dir, &display, args.maps)
+    evaluate_folder(
+        &args.dir,
+        &display,
+        args.maps,
+        args.frames.map(|n| n as usize),
+    )
 }
 
 /// Methods whose frames other programs write into a sequence folder, evaluated when present:
@@ -58,13 +68,26 @@ const COLUMNS: [(&str, Metric); 5] = [
 
 /// Evaluates every method folder of `dir` against `dir/reference`, writing `metrics.csv` and
 /// `metrics.svg` there (and `stability.svg`/`.png` where methods have GPU times, and with `maps`
-/// the instability and FLIP maps, `maps.rs`) and printing the means.
-pub fn evaluate_folder(dir: &Path, display: &PngEncoding, maps: bool) -> anyhow::Result<()> {
+/// the instability and FLIP maps, `maps.rs`) and printing the means. With `first`, only the first
+/// that many frames of each folder, and the files go into `dir/first-<first>/`.
+pub fn evaluate_folder(
+    dir: &Path,
+    display: &PngEncoding,
+    maps: bool,
+    first: Option<usize>,
+) -> anyhow::Result<()> {
     let methods = method_folders(dir)?;
-    let reference = load_frames(&dir.join("reference"))?;
+    let reference = load_frames(&dir.join("reference"), first)?;
+    if let Some(first) = first {
+        anyhow::ensure!(
+            reference.len() == first,
+            "reference/ has {} frames, fewer than the {first} to evaluate",
+            reference.len()
+        );
+    }
     let frames = methods
         .iter()
-        .map(|method| load_frames(&dir.join(method)))
+        .map(|method| load_frames(&dir.join(method), first))
         .collect::<anyhow::Result<Vec<_>>>()?;
     for (method, frames) in methods.iter().zip(&frames) {
         anyhow::ensure!(
@@ -74,19 +97,28 @@ pub fn evaluate_folder(dir: &Path, display: &PngEncoding, maps: bool) -> anyhow:
             reference.len()
         );
     }
+    let out_dir = match first {
+        Some(first) => {
+            let out_dir = dir.join(format!("first-{first}"));
+            std::fs::create_dir_all(&out_dir)
+                .with_context(|| format!("creating {}", out_dir.display()))?;
+            out_dir
+        }
+        None => dir.to_path_buf(),
+    };
     // Each reference frame is prepared once for every method, frames in parallel.
     let tests: Vec<&[ImageData]> = frames.iter().map(Vec::as_slice).collect();
     let metrics = evaluate_sequences(&tests, &reference, display)
         .with_context(|| format!("evaluating {}", methods.join(", ")))?;
     let results: Vec<(&str, SequenceMetrics)> =
         methods.iter().map(String::as_str).zip(metrics).collect();
-    let csv = dir.join("metrics.csv");
+    let csv = out_dir.join("metrics.csv");
     write_atomic(&csv, to_csv(&results).as_bytes())
         .with_context(|| format!("writing {}", csv.display()))?;
-    let svg = dir.join("metrics.svg");
+    let svg = out_dir.join("metrics.svg");
     write_atomic(&svg, to_svg(&results).as_bytes())
         .with_context(|| format!("writing {}", svg.display()))?;
-    let chart = stability::write_chart(dir, &results)?;
+    let chart = stability::write_chart(dir, &out_dir, &results)?;
     for (method, m) in &results {
         let means: Vec<String> = COLUMNS
             .iter()
@@ -96,7 +128,7 @@ pub fn evaluate_folder(dir: &Path, display: &PngEncoding, maps: bool) -> anyhow:
     }
     println!("-> {} and {}", csv.display(), svg.display());
     if maps {
-        let (maps, folder) = maps::write(dir, &methods, &frames, &reference, display)?;
+        let (maps, folder) = maps::write(&out_dir, &methods, &frames, &reference, display)?;
         let bright = maps::BRIGHTNESS_EDGES[2];
         let brightest = maps::BRIGHTNESS_EDGES[3];
         for m in &maps {
@@ -163,10 +195,10 @@ fn method_folders(dir: &Path) -> anyhow::Result<Vec<String>> {
     Ok(present)
 }
 
-/// Frames `0000.exr`, `0001.exr`, ... of a folder, until the first missing one (read in
-/// parallel).
-fn load_frames(folder: &Path) -> anyhow::Result<Vec<ImageData>> {
-    let count = (0..)
+/// Frames `0000.exr`, `0001.exr`, ... of a folder, until the first missing one or the first
+/// `first` (read in parallel).
+fn load_frames(folder: &Path, first: Option<usize>) -> anyhow::Result<Vec<ImageData>> {
+    let count = (0..first.unwrap_or(usize::MAX))
         .take_while(|&i| frame_path(folder, i).exists())
         .count();
     anyhow::ensure!(count > 0, "no frames in {}", folder.display());

@@ -186,7 +186,7 @@ pub fn run(args: &SequenceArgs) -> anyhow::Result<()> {
     if args.no_evaluate {
         return Ok(());
     }
-    evaluate::evaluate_folder(&args.out, &args.options.display(), false)
+    evaluate::evaluate_folder(&args.out, &args.options.display(), false, None)
 }
 
 /// The settings every method starts from: the options', or with `--algo auto` the algorithm and

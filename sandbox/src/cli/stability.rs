@@ -45,11 +45,12 @@ fn median_gpu_ms(folder: &Path) -> anyhow::Result<Option<f64>> {
     Ok(Some(times[times.len() / 2]))
 }
 
-/// Draws `dir/stability.png` and `.svg` from the methods with GPU times (methods rendered
-/// elsewhere, e.g. `oidn`, have none and are left out); returns the chart's SVG path, or `None`
-/// when fewer than two methods have times.
+/// Draws `out_dir/stability.png` and `.svg` from the methods with GPU times in their folders of
+/// `dir` (methods rendered elsewhere, e.g. `oidn`, have none and are left out); returns the chart's
+/// SVG path, or `None` when fewer than two methods have times.
 pub fn write_chart(
     dir: &Path,
+    out_dir: &Path,
     results: &[(&str, SequenceMetrics)],
 ) -> anyhow::Result<Option<PathBuf>> {
     let mut timed = Vec::new();
@@ -77,9 +78,9 @@ pub fn write_chart(
         panel("FLIP", "FLIP", |m| m.flip),
     ];
     let chart = converge_chart::speed_vs_accuracy("GPU time per frame (ms)", &panels)?;
-    let png = dir.join("stability.png");
+    let png = out_dir.join("stability.png");
     write_atomic(&png, &chart.png).with_context(|| format!("writing {}", png.display()))?;
-    let svg = dir.join("stability.svg");
+    let svg = out_dir.join("stability.svg");
     write_atomic(&svg, chart.svg.as_bytes())
         .with_context(|| format!("writing {}", svg.display()))?;
     Ok(Some(svg))

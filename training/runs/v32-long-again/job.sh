@@ -13,12 +13,13 @@
 # then each blended half and half with the committed weights (blend.py), and all six held out over
 # 30 frames (`caustics`, then `classroom`, with `--maps`) beside the committed weights. Writes into
 # /tmp/out: compare.json, <variant>.json, weights.tgz (w-<variant>.safetensors), then held-out.tgz
-# (metrics, summary and by_brightness per scene): six files, within the eight a command returns.
+# (metrics, summary and by_brightness per scene, over the 30 frames and over their first 20 as a
+# 20-frame sequence: FIRST=20): six files, within the eight a command returns.
 # Start and wait with training/job_gpu.sh (README, Commands):
 #   source .gpu/env.sh && training/job_gpu.sh start training/runs/v32-long-again/job.sh
 #   source .gpu/env.sh && training/job_gpu.sh wait
-# About 530 s to render and train (runs/v31: 527 s) and 720 s to evaluate (runs/v31's six extra
-# weights: 715 s). .gpu/lucid.xz: the release lucid binary of the commit this file came with.
+# About 530 s to render and train (runs/v31: 527 s) and 760 s to evaluate (runs/v31's six extra
+# weights: 715 s; the first 20 frames evaluated again, about 20 s a scene). .gpu/lucid.xz: the release lucid binary of the commit this file came with.
 set -u
 mkdir -p /tmp/bin /tmp/out && xz -dc .gpu/lucid.xz > /tmp/bin/lucid && chmod +x /tmp/bin/lucid
 rm -rf /tmp/repo /tmp/v /tmp/w-*.safetensors /tmp/b-*.safetensors && cp -r . /tmp/repo && cd /tmp/repo
@@ -45,7 +46,7 @@ cp /tmp/train-out/compare.json /tmp/out/
 tar czf /tmp/out/weights.tgz -C /tmp $(cd /tmp && ls w-*.safetensors)
 echo "EVAL-START $(date +%s)"
 rm -rf /tmp/heldout-* /tmp/eval
-FRAMES=30 BENCH=0 MAPS=1 OIDN=0 SCENES="caustics classroom" LUCID=/tmp/bin/lucid \
+FRAMES=30 FIRST=20 BENCH=0 MAPS=1 OIDN=0 SCENES="caustics classroom" LUCID=/tmp/bin/lucid \
   ALSO="$(echo /tmp/w-*.safetensors /tmp/b-*.safetensors)" \
   training/evaluate_gpu.sh /tmp/eval
 echo "EVAL-END $? $(date +%s)"
