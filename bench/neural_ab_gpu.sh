@@ -7,7 +7,8 @@
 # the runs: BIN-<stem>); `.gpu/neural_parity.xz` is
 # the parity test's binary (`cargo test --release -p lucid-tests --test neural_parity --no-run`,
 # stripped) and `.gpu/layers.tar.xz` holds `layers/` with the validation layer's library and its
-# manifest (library_path "./libVkLayer_khronos_validation.so"). For ROUNDS rounds (2) and each
+# manifest (library_path "./libVkLayer_khronos_validation.so"); bench/pack_parity.sh writes both
+# here. For ROUNDS rounds (2) and each
 # size of SIZES (1920x1080 854x480), every binary runs `lucid bench --scene classroom --algo pt
 # --denoise neural --neural-path PATH (tensor-cores) --spp 1 --max-depth 8 --frames 50 --warmup 5`;
 # writes OUT_DIR/ab.json (per binary, size and round, the median of each `neural.*` pass and their
