@@ -6,7 +6,8 @@
 #   training/job_gpu.sh wait [MARKER]           waits for a job a previous command started
 # Either waits until /tmp/job.log holds MARKER (default JOB-END) or WAIT_S seconds (default 560)
 # have passed, then copies everything the job has put in /tmp/out so far to $OUT: the weights of a
-# finished training come back even while its evaluation still runs. `wait` on a fresh machine (no
+# finished training come back even while its evaluation still runs. More files than the 8 a command
+# returns come back as one $OUT/out.tgz instead. `wait` on a fresh machine (no
 # /tmp/job.log: the previous one was given back, the job with it) says so and exits 3 at once,
 # rather than spending the command's device time waiting for a log that cannot come. Exits 0 when
 # the marker came, 2 when the wait ran out first.
@@ -46,6 +47,10 @@ while true; do
 done
 tail -n 20 "$log"
 if [ -n "${OUT:-}" ] && [ -d /tmp/out ]; then
-  cp -r /tmp/out/. "$OUT/"
+  if [ "$(find /tmp/out -type f | wc -l)" -le 8 ]; then
+    cp -r /tmp/out/. "$OUT/"
+  else
+    tar czf "$OUT/out.tgz" -C /tmp/out .
+  fi
 fi
 exit $status
