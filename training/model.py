@@ -91,6 +91,11 @@ N_MAX = 32.0
 # taps had to be of the same object, training/README.md).
 SURFACE_ALPHA = 0.1
 EMISSION_MOTION = 0.0
+# The history lengths below which the variance inputs are taken over the pixel's 3x3 neighbourhood
+# of this frame's samples rather than over its history, as SVGF estimates them for its first four
+# frames (`features`; a weights file's `spatial_variance_frames` metadata, 0 where it has none:
+# always over the history, 0 from one sample).
+SPATIAL_VARIANCE_FRAMES = 0
 # The bits of an object id the emission's history keeps in the shaders (exact in a float32).
 OBJECT_BITS = 0xFFFFFF
 LUMINANCE = (0.2126, 0.7152, 0.0722)
@@ -257,12 +262,22 @@ def antialias_surface(rec, warped_albedo, warped_emission, n, mask, emission_mot
     return albedo, torch.where(averaged, prev + (emission - prev) * alpha_emission, emission)
 
 
-def features(rec, warped, mask, accum, moment, robust):
+def neighbourhood_variance(x):
+    """The variance of `x` [B,1,H,W] over each pixel's 3x3 neighbourhood (the pixels inside the
+    image)."""
+    mean = F.avg_pool2d(x, 3, stride=1, padding=1, count_include_pad=False)
+    square = F.avg_pool2d(x * x, 3, stride=1, padding=1, count_include_pad=False)
+    return (square - mean * mean).clamp_min(0.0)
+
+
+def features(rec, warped, mask, accum, moment, robust, spatial_variance_frames=SPATIAL_VARIANCE_FRAMES):
     """The network's 24 input channels for one frame: 15 as in `lucid-rae-v1` (log radiance,
     albedo, normal, roughness, log depth, warped output, mask), then log(1 + running mean) (3),
-    its history length / N_MAX and log(1 + the standard deviation of luminance over it; 0 from
-    one sample) as in v2, then log(1 + the robust mean expanded back) (3) and the standard
-    deviation of the compressed luminance (0 from one sample)."""
+    its history length / N_MAX and log(1 + the standard deviation of luminance over it) as in v2,
+    then log(1 + the robust mean expanded back) (3) and the standard deviation of the compressed
+    luminance. Both deviations are 0 from one sample; where the history length is below
+    `spatial_variance_frames` they are instead those of this frame's samples over the pixel's 3x3
+    neighbourhood (`neighbourhood_variance`)."""
     mean, n = accum[:, 0:3], accum[:, 3:4]
     mean_lum = luminance(mean)
     zero = torch.zeros_like(n)
@@ -270,6 +285,12 @@ def features(rec, warped, mask, accum, moment, robust):
     robust_mean = robust[:, 0:3]
     robust_lum = luminance(robust_mean)
     robust_variance = torch.where(n > 1.0, (robust[:, 3:4] - robust_lum * robust_lum).clamp_min(0.0), zero)
+    if spatial_variance_frames > 0:
+        spatial = n < float(spatial_variance_frames)
+        current = rec["demodulated"].clamp_min(0.0)
+        variance = torch.where(spatial, neighbourhood_variance(luminance(current)), variance)
+        squeezed = luminance(compress(current))
+        robust_variance = torch.where(spatial, neighbourhood_variance(squeezed), robust_variance)
     return torch.cat(
         [
             torch.log1p(rec["demodulated"].clamp_min(0.0)),
@@ -312,6 +333,9 @@ class RecurrentDenoiser(nn.Module):
         self.emission_motion = EMISSION_MOTION
         # `accumulate`'s longest history (the weights file's `history_frames` metadata).
         self.history_frames = int(N_MAX)
+        # The history lengths whose variance inputs are spatial (`features`; the weights file's
+        # `spatial_variance_frames` metadata).
+        self.spatial_variance_frames = SPATIAL_VARIANCE_FRAMES
 
     def step(self, record, state, fp16_storage=False, objects=None):
         """One frame. `record` [B,RECORD_SIZE,H,W]; `objects` [B,1,H,W] the object id of each
@@ -356,7 +380,7 @@ class RecurrentDenoiser(nn.Module):
         albedo, emission = antialias_surface(
             rec, warped_albedo.detach(), warped_emission.detach(), accum[:, 3:4], surface_mask, self.emission_motion
         )
-        x = half(features(rec, warped, mask, accum, moment, robust), fp16_storage)
+        x = half(features(rec, warped, mask, accum, moment, robust, self.spatial_variance_frames), fp16_storage)
         warped, mask = x[:, 11:14], x[:, 14:15]  # as the output pass reads them: stored
         c = self.convs
         r = lambda t: half(F.relu(t), fp16_storage)  # noqa: E731

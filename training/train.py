@@ -160,7 +160,8 @@ def load_weights(model, path):
     layers; the kernel model takes every layer whose shapes match (so direct weights start its
     shared layers) and starts the others afresh. A `lucid-rae-v2` file's first layer, which has
     fewer inputs, starts the first layer with the new inputs' weights at zero. The file's
-    `emission_motion` and `history_frames` metadata, when there, set the model's. A file of a
+    `emission_motion`, `history_frames` and `spatial_variance_frames` metadata, when there, set
+    the model's. A file of a
     wider network starts a narrower model from the channels its layers weigh most (`narrow`). A
     file of fewer kernel scales starts a model of more: its coarsest head gains the weight `a` of
     the new scale, at sigmoid(NEW_SCALE_BIAS) everywhere, so that the new scale starts almost
@@ -177,6 +178,8 @@ def load_weights(model, path):
         model.emission_motion = float(meta["emission_motion"])
     if "history_frames" in meta:
         model.history_frames = int(meta["history_frames"])
+    if "spatial_variance_frames" in meta:
+        model.spatial_variance_frames = int(meta["spatial_variance_frames"])
     loaded, skipped = [], []
     with torch.no_grad():
         for name, conv in named_convs(model).items():
@@ -374,6 +377,12 @@ def main():
         help="the most frames the running means average before they become moving averages "
         f"(1 to {int(N_MAX)}; default: --init's, else {int(N_MAX)})",
     )
+    ap.add_argument(
+        "--spatial-variance-frames",
+        type=int,
+        help="the history lengths below which the variance inputs are taken over the 3x3 neighbourhood "
+        f"of the frame's samples (0 to {int(N_MAX)}; default: --init's, else 0: never)",
+    )
     ap.add_argument("--val-every", type=int, default=250, help="validate every this many steps")
     ap.add_argument(
         "--watch",
@@ -417,6 +426,10 @@ def main():
         if not 1 <= args.history_frames <= N_MAX:
             raise SystemExit(f"--history-frames {args.history_frames} is not between 1 and {int(N_MAX)}")
         model.history_frames = args.history_frames
+    if args.spatial_variance_frames is not None:
+        if not 0 <= args.spatial_variance_frames <= N_MAX:
+            raise SystemExit(f"--spatial-variance-frames {args.spatial_variance_frames} is not between 0 and {int(N_MAX)}")
+        model.spatial_variance_frames = args.spatial_variance_frames
     group.same_start(model)
     cost = model_cost(model, dev)
     if group.first:
@@ -503,6 +516,7 @@ def main():
         "loss_weights": ",".join(str(w) for w in ws),
         "emission_motion": str(model.emission_motion),
         "history_frames": str(model.history_frames),
+        "spatial_variance_frames": str(model.spatial_variance_frames),
         "burn_in": str(args.burn_in) if burn_in_min == args.burn_in else f"{burn_in_min}-{args.burn_in}",
         "fireflies": str(args.fireflies),
         "blotch": str(args.blotch),

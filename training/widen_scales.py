@@ -27,7 +27,7 @@ from kernel_model import HEAD_NAMES, export_tensors, kernel_layers
 from train import NEW_SCALE_BIAS, build_model, file_linear_mix, file_scales, file_widths, load_weights
 
 # The metadata a weights file keeps from its source: what the renderer reads.
-KEPT = ("format", "decoder", "model", "emission_motion", "history_frames")
+KEPT = ("format", "decoder", "model", "emission_motion", "history_frames", "spatial_variance_frames")
 
 
 def main():

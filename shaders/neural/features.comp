@@ -5,7 +5,9 @@
 // radiance (`accumulate`, reprojected with the same taps): log(1 + mean), its history length /
 // N_MAX and log(1 + the standard deviation of luminance), then the running mean of the radiance
 // range-compressed against fireflies (`compress`): log(1 + its mean expanded back) and the
-// standard deviation of its luminance. Also writes this frame's surface (depth, normal), running
+// standard deviation of its luminance; where the history is shorter than the weights file's
+// `spatial_variance_frames`, both deviations are this frame's over the pixel's 3x3 neighbourhood
+// (`neighbourhood_variance`). Also writes this frame's surface (depth, normal), running
 // means and second moments for the next frame, and the first hits' albedo and log(1 + emission)
 // averaged over time with those of the same taps that saw the same object (`antialias_surface`;
 // the object id kept in the emission's alpha; the emission supersampled at emitters' edges weighs
@@ -67,6 +69,9 @@ layout(push_constant) uniform Params {
     // The most frames the running means average before they become exponential moving averages
     // (the weights file's `history_frames`, at most N_MAX).
     float history_frames;
+    // The history lengths below which the variance inputs are spatial (the weights file's
+    // `spatial_variance_frames`; 0: never).
+    float spatial_variance_frames;
 } params;
 
 const float DEPTH_TOLERANCE = 0.05;
@@ -107,15 +112,29 @@ shared vec3 s_radiance_quarter[2][2];
 // log(1 + emission) over the workgroup's tile and a one-pixel margin (the 3x3 neighbourhoods that
 // clamp the emission's history), each pixel's computed once (unset outside the image).
 shared vec3 s_log_emission[10][10];
+// This frame's luminance (x) and compressed luminance (y) of the demodulated radiance over the same
+// tile and margin (the 3x3 neighbourhoods of `neighbourhood_variance`), where the weights file asks
+// for spatial variances (unset outside the image).
+shared vec2 s_luminance[10][10];
 
-// Fills s_log_emission. Every invocation of the workgroup calls it (barrier).
-void load_log_emission() {
+// The position of `q`, within one pixel of the workgroup's tile, in the shared arrays.
+ivec2 margin_index(ivec2 q) {
+    return q - (ivec2(gl_WorkGroupID.xy) * 8 - 1);
+}
+
+// Fills s_log_emission and, with spatial variances, s_luminance. Every invocation of the workgroup
+// calls it (barrier).
+void load_neighbourhood() {
     ivec2 origin = ivec2(gl_WorkGroupID.xy) * 8 - 1;
     for (uint i = gl_LocalInvocationIndex; i < 100u; i += 64u) {
         ivec2 r = ivec2(i % 10u, i / 10u);
         ivec2 q = origin + r;
         if (inside_image(q, ivec2(size()))) {
             s_log_emission[r.y][r.x] = log(vec3(1.0) + input_emission(q));
+            if (params.spatial_variance_frames > 0.0) {
+                vec3 radiance = max(input_demodulated(q), vec3(0.0));
+                s_luminance[r.y][r.x] = vec2(luminance(radiance), luminance(compress(radiance)));
+            }
         }
     }
     barrier();
@@ -123,8 +142,31 @@ void load_log_emission() {
 
 // log(1 + emission) of `q`, within one pixel of the invocation's pixel and inside the image.
 vec3 log_emission(ivec2 q) {
-    ivec2 r = q - (ivec2(gl_WorkGroupID.xy) * 8 - 1);
+    ivec2 r = margin_index(q);
     return s_log_emission[r.y][r.x];
+}
+
+// The variance of this frame's luminance (x) and compressed luminance (y) over the 3x3
+// neighbourhood of `pixel`, its pixels inside the image (training/model.py,
+// `neighbourhood_variance`).
+vec2 neighbourhood_variance(ivec2 pixel) {
+    vec2 sum = vec2(0.0);
+    vec2 square = vec2(0.0);
+    float count = 0.0;
+    for (int dy = -1; dy <= 1; ++dy) {
+        for (int dx = -1; dx <= 1; ++dx) {
+            ivec2 q = pixel + ivec2(dx, dy);
+            if (inside_image(q, ivec2(size()))) {
+                ivec2 r = margin_index(q);
+                vec2 v = s_luminance[r.y][r.x];
+                sum += v;
+                square += v * v;
+                count += 1.0;
+            }
+        }
+    }
+    vec2 mean = sum / count;
+    return max(square / count - mean * mean, vec2(0.0));
 }
 
 // Writes the workgroup's pixels of `radiance` (this invocation's, clamped to 0) 2x2 average-pooled
@@ -184,7 +226,7 @@ void main() {
     if (POOLED_LEVELS > 0u) {
         pool_radiance(demodulated);
     }
-    load_log_emission();
+    load_neighbourhood();
     if (!inside) {
         return;
     }
@@ -317,10 +359,15 @@ void main() {
 
     float mean_lum = luminance(mean);
     float variance = n > 1.0 ? max(moment - mean_lum * mean_lum, 0.0) : 0.0;
-    vec3 log_mean = log(vec3(1.0) + mean);
-    float log_std = log(1.0 + sqrt(variance));
     float robust_lum = luminance(robust.rgb);
     float robust_variance = n > 1.0 ? max(robust.a - robust_lum * robust_lum, 0.0) : 0.0;
+    if (n < params.spatial_variance_frames) {
+        vec2 spatial = neighbourhood_variance(pixel);
+        variance = spatial.x;
+        robust_variance = spatial.y;
+    }
+    vec3 log_mean = log(vec3(1.0) + mean);
+    float log_std = log(1.0 + sqrt(variance));
     vec3 log_robust = log(vec3(1.0) + expand(robust.rgb));
 
     float roughness = normal_roughness.w;

@@ -25,6 +25,9 @@
 //! eighth (the first's frames) is of the committed weights with `history_frames` 1 in their
 //! metadata (made by `training/set_metadata.py`, rebuilt here from the committed ones), so the
 //! running means' cap is checked too (in the second frame they hold that frame's values alone);
+//! the ninth (the first's frames) is of the committed weights with `spatial_variance_frames` 4,
+//! rebuilt here the same way, so the variance inputs over each pixel's 3x3 neighbourhood that
+//! replace the history's in the first frames are checked too;
 //! `the_emission_stays_on_its_object`
 //! checks what that average is for over more frames.
 //! The running means of the noisy radiance and their
@@ -104,22 +107,22 @@ fn fixture(name: &'static str, weights: NetworkWeights) -> Fixture {
     }
 }
 
-/// The committed weights with their metadata's `history_frames` set to `frames`, as
+/// The committed weights with their metadata's `key` set to `value`, as
 /// `training/set_metadata.py` writes them.
-fn builtin_with_history_frames(frames: u32) -> NetworkWeights {
+fn builtin_with_metadata(key: &str, value: u32) -> NetworkWeights {
     let (_, header) = SafeTensors::read_metadata(neural::BUILTIN).expect("parse the weights");
     let mut metadata = header.metadata().clone().unwrap_or_default();
-    metadata.insert("history_frames".into(), frames.to_string());
+    metadata.insert(key.into(), value.to_string());
     let tensors = SafeTensors::deserialize(neural::BUILTIN).expect("parse the weights");
     let rewritten =
         safetensors::serialize(tensors.tensors(), &Some(metadata)).expect("write the weights");
-    NetworkWeights::from_bytes(&rewritten, "history_frames").expect("load the weights")
+    NetworkWeights::from_bytes(&rewritten, key).expect("load the weights")
 }
 
 /// The committed weights' fixture, the other decoder's, the emitters', a narrower network's, one
-/// of three scales, one of five, one with the linear mix and one whose running means hold one
-/// frame.
-fn fixtures() -> [Fixture; 8] {
+/// of three scales, one of five, one with the linear mix, one whose running means hold one
+/// frame and one whose first frames' variance inputs are spatial.
+fn fixtures() -> [Fixture; 9] {
     let load = |file: &str| {
         NetworkWeights::load(std::path::Path::new(&references(file)))
             .unwrap_or_else(|e| panic!("load {file}: {e}"))
@@ -152,7 +155,11 @@ fn fixtures() -> [Fixture; 8] {
         ),
         fixture(
             "neural_parity_short_history.safetensors",
-            builtin_with_history_frames(1),
+            builtin_with_metadata("history_frames", 1),
+        ),
+        fixture(
+            "neural_parity_spatial_variance.safetensors",
+            builtin_with_metadata("spatial_variance_frames", 4),
         ),
     ];
     let decoders = fixtures.each_ref().map(|f| f.weights.decoder());
@@ -179,6 +186,12 @@ fn fixtures() -> [Fixture; 8] {
             .iter()
             .any(|f| f.weights.history_frames() < neural::HISTORY_FRAMES),
         "the fixtures cover running means of fewer frames"
+    );
+    assert!(
+        fixtures
+            .iter()
+            .any(|f| f.weights.spatial_variance_frames() > neural::SPATIAL_VARIANCE_FRAMES),
+        "the fixtures cover spatial variance inputs"
     );
     fixtures
 }

@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Thirty-seventh session, for the next session's device time (one H200; not yet run). The
+# Thirty-seventh session, run in the thirty-eighth (one H200, 1,235 s; results beside this file and in training/README.md). The
 # committed weights are since that session a blend, half and half, of the weights before them and
 # their fine-tuning with training windows that reach 32 frames (runs/v31-long-windows: `long`
 # alone lost `classroom`, the blend kept it and took `long`'s gains on `caustics`). Does a second

@@ -43,6 +43,7 @@ pub use network::{InferencePath, Network};
 pub use weights::{
     Decoder, Layer, NetworkWeights, WeightsError, Widths, BUILTIN, EMISSION_MOTION, FEATURES,
     FORMAT, HIDDEN, HISTORY_FRAMES, KERNEL_HEADS, KERNEL_SCALES, KERNEL_TAPS,
+    SPATIAL_VARIANCE_FRAMES,
 };
 
 use crate::denoise::gbuffer::GBuffer;
@@ -292,6 +293,8 @@ struct FeaturesParams {
     emission_motion: f32,
     /// [`NetworkWeights::history_frames`].
     history_frames: f32,
+    /// [`NetworkWeights::spatial_variance_frames`].
+    spatial_variance_frames: f32,
 }
 
 /// Adds the denoiser over the frame's `inputs` at `width` x `height`, with its history under the
@@ -336,6 +339,7 @@ pub fn add_neural(
     ];
     let emission_motion = network.emission_motion;
     let history_frames = network.history_frames as f32;
+    let spatial_variance_frames = network.spatial_variance_frames as f32;
     inputs.read(&mut p);
     p.read("u_prev_output", prev[0])
         .read("u_ids", inputs.ids)
@@ -345,6 +349,7 @@ pub fn add_neural(
             history_valid: u32::from(prev.iter().all(|&h| ctx.history_valid(h))),
             emission_motion,
             history_frames,
+            spatial_variance_frames,
         });
     p.history("u_prev_surface", "u_surface", surface_history);
     let accum = p.history("u_prev_accum", "u_accum", accum_history);

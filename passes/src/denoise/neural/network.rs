@@ -78,6 +78,8 @@ pub struct Network {
     pub(super) emission_motion: f32,
     /// [`NetworkWeights::history_frames`].
     pub(super) history_frames: u32,
+    /// [`NetworkWeights::spatial_variance_frames`].
+    pub(super) spatial_variance_frames: u32,
     /// The layers, in execution order ([`Decoder::layers`]).
     pub(super) layers: Vec<Layer>,
     /// Every layer's float32 weights and bias (`conv.comp`'s layout).
@@ -120,6 +122,7 @@ impl Network {
             linear_mix: weights.linear_mix(),
             emission_motion: weights.emission_motion(),
             history_frames: weights.history_frames(),
+            spatial_variance_frames: weights.spatial_variance_frames(),
             layers: weights.layers().to_vec(),
             buffer,
             offsets: (0..weights.layers().len())

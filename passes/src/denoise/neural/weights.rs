@@ -245,6 +245,12 @@ pub const EMISSION_MOTION: f32 = 0.0;
 /// a smaller number; the network's input divides the history length by it either way.
 pub const HISTORY_FRAMES: u32 = 32;
 
+/// The history lengths below which the network's variance inputs are taken over each pixel's 3x3
+/// neighbourhood of the frame's samples rather than over its history (`SPATIAL_VARIANCE_FRAMES`
+/// in training/model.py, `features`), where the weights file's `spatial_variance_frames` metadata
+/// does not set them: none, so a first frame's variance inputs are 0.
+pub const SPATIAL_VARIANCE_FRAMES: u32 = 0;
+
 /// A number from the metadata entry `key` of `file` (its text `found`): `default` where the entry
 /// is absent, an error saying what was `expected` where it does not parse or is not `valid`.
 fn metadata_number<T: std::str::FromStr>(
@@ -278,6 +284,7 @@ pub struct NetworkWeights {
     linear_mix: bool,
     emission_motion: f32,
     history_frames: u32,
+    spatial_variance_frames: u32,
     widths: Widths,
     layers: Vec<Layer>,
     packed: Vec<f32>,
@@ -343,6 +350,14 @@ impl NetworkWeights {
             |v| (1..=HISTORY_FRAMES).contains(v),
             &format!("a whole number from 1 to {HISTORY_FRAMES}"),
         )?;
+        let spatial_variance_frames = metadata_number(
+            file,
+            "spatial_variance_frames",
+            entry("spatial_variance_frames"),
+            SPATIAL_VARIANCE_FRAMES,
+            |v| *v <= HISTORY_FRAMES,
+            &format!("a whole number from 0 to {HISTORY_FRAMES}"),
+        )?;
         let tensors = SafeTensors::deserialize(bytes).map_err(|e| format_error(e.to_string()))?;
         let widths = read_widths(&tensors, file)?;
         let (scales, linear_mix) = match decoder {
@@ -383,6 +398,7 @@ impl NetworkWeights {
             linear_mix,
             emission_motion,
             history_frames,
+            spatial_variance_frames,
             widths,
             layers,
             packed,
@@ -416,6 +432,12 @@ impl NetworkWeights {
     /// (the file's `history_frames` metadata, else [`HISTORY_FRAMES`]).
     pub fn history_frames(&self) -> u32 {
         self.history_frames
+    }
+
+    /// The history lengths below which the variance inputs are spatial (the file's
+    /// `spatial_variance_frames` metadata, else [`SPATIAL_VARIANCE_FRAMES`]).
+    pub fn spatial_variance_frames(&self) -> u32 {
+        self.spatial_variance_frames
     }
 
     /// The U-Net's widths (its tensors' shapes).
@@ -764,6 +786,17 @@ mod tests {
             HISTORY_FRAMES,
             ("20", 20),
             &["0", "33", "-1", "20.5", "long"],
+        );
+    }
+
+    #[test]
+    fn the_spatial_variance_frames_come_from_the_metadata_when_it_is_there() {
+        check_metadata_entry(
+            "spatial_variance_frames",
+            NetworkWeights::spatial_variance_frames,
+            SPATIAL_VARIANCE_FRAMES,
+            ("4", 4),
+            &["33", "-1", "3.5", "few"],
         );
     }
 
