@@ -10,7 +10,8 @@
 # that a dataset of other training rooms can be rendered with the same validation rooms and built-in
 # scenes (shard 0 keeps seed 0); ROOMS_FIRST, shard 0's procedural training rooms (default ROOMS: with
 # the built-in scenes and the validation rooms it is the slowest shard); SIZE, the frames' size
-# (256x256); STOPS, the share of sequences whose camera comes to rest (`lucid dataset --stops`,
+# (256x256); SIZE_FIRST, shard 0's (default SIZE: its built-in scenes and validation rooms may stay
+# smaller than larger training rooms, which then cost less to render); STOPS, the share of sequences whose camera comes to rest (`lucid dataset --stops`,
 # default 0). On a machine of several GPUs shard K renders on GPU K % GPUS
 # (gpus.sh). compare_gpu.sh calls it.
 set -euo pipefail
@@ -26,8 +27,10 @@ pids=()
 for ((k = 0; k < shards; k++)); do
   seed=$k
   rooms=${ROOMS:-32}
+  size=${SIZE:-256x256}
   if [ "$k" -eq 0 ]; then
     rooms=${ROOMS_FIRST:-$rooms}
+    size=${SIZE_FIRST:-$size}
     extra=(--validation-rooms 4)
   else
     extra=(--validation-rooms 0 --no-builtin)
@@ -36,7 +39,7 @@ for ((k = 0; k < shards; k++)); do
   dest=$data
   if [ "$shards" -gt 1 ]; then dest=$data/shard-$k; fi
   # shellcheck disable=SC2046 # gpu_env's assignments are separate words
-  env $(gpu_env "$k") "$lucid" dataset --out "$dest" --size "${SIZE:-256x256}" --frames "${FRAMES:-16}" --rooms "$rooms" \
+  env $(gpu_env "$k") "$lucid" dataset --out "$dest" --size "$size" --frames "${FRAMES:-16}" --rooms "$rooms" \
     --sequences "${SEQUENCES:-2}" --reference-spp 256 --seed "$seed" --stops "${STOPS:-0}" "${extra[@]}" &
   pids+=($!)
 done
