@@ -23,8 +23,8 @@
 # by_brightness per scene; job_gpu.sh brings them back as one out.tgz. Start and wait:
 #   source .gpu/env.sh && training/job_gpu.sh start training/runs/v34-large-frames/job.sh
 #   source .gpu/env.sh && training/job_gpu.sh wait
-# About 30 s for the parity test, 300 s to render (an estimate: twice runs/v33's pixels), 300 s to
-# train and blend, 720 s to evaluate (six weights files): some 1,350 s.
+# About 30 s for the parity test, 350 s to render (an estimate: twice runs/v33's pixels, which
+# took 177 s), 300 s to train and blend, 720 s to evaluate (six weights files): some 1,400 s.
 # .gpu/lucid.xz: the release lucid binary of the commit this file came with.
 set -u
 rm -rf /tmp/out && mkdir -p /tmp/bin /tmp/out /tmp/v33 && xz -dc .gpu/lucid.xz > /tmp/bin/lucid && chmod +x /tmp/bin/lucid
