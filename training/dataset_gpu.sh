@@ -11,9 +11,9 @@
 # scenes (shard 0 keeps seed 0); ROOMS_FIRST, shard 0's procedural training rooms (default ROOMS: with
 # the built-in scenes and the validation rooms it is the slowest shard); SIZE, the frames' size
 # (256x256); SIZE_FIRST, shard 0's (default SIZE: its built-in scenes and validation rooms may stay
-# smaller than larger training rooms, which then cost less to render); STOPS, the share of sequences whose camera comes to rest (`lucid dataset --stops`,
-# default 0). On a machine of several GPUs shard K renders on GPU K % GPUS
-# (gpus.sh). compare_gpu.sh calls it.
+# smaller than larger training rooms, which then cost less to render); STOPS, the share of
+# sequences whose camera comes to rest (`lucid dataset --stops`, default 0). On a machine of several
+# GPUs shard K renders on GPU K % GPUS (gpus.sh). compare_gpu.sh calls it.
 set -euo pipefail
 data=${1:?usage: training/dataset_gpu.sh DATA_DIR}
 if [ -f "$data/index.json" ] || [ -f "$data/shard-0/index.json" ]; then

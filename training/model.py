@@ -278,6 +278,7 @@ def features(rec, warped, mask, accum, moment, robust, spatial_variance_frames=S
     luminance. Both deviations are 0 from one sample; where the history length is below
     `spatial_variance_frames` they are instead those of this frame's samples over the pixel's 3x3
     neighbourhood (`neighbourhood_variance`)."""
+    current = rec["demodulated"].clamp_min(0.0)
     mean, n = accum[:, 0:3], accum[:, 3:4]
     mean_lum = luminance(mean)
     zero = torch.zeros_like(n)
@@ -287,13 +288,12 @@ def features(rec, warped, mask, accum, moment, robust, spatial_variance_frames=S
     robust_variance = torch.where(n > 1.0, (robust[:, 3:4] - robust_lum * robust_lum).clamp_min(0.0), zero)
     if spatial_variance_frames > 0:
         spatial = n < float(spatial_variance_frames)
-        current = rec["demodulated"].clamp_min(0.0)
         variance = torch.where(spatial, neighbourhood_variance(luminance(current)), variance)
         squeezed = luminance(compress(current))
         robust_variance = torch.where(spatial, neighbourhood_variance(squeezed), robust_variance)
     return torch.cat(
         [
-            torch.log1p(rec["demodulated"].clamp_min(0.0)),
+            torch.log1p(current),
             rec["albedo"],
             rec["normal"],
             rec["roughness"],

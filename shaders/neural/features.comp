@@ -117,15 +117,20 @@ shared vec3 s_log_emission[10][10];
 // for spatial variances (unset outside the image).
 shared vec2 s_luminance[10][10];
 
+// The pixel at the shared arrays' [0][0]: one pixel up and left of the workgroup's tile.
+ivec2 margin_origin() {
+    return ivec2(gl_WorkGroupID.xy) * 8 - 1;
+}
+
 // The position of `q`, within one pixel of the workgroup's tile, in the shared arrays.
 ivec2 margin_index(ivec2 q) {
-    return q - (ivec2(gl_WorkGroupID.xy) * 8 - 1);
+    return q - margin_origin();
 }
 
 // Fills s_log_emission and, with spatial variances, s_luminance. Every invocation of the workgroup
 // calls it (barrier).
 void load_neighbourhood() {
-    ivec2 origin = ivec2(gl_WorkGroupID.xy) * 8 - 1;
+    ivec2 origin = margin_origin();
     for (uint i = gl_LocalInvocationIndex; i < 100u; i += 64u) {
         ivec2 r = ivec2(i % 10u, i / 10u);
         ivec2 q = origin + r;
