@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Thirty-eighth session, for the next session's device time (one H200; not yet run). Two questions
+# Thirty-eighth session, run in the thirty-ninth (one H200, 1,435 s; training/README.md has the results). Two questions
 # in one job, each from what the thirty-eighth session measured:
 # 1. runs/v33-spatial-variance held out: the variance inputs over the neighbourhood in the first
 #    frames (w-control and w-spatial4 from its weights.tgz; no gain on lavapipe at 320x180).
