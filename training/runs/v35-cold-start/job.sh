@@ -1,10 +1,18 @@
 #!/usr/bin/env bash
-# Thirty-ninth session, for the next session's device time (one H200; not yet run). Two questions:
+# Thirty-ninth session, for the next session's device time (one H200; not yet run). Three questions:
 # 1. runs/v33's `spatial4` blend held out on both scenes (runs/v33-spatial-variance/eval.sh's
 #    work: it tied the committed weights on `classroom` over 20 frames; alone it has the best
 #    `caustics` yet). Ship it if it beats the committed weights' `caustics` without losing
 #    `classroom`.
-# 2. Weights for the first frames after a reset alone. Held out at 1080p the learned denoiser's
+# 2. The first frames after a reset filtered further (training/cold_filter_study.py: a-trous steps
+#    over the learned denoiser's output, edge-stopped by normals and luminance, blended in over the
+#    first K frames), on the 30-frame run's held-out frames, evaluated over their first 8. On
+#    lavapipe (`classroom`, frame 0) it gains 3% of FLIP at 320x180 and 6.6% at 640x360: the
+#    learned denoiser under-filters the cold frames, the more so the larger the frame. Needs the
+#    OpenEXR wheel for the machine's Python 3.12 in .gpu/wheels (`pip download --no-deps
+#    --only-binary=:all: --python-version 3.12 --platform manylinux2014_x86_64 -d .gpu/wheels
+#    OpenEXR`) unless OpenEXR imports there.
+# 3. Weights for the first frames after a reset alone. Held out at 1080p the learned denoiser's
 #    FLIP is 1.075x SVGF's at frame 0 of `classroom`, 0.96x at frame 3, 0.70x warmed up; every
 #    fine-tuning since the blend made frame 0 no better (runs/v34: larger rooms made it worse). The
 #    committed weights serve both regimes, and a quarter of their training windows start cold.
@@ -22,14 +30,16 @@
 # First the parity test under the validation layer on both inference paths (nine fixtures) and the
 # denoiser's time at 1080p (bench/neural_ab_gpu.sh, one round; run bench/pack_parity.sh before
 # carrying .gpu). Writes into /tmp/out: ab/, the 30-frame metrics, summary and by_brightness per
-# scene (b-spatial4 beside the committed weights), cold/ (the 10-frame metrics), compare.json,
+# scene (b-spatial4 beside the committed weights), cold_filter_<scene>.csv, cold/ (the 10-frame
+# metrics of the cold weights), compare.json,
 # <variant>.json and weights.tgz (w- and b-<variant>.safetensors); job_gpu.sh brings them back as
 # one out.tgz. Start and wait:
 #   source .gpu/env.sh && training/job_gpu.sh start training/runs/v35-cold-start/job.sh
 #   source .gpu/env.sh && training/job_gpu.sh wait
 # About 10 s for the parity test, 390 s for the 30-frame evaluation (runs/v34's: 321 s and 66 s a
-# weights file), 180 s to render the dataset, 225 s to train and blend, 220 s for the 10-frame
-# evaluation: some 1,030 s.
+# weights file), about 150 s for the filter study (7 x 2 filtered folders, 8 frames of 12 methods
+# evaluated a scene), 180 s to render the dataset, 225 s to train and blend, 220 s for the 10-frame
+# evaluation: some 1,200 s.
 # .gpu/lucid.xz: the release lucid binary of the commit this file came with.
 set -u
 rm -rf /tmp/out /tmp/v33 /tmp/heldout-* && mkdir -p /tmp/bin /tmp/out /tmp/v33
@@ -44,6 +54,15 @@ echo "PARITY-END $? $(date +%s)"
 FRAMES=30 FIRST=20 BENCH=0 MAPS=1 OIDN=0 SCENES="caustics classroom" LUCID=/tmp/bin/lucid \
   ALSO=/tmp/v33/b-spatial4.safetensors training/evaluate_gpu.sh /tmp/out
 echo "EVAL-SPATIAL-END $? $(date +%s)"
+mkdir -p /tmp/pylib
+python3 -c "import OpenEXR" 2>/dev/null || pip install --no-index --no-deps --target /tmp/pylib .gpu/wheels/openexr-*.whl
+for scene in caustics classroom; do
+  (cd training && PYTHONPATH=/tmp/pylib python3 cold_filter_study.py "/tmp/heldout-$scene" 4,8:0.1:2 4,8:0.1:4 \
+    4,8,16:0.1:2 4,8,16:0.1:4 8,16:0.1:4 4,8:0.15:4 4,8,16:0.15:6)
+  /tmp/bin/lucid evaluate "/tmp/heldout-$scene" --frames 8
+  cp "/tmp/heldout-$scene/first-8/metrics.csv" "/tmp/out/cold_filter_$scene.csv"
+done
+echo "COLD-FILTER-END $(date +%s)"
 LUCID=/tmp/bin/lucid SHARDS=4 SEED_OFFSET=160 STOPS=0.3 SIZE=512x512 ROOMS=6 ROOMS_FIRST=0 FRAMES=32 SEQUENCES=1 \
   VARIANTS="kernel:l1gradflip:0:::$C+frames=4 kernel:l1gradflip:0:::$C+frames=8 kernel:l1gradflip:0:::$C+frames=4+spatial-variance-frames=4" \
   INIT="$committed" MINUTES=${MINUTES:-3.25} TRAIN_ARGS="--watch covered-light" \
