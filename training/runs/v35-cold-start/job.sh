@@ -7,8 +7,9 @@
 # 2. The first frames after a reset filtered further (training/cold_filter_study.py: a-trous steps
 #    over the learned denoiser's output, edge-stopped by normals and luminance, blended in over the
 #    first K frames), on the 30-frame run's held-out frames, evaluated over their first 8. On
-#    lavapipe (`classroom`, frame 0) it gains 3% of FLIP at 320x180 and 6.6% at 640x360: the
-#    learned denoiser under-filters the cold frames, the more so the larger the frame. Needs the
+#    lavapipe (`classroom`, frame 0) it gains 3% of FLIP at 320x180 and 6.6% at 640x360 (the
+#    learned denoiser under-filters the cold frames there, the more so the larger the frame) but
+#    costs `caustics` 12% at 640x360: how much each way at 1080p? Needs the
 #    OpenEXR wheel for the machine's Python 3.12 in .gpu/wheels (`pip download --no-deps
 #    --only-binary=:all: --python-version 3.12 --platform manylinux2014_x86_64 -d .gpu/wheels
 #    OpenEXR`) unless OpenEXR imports there.
