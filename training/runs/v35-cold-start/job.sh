@@ -17,13 +17,16 @@
 #    FLIP is 1.075x SVGF's at frame 0 of `classroom`, 0.96x at frame 3, 0.70x warmed up; every
 #    fine-tuning since the blend made frame 0 no better (runs/v34: larger rooms made it worse). The
 #    committed weights serve both regimes, and a quarter of their training windows start cold.
-#    Here three 3.25-minute fine-tunings of the committed weights on cold windows only (burn-in 0,
+#    Here four 3.25-minute fine-tunings of the committed weights on cold windows only (burn-in 0,
 #    every window starting without history, its frames weighed alike, runs/v32's `again` recipe
 #    otherwise) on a fresh dataset (4 shards of 512x512, SEED_OFFSET 160):
 #      cold4   4 frames with a loss: weights for frames 0-3
 #      cold8   8 frames with a loss: weights for frames 0-7
 #      cold4s  as cold4, with --spatial-variance-frames 4
-#    each also blended half and half with the committed weights (b-), all held out over the first
+#      cold4w  as cold4, with a fifth kernel scale (widened from nothing, as runs/v34's large5):
+#              more reach, for the cold frames that lack it (question 2)
+#    each also blended half and half with the committed weights (b-; cold4w's with the committed
+#    weights widened alike by widen_scales.py), all held out over the first
 #    10 frames of both scenes. A renderer that switched weights at frame K after a reset would show
 #    the cold run's frames 0..K-1 exactly (the cold weights see only their own history there) and
 #    the committed weights' later frames nearly (those then start from the cold weights' output):
@@ -65,13 +68,16 @@ for scene in caustics classroom; do
 done
 echo "COLD-FILTER-END $(date +%s)"
 LUCID=/tmp/bin/lucid SHARDS=4 SEED_OFFSET=160 STOPS=0.3 SIZE=512x512 ROOMS=6 ROOMS_FIRST=0 FRAMES=32 SEQUENCES=1 \
-  VARIANTS="kernel:l1gradflip:0:::$C+frames=4 kernel:l1gradflip:0:::$C+frames=8 kernel:l1gradflip:0:::$C+frames=4+spatial-variance-frames=4" \
+  VARIANTS="kernel:l1gradflip:0:::$C+frames=4 kernel:l1gradflip:0:::$C+frames=8 kernel:l1gradflip:0:::$C+frames=4+spatial-variance-frames=4 kernel:l1gradflip:0:::$C+frames=4+scales=5" \
   INIT="$committed" MINUTES=${MINUTES:-3.25} TRAIN_ARGS="--watch covered-light" \
   DATA=/tmp/lucid-dataset training/compare_gpu.sh /tmp/train-out
 echo "TRAIN-END $? $(date +%s)"
+(cd training && python3 widen_scales.py "../$committed" --scales 5 --out /tmp/committed-5.safetensors)
 for n in $(training/variant_weights.sh /tmp/train-out/variants.tar.gz /tmp /tmp/out \
-  '*spatial-variance-frames_4*=cold4s' '*frames_8*=cold8' '*frames_4*=cold4'); do
-  (cd training && python3 blend.py "/tmp/w-$n.safetensors" "../$committed" --t 0.5 --out "/tmp/b-$n.safetensors")
+  '*scales_5*=cold4w' '*spatial-variance-frames_4*=cold4s' '*frames_8*=cold8' '*frames_4*=cold4'); do
+  base="../$committed"
+  if [ "$n" = cold4w ]; then base=/tmp/committed-5.safetensors; fi
+  (cd training && python3 blend.py "/tmp/w-$n.safetensors" "$base" --t 0.5 --out "/tmp/b-$n.safetensors")
 done
 cp /tmp/train-out/compare.json /tmp/out/
 tar czf /tmp/out/weights.tgz -C /tmp $(cd /tmp && ls w-cold*.safetensors b-cold*.safetensors)
