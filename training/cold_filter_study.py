@@ -11,8 +11,11 @@ tap weighed by the normals' agreement (dot product to the 128th power, as SVGF's
 illumination's luminance agreement, exp(-|l_q - l_p| / (SIGMA l_p)); the result is multiplied by
 the albedo again (pixels without albedo, the sky, stay as they were); the later frames are links to
 the learned denoiser's. `lucid evaluate DIR` then
-scores the new folders beside the others (they are named `neural-*`). Runs on the GPU when torch
-has one.
+scores the new folders beside the others (they are named `neural-*`). With `--oracle B`, also
+`DIR/neural-oracle-<STEPS>-<SIGMA>-<K>/`: per B x B block of each frame, whichever of the two
+images is closer to the reference in tone-mapped luminance (x / (1 + x), x the luminance over the
+reference's mean), the bound of a choice of where to filter learned at that coarseness. Runs on
+the GPU when torch has one.
 """
 
 import argparse
@@ -75,10 +78,29 @@ def atrous(illumination, normal, steps, sigma):
     return x
 
 
+def block_oracle(neural, filtered, reference, block):
+    """Per `block` x `block` block, `filtered` where it is closer to `reference` than `neural` (the
+    squared error of their tone-mapped luminance summed over the block), else `neural`; a partial
+    block at the right or bottom edge keeps `neural`."""
+    mean = luminance(reference).mean()
+
+    def tone(x):
+        x = luminance(x) / mean
+        return x / (1.0 + x)
+
+    target = tone(reference)
+    errors = [F.avg_pool2d(((tone(x) - target) ** 2)[None], block)[0] for x in (neural, filtered)]
+    better = (errors[1] < errors[0]).to(neural.dtype)
+    h, w = neural.shape[1:]
+    choice = F.pad(better.repeat_interleave(block, 1).repeat_interleave(block, 2), (0, w - better.shape[2] * block, 0, h - better.shape[1] * block))
+    return neural + choice * (filtered - neural)
+
+
 def main():
     ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     ap.add_argument("dir", type=Path)
     ap.add_argument("configs", nargs="+", help="STEPS:SIGMA:K, e.g. 4,8:0.1:2")
+    ap.add_argument("--oracle", type=int, metavar="B", help="also the block oracle of each, B x B blocks")
     args = ap.parse_args()
     dev = "cuda" if torch.cuda.is_available() else "cpu"
     frames = sorted(p.name for p in (args.dir / "neural").glob("*.exr"))
@@ -89,14 +111,17 @@ def main():
         steps, sigma, k = text.split(":")
         configs.append(([int(s) for s in steps.split(",")], float(sigma), int(k)))
     for steps, sigma, k in configs:
-        out = args.dir / f"neural-cold-{'_'.join(map(str, steps))}-{sigma}-{k}"
-        if out.exists():
-            shutil.rmtree(out)
-        out.mkdir()
+        tag = f"{'_'.join(map(str, steps))}-{sigma}-{k}"
+        outs = [args.dir / f"neural-cold-{tag}"] + ([args.dir / f"neural-oracle-{tag}"] if args.oracle else [])
+        for out in outs:
+            if out.exists():
+                shutil.rmtree(out)
+            out.mkdir()
         for index, name in enumerate(frames):
             weight = max(0.0, 1.0 - index / k)
             if weight == 0.0:
-                (out / name).symlink_to(Path("..") / "neural" / name)
+                for out in outs:
+                    (out / name).symlink_to(Path("..") / "neural" / name)
                 continue
             neural = read(args.dir / "neural" / name).to(dev)
             albedo = read(args.dir / "albedo" / name).to(dev)
@@ -105,8 +130,12 @@ def main():
             lit = albedo.amax(0, keepdim=True) > 1e-3
             safe = albedo.clamp_min(1e-3)
             filtered = atrous(neural / safe, normal, steps, sigma) * safe
-            write(out / name, torch.where(lit, neural + weight * (filtered - neural), neural))
-        print(f"{out}: {len(frames)} frames, the first {k} filtered further")
+            filtered = torch.where(lit, neural + weight * (filtered - neural), neural)
+            write(outs[0] / name, filtered)
+            if args.oracle:
+                reference = read(args.dir / "reference" / name).to(dev)
+                write(outs[1] / name, block_oracle(neural, filtered, reference, args.oracle))
+        print(f"{outs[0]}: {len(frames)} frames, the first {k} filtered further")
 
 
 if __name__ == "__main__":

@@ -6,10 +6,12 @@
 #    `classroom`.
 # 2. The first frames after a reset filtered further (training/cold_filter_study.py: a-trous steps
 #    over the learned denoiser's output, edge-stopped by normals and luminance, blended in over the
-#    first K frames), on the 30-frame run's held-out frames, evaluated over their first 8. On
-#    lavapipe (`classroom`, frame 0) it gains 3% of FLIP at 320x180 and 6.6% at 640x360 (the
-#    learned denoiser under-filters the cold frames there, the more so the larger the frame) but
-#    costs `caustics` 12% at 640x360: how much each way at 1080p? Needs the
+#    first K frames; with --oracle 16 also the bound of a choice per 16x16 block of where to
+#    filter), on the 30-frame run's held-out frames, evaluated over their first 8. On
+#    lavapipe (`classroom`, frame 0) it gains 3% of FLIP at 320x180, 6.6% at 640x360 and 8.8% at
+#    1280x720 (the learned denoiser under-filters the cold frames there, the more so the larger
+#    the frame) but costs `caustics` 12% at 640x360, and the block oracle keeps the gain without
+#    the loss: how much each way at 1080p? Needs the
 #    OpenEXR wheel for the machine's Python 3.12 in .gpu/wheels (`pip download --no-deps
 #    --only-binary=:all: --python-version 3.12 --platform manylinux2014_x86_64 -d .gpu/wheels
 #    OpenEXR`) unless OpenEXR imports there.
@@ -41,7 +43,7 @@
 #   source .gpu/env.sh && training/job_gpu.sh start training/runs/v35-cold-start/job.sh
 #   source .gpu/env.sh && training/job_gpu.sh wait
 # About 10 s for the parity test, 390 s for the 30-frame evaluation (runs/v34's: 321 s and 66 s a
-# weights file), about 150 s for the filter study (7 x 2 filtered folders, 8 frames of 12 methods
+# weights file), about 150 s for the filter study (10 x 2 filtered folders, 8 frames of 15 methods
 # evaluated a scene), 180 s to render the dataset, 225 s to train and blend, 220 s for the 10-frame
 # evaluation: some 1,200 s.
 # .gpu/lucid.xz: the release lucid binary of the commit this file came with.
@@ -61,8 +63,8 @@ echo "EVAL-SPATIAL-END $? $(date +%s)"
 mkdir -p /tmp/pylib
 python3 -c "import OpenEXR" 2>/dev/null || pip install --no-index --no-deps --target /tmp/pylib .gpu/wheels/openexr-*.whl
 for scene in caustics classroom; do
-  (cd training && PYTHONPATH=/tmp/pylib python3 cold_filter_study.py "/tmp/heldout-$scene" 4,8:0.1:2 4,8:0.1:4 \
-    4,8,16:0.1:2 4,8,16:0.1:4 8,16:0.1:4 4,8:0.15:4 4,8,16:0.15:6)
+  (cd training && PYTHONPATH=/tmp/pylib python3 cold_filter_study.py "/tmp/heldout-$scene" --oracle 16 \
+    4,8:0.1:2 4,8,16:0.1:2 4,8,16:0.1:4 8,16:0.1:4 4,8,16:0.15:6)
   /tmp/bin/lucid evaluate "/tmp/heldout-$scene" --frames 8
   cp "/tmp/heldout-$scene/first-8/metrics.csv" "/tmp/out/cold_filter_$scene.csv"
 done
