@@ -44,8 +44,8 @@
 #   source .gpu/env.sh && training/job_gpu.sh wait
 # About 10 s for the parity test, 390 s for the 30-frame evaluation (runs/v34's: 321 s and 66 s a
 # weights file), about 150 s for the filter study (10 x 2 filtered folders, 8 frames of 15 methods
-# evaluated a scene), 180 s to render the dataset, 225 s to train and blend, 220 s for the 10-frame
-# evaluation: some 1,200 s.
+# evaluated a scene), 180 s to render the dataset, 225 s to train and blend, 280 s for the
+# 10-frame evaluation (eight weights files): some 1,250 s.
 # .gpu/lucid.xz: the release lucid binary of the commit this file came with.
 set -u
 rm -rf /tmp/out /tmp/v33 /tmp/heldout-* && mkdir -p /tmp/bin /tmp/out /tmp/v33
