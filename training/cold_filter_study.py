@@ -1,20 +1,20 @@
 """Does the learned denoiser under-filter the first frames after a reset? A study on a folder that
-`lucid sequence` wrote (its `neural/`, `albedo/` and `normal/` frames):
+`lucid sequence` wrote (its `neural/`, `albedo/` and `normal/` frames, and `reference/`):
 
-    python3 cold_filter_study.py DIR STEPS:SIGMA:K [STEPS:SIGMA:K ...]
+    python3 cold_filter_study.py DIR [--oracle B] STEPS:SIGMA:K [STEPS:SIGMA:K ...]
 
 For each configuration, writes `DIR/neural-cold-<STEPS>-<SIGMA>-<K>/`: the learned denoiser's
-frames, each of the first K blended with itself filtered further, by weight 1 - i/K at frame i.
-The filter runs a-trous steps (STEPS, comma-separated spacings in pixels, e.g. 4,8) of the 5x5
-B-spline kernel over the output's illumination (the output divided by the frame's albedo), each
-tap weighed by the normals' agreement (dot product to the 128th power, as SVGF's) and by the
-illumination's luminance agreement, exp(-|l_q - l_p| / (SIGMA l_p)); the result is multiplied by
-the albedo again (pixels without albedo, the sky, stay as they were); the later frames are links to
-the learned denoiser's. `lucid evaluate DIR` then
-scores the new folders beside the others (they are named `neural-*`). With `--oracle B`, also
+frames, each of the first K blended with itself filtered further, by weight 1 - i/K at frame i
+(the later frames are links to the learned denoiser's). The filter runs a-trous steps (STEPS,
+comma-separated spacings in pixels, e.g. 4,8) of the 5x5 B-spline kernel over the output's
+illumination (the output divided by the frame's albedo), each tap weighed by the normals'
+agreement (dot product to the 128th power, as SVGF's) and by the illumination's luminance
+agreement, exp(-|l_q - l_p| / (SIGMA l_p)); the result is multiplied by the albedo again (pixels
+without albedo, the sky, stay as they were). With `--oracle B`, also
 `DIR/neural-oracle-<STEPS>-<SIGMA>-<K>/`: per B x B block of each frame, whichever of the two
 images is closer to the reference in tone-mapped luminance (x / (1 + x), x the luminance over the
-reference's mean), the bound of a choice of where to filter learned at that coarseness. Runs on
+reference's mean), the bound of a choice of where to filter learned at that coarseness. `lucid
+evaluate DIR` then scores the new folders beside the others (they are named `neural-*`). Runs on
 the GPU when torch has one.
 """
 
@@ -92,7 +92,8 @@ def block_oracle(neural, filtered, reference, block):
     errors = [F.avg_pool2d(((tone(x) - target) ** 2)[None], block)[0] for x in (neural, filtered)]
     better = (errors[1] < errors[0]).to(neural.dtype)
     h, w = neural.shape[1:]
-    choice = F.pad(better.repeat_interleave(block, 1).repeat_interleave(block, 2), (0, w - better.shape[2] * block, 0, h - better.shape[1] * block))
+    choice = better.repeat_interleave(block, 1).repeat_interleave(block, 2)
+    choice = F.pad(choice, (0, w - choice.shape[2], 0, h - choice.shape[1]))
     return neural + choice * (filtered - neural)
 
 
