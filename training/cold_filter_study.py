@@ -39,6 +39,7 @@ def read(path):
 
 
 def write(path, rgb):
+    """Writes a 3 x H x W tensor as an RGBA EXR image (alpha 1), as Lucid writes its frames."""
     rgb = rgb.permute(1, 2, 0).cpu().numpy()
     rgba = np.concatenate([rgb, np.ones(rgb.shape[:2] + (1,))], axis=2).astype(np.float32)
     header = {"compression": OpenEXR.ZIP_COMPRESSION, "type": OpenEXR.scanlineimage}
@@ -47,6 +48,7 @@ def write(path, rgb):
 
 
 def luminance(x):
+    """Rec. 709 luminance of a 3 x H x W tensor, 1 x H x W."""
     return sum(w * x[c] for c, w in enumerate(LUMINANCE))[None]
 
 
@@ -109,8 +111,25 @@ def main():
         raise SystemExit(f"{args.dir / 'neural'} holds no frames")
     configs = []
     for text in args.configs:
-        steps, sigma, k = text.split(":")
-        configs.append(([int(s) for s in steps.split(",")], float(sigma), int(k)))
+        try:
+            steps, sigma, k = text.split(":")
+            configs.append(([int(s) for s in steps.split(",")], float(sigma), int(k)))
+        except ValueError:
+            raise SystemExit(f"configuration '{text}' is not STEPS:SIGMA:K (e.g. 4,8:0.1:2)") from None
+        if configs[-1][2] < 1:
+            raise SystemExit(f"configuration '{text}': K is at least 1")
+
+    # Each frame that some configuration filters, read once: (neural, normal, albedo, reference).
+    inputs = {}
+
+    def frame_inputs(name):
+        if name not in inputs:
+            neural, albedo, normal = (read(args.dir / d / name).to(dev) for d in ("neural", "albedo", "normal"))
+            normal = normal / normal.norm(dim=0, keepdim=True).clamp_min(1e-6)
+            reference = read(args.dir / "reference" / name).to(dev) if args.oracle else None
+            inputs[name] = (neural, normal, albedo, reference)
+        return inputs[name]
+
     for steps, sigma, k in configs:
         tag = f"{'_'.join(map(str, steps))}-{sigma}-{k}"
         outs = [args.dir / f"neural-cold-{tag}"] + ([args.dir / f"neural-oracle-{tag}"] if args.oracle else [])
@@ -124,17 +143,13 @@ def main():
                 for out in outs:
                     (out / name).symlink_to(Path("..") / "neural" / name)
                 continue
-            neural = read(args.dir / "neural" / name).to(dev)
-            albedo = read(args.dir / "albedo" / name).to(dev)
-            normal = read(args.dir / "normal" / name).to(dev)
-            normal = normal / normal.norm(dim=0, keepdim=True).clamp_min(1e-6)
+            neural, normal, albedo, reference = frame_inputs(name)
             lit = albedo.amax(0, keepdim=True) > 1e-3
             safe = albedo.clamp_min(1e-3)
             filtered = atrous(neural / safe, normal, steps, sigma) * safe
             filtered = torch.where(lit, neural + weight * (filtered - neural), neural)
             write(outs[0] / name, filtered)
             if args.oracle:
-                reference = read(args.dir / "reference" / name).to(dev)
                 write(outs[1] / name, block_oracle(neural, filtered, reference, args.oracle))
         print(f"{outs[0]}: {len(frames)} frames, the first {k} filtered further")
 
