@@ -25,9 +25,10 @@
 //! eighth (the first's frames) is of the committed weights with `history_frames` 1 in their
 //! metadata (made by `training/set_metadata.py`, rebuilt here from the committed ones), so the
 //! running means' cap is checked too (in the second frame they hold that frame's values alone);
-//! the ninth (the first's frames) is of the committed weights with `spatial_variance_frames` 4,
-//! rebuilt here the same way, so the variance inputs over each pixel's 3x3 neighbourhood that
-//! replace the history's in the first frames are checked too;
+//! the committed weights take their first frames' variance inputs over each pixel's 3x3
+//! neighbourhood (`spatial_variance_frames` 4), and the ninth (the first's frames) is of them with
+//! `spatial_variance_frames` 0, rebuilt here the same way, so the variance inputs over the history
+//! in every frame are checked too;
 //! `the_emission_stays_on_its_object`
 //! checks what that average is for over more frames.
 //! The running means of the noisy radiance and their
@@ -121,7 +122,7 @@ fn builtin_with_metadata(key: &str, value: u32) -> NetworkWeights {
 
 /// The committed weights' fixture, the other decoder's, the emitters', a narrower network's, one
 /// of three scales, one of five, one with the linear mix, one whose running means hold one
-/// frame and one whose first frames' variance inputs are spatial.
+/// frame and one whose first frames' variance inputs are over the history, as later frames' are.
 fn fixtures() -> [Fixture; 9] {
     let load = |file: &str| {
         NetworkWeights::load(std::path::Path::new(&references(file)))
@@ -158,8 +159,8 @@ fn fixtures() -> [Fixture; 9] {
             builtin_with_metadata("history_frames", 1),
         ),
         fixture(
-            "neural_parity_spatial_variance.safetensors",
-            builtin_with_metadata("spatial_variance_frames", 4),
+            "neural_parity_history_variance.safetensors",
+            builtin_with_metadata("spatial_variance_frames", 0),
         ),
     ];
     let decoders = fixtures.each_ref().map(|f| f.weights.decoder());
@@ -187,11 +188,12 @@ fn fixtures() -> [Fixture; 9] {
             .any(|f| f.weights.history_frames() < neural::HISTORY_FRAMES),
         "the fixtures cover running means of fewer frames"
     );
+    let spatial = fixtures
+        .each_ref()
+        .map(|f| f.weights.spatial_variance_frames() > 0);
     assert!(
-        fixtures
-            .iter()
-            .any(|f| f.weights.spatial_variance_frames() > neural::SPATIAL_VARIANCE_FRAMES),
-        "the fixtures cover spatial variance inputs"
+        spatial.contains(&true) && spatial.contains(&false),
+        "the fixtures cover variance inputs over the neighbourhood and over the history in the first frames: {spatial:?}"
     );
     fixtures
 }
