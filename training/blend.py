@@ -6,9 +6,10 @@ other without its losses. The shipped weights since the twentieth session are su
 
     python3 blend.py A.safetensors B.safetensors --t 0.1 --out W.safetensors
 
-With `--mix-from-b`, the linear mix's channel of the `out` head (its last) comes from B whole
-rather than blended: A may hold the mix only as a start (`widen_scales.py --linear-mix`) that B
-trained, and a blend would move B's trained mix back toward that start.
+With `--mix-from-b`, the linear mix's channel of the `out` head (its last but for the a-trous
+filter's gate) comes from B whole rather than blended: A may hold the mix only as a start
+(`widen_scales.py --linear-mix`) that B trained, and a blend would move B's trained mix back
+toward that start.
 
 The output keeps A's metadata but its validation figures (measured on A alone), and adds `blend`:
 both files' names, `t`, and B's training options that differ from A's.
@@ -22,6 +23,7 @@ import torch
 from safetensors import safe_open
 from safetensors.torch import load_file, save_file
 
+from kernel_model import LINEAR_MIX_CHANNEL
 from train import file_linear_mix
 
 # Metadata measured on one file, which a blend does not inherit.
@@ -35,7 +37,7 @@ MEASURED = (
     "watch",
 )
 # Metadata that describes the network rather than its training, which both files must share.
-SHARED = ("format", "decoder", "layers")
+SHARED = ("format", "decoder", "layers", "atrous_steps")
 
 
 def metadata(path):
@@ -58,9 +60,9 @@ def blend(a, b, t):
 
 
 def take_mix(tensors, b):
-    """`tensors` with the `out` head's last channel (the linear mix) replaced by `b`'s."""
+    """`tensors` with the `out` head's linear mix channel replaced by `b`'s."""
     for name in ("out.weight", "out.bias"):
-        tensors[name][-1] = b[name][-1]
+        tensors[name][LINEAR_MIX_CHANNEL] = b[name][LINEAR_MIX_CHANNEL]
     return tensors
 
 

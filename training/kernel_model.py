@@ -24,9 +24,12 @@ the recurrent state. The output layer `out` is replaced by `KernelOutput`:
   log-space mean of a bright, rare sample and its dark neighbours keeps almost none of its light
   (a caustic at 1 sample per pixel is such samples), a linear mean keeps all of it and every
   firefly too. With `linear_mix` the kernels and the compositing run twice, on log(1 + radiance)
-  and on the radiance itself (the expansion of the same rounded log values), and `out`'s last
-  channel weighs the two per pixel: `log = log + m * (log(1 + max(linear, 0)) - log)`,
-  `m = sigmoid(.)`.
+  and on the radiance itself (the expansion of the same rounded log values), and `out`'s channel
+  after the model's other outputs (`LINEAR_MIX_CHANNEL`, the last but for the gate) weighs the
+  two per pixel: `log = log + m * (log(1 + max(linear, 0)) - log)`, `m = sigmoid(.)`.
+- **The gate** (optional: a file with `atrous_steps` metadata): `out`'s last channel is the logit
+  of the gate of `model.atrous`'s filter over the output, which `KernelOutput` returns after the
+  other outputs, as the direct model's `out` does, and `RecurrentDenoiser.step` applies.
 - **The rest as `model.py`**: `out`'s remaining channels are the direct model's output channels
   after its 3 radiance channels (the blend weight, and any later additions): the combined kernel
   result takes the place of the predicted log radiance, and `RecurrentDenoiser.step` does the
@@ -35,7 +38,8 @@ the recurrent state. The output layer `out` is replaced by `KernelOutput`:
   defines them.
 
 Export (`export_tensors`): the layers of `model.unet_layers` under their names (`out` with its
-25 + 1 + (outputs - 3) channels, and one more with the linear mix) plus the coarser heads (`heads`), float32.
+25 + 1 + EXTRA channels, one more with the linear mix and one more with the gate) plus the
+coarser heads (`heads`), float32.
 
 With `fp16_storage` the heads' outputs are rounded to half precision, as the shaders store them;
 the filtered scales stay float32, as the shaders keep them.
@@ -49,8 +53,12 @@ from model import WIDTHS, RecurrentDenoiser, half, pool, unet_layers
 
 KERNEL = 5
 TAPS = KERNEL * KERNEL
-# The direct model's output channels after the 3 radiance channels (blend weight, ...).
+# The direct model's output channels after the 3 radiance channels (blend weight, ...), without
+# the gate.
 EXTRA = unet_layers()[-1][2] - 3
+# The linear mix's channel of `out`, when it has one: after the kernel, the weight `a` and EXTRA
+# (and before the gate).
+LINEAR_MIX_CHANNEL = TAPS + 1 + EXTRA
 
 
 # The bias of the linear mix's logit when weights without it start a model with it: sigmoid(-3), so
@@ -64,15 +72,16 @@ HEAD_NAMES = ("out", "out_half", "out_quarter", "out_eighth", "out_sixteenth")
 SCALES = 4
 
 
-def heads(features, scales=SCALES, linear_mix=False):
+def heads(features, scales=SCALES, linear_mix=False, gate=False):
     """(name, input channels, output channels, resolution divisor) of the kernel heads on
     `features` channels of decoder features: each predicts its 25 kernel logits, every one but the
-    coarsest the weight `a` of the next coarser scale, and the finest the model's other outputs and,
-    with `linear_mix`, the logit of the linear mix."""
+    coarsest the weight `a` of the next coarser scale, and the finest the model's other outputs,
+    with `linear_mix` the logit of the linear mix and, with `gate`, last, the logit of the gate of
+    the a-trous filter (`model.atrous`)."""
     if not 3 <= scales <= len(HEAD_NAMES):
         raise ValueError(f"{scales} scales: the kernel decoder has 3 to {len(HEAD_NAMES)}")
     return [
-        (name, features, TAPS + (s < scales - 1) + ((EXTRA + linear_mix) if s == 0 else 0), 2**s)
+        (name, features, TAPS + (s < scales - 1) + ((EXTRA + linear_mix + gate) if s == 0 else 0), 2**s)
         for s, name in enumerate(HEAD_NAMES[:scales])
     ]
 
@@ -82,10 +91,10 @@ def scales_of(names):
     return max(s + 1 for s, name in enumerate(HEAD_NAMES) if f"{name}.weight" in names)
 
 
-def linear_mix_of(out_channels, scales):
-    """Whether a weights file whose `out` head has `out_channels` (of a network of `scales`) has
-    the linear mix."""
-    return out_channels == heads(1, scales, linear_mix=True)[0][2]
+def linear_mix_of(out_channels, scales, gate=False):
+    """Whether a weights file whose `out` head has `out_channels` (of a network of `scales`, with
+    the gate if `gate`: its `atrous_steps` metadata) has the linear mix."""
+    return out_channels == heads(1, scales, linear_mix=True, gate=gate)[0][2]
 
 
 def apply_kernel(x, logits):
@@ -112,15 +121,19 @@ def combine(fine, coarse, a):
 class KernelOutput(nn.Module):
     """Stands in for the direct model's `out` convolution: called with the last decoder features
     and this frame's demodulated radiance, returns what `out` returns (log
-    radiance in channels 0-2, then the other output channels), the radiance here being the
-    multi-scale kernel-filtered input."""
+    radiance in channels 0-2, then the other output channels, with `gate` the gate's logit last),
+    the radiance here being the multi-scale kernel-filtered input."""
 
-    def __init__(self, features, scales=SCALES, linear_mix=False):
+    def __init__(self, features, scales=SCALES, linear_mix=False, gate=False):
         super().__init__()
         self.scales = scales
         self.linear_mix = linear_mix
+        self.gate = gate
         self.heads = nn.ModuleDict(
-            {name: nn.Conv2d(cin, cout, 3, padding=1) for name, cin, cout, _ in heads(features, scales, linear_mix)}
+            {
+                name: nn.Conv2d(cin, cout, 3, padding=1)
+                for name, cin, cout, _ in heads(features, scales, linear_mix, gate)
+            }
         )
 
     def forward(self, d0, radiance, fp16):
@@ -143,17 +156,19 @@ class KernelOutput(nn.Module):
                 linear = combine(filtered_linear, linear, a) if self.linear_mix else None
         extra = logits[0][:, TAPS + 1 : TAPS + 1 + EXTRA].float()
         if self.linear_mix:
-            m = torch.sigmoid(logits[0][:, TAPS + 1 + EXTRA :].float())
+            m = torch.sigmoid(logits[0][:, LINEAR_MIX_CHANNEL : LINEAR_MIX_CHANNEL + 1].float())
             y = y + m * (torch.log1p(linear.clamp_min(0.0)) - y)
+        if self.gate:
+            return torch.cat([y, extra, logits[0][:, -1:].float()], 1)
         return torch.cat([y, extra], 1)
 
 
 class KernelDenoiser(RecurrentDenoiser):
     """`RecurrentDenoiser` with the kernel-predicting output layer; same `step`, `forward`, state."""
 
-    def __init__(self, widths=WIDTHS, scales=SCALES, linear_mix=False):
-        super().__init__(widths)
-        self.convs["out"] = KernelOutput(self.widths[-1], scales, linear_mix)
+    def __init__(self, widths=WIDTHS, scales=SCALES, linear_mix=False, atrous_steps=()):
+        super().__init__(widths, atrous_steps)
+        self.convs["out"] = KernelOutput(self.widths[-1], scales, linear_mix, self.gate)
 
     @property
     def scales(self):
@@ -176,16 +191,18 @@ class KernelDenoiser(RecurrentDenoiser):
     def EXTRA_MACS_PER_PIXEL(self):
         """Multiply-adds per full-resolution pixel outside the convolutions: a 5x5 filter on 3
         channels at each scale (1, 1/4, 1/16... of the pixels) and a compositing step into each
-        but the coarsest (twice each with the linear mix)."""
+        but the coarsest (twice each with the linear mix), and the a-trous filter's
+        (`RecurrentDenoiser.EXTRA_MACS_PER_PIXEL`)."""
         shares = [4.0**-s for s in range(self.scales)]
-        return (1 + self.linear_mix) * (3 * TAPS * sum(shares) + 3 * 2 * sum(shares[:-1]))
+        kernels = (1 + self.linear_mix) * (3 * TAPS * sum(shares) + 3 * 2 * sum(shares[:-1]))
+        return kernels + super().EXTRA_MACS_PER_PIXEL
 
 
-def kernel_layers(widths=WIDTHS, scales=SCALES, linear_mix=False):
+def kernel_layers(widths=WIDTHS, scales=SCALES, linear_mix=False, gate=False):
     """(name, input channels, output channels) of every exported layer of a network of `widths`,
-    `scales` and `linear_mix`, in execution order."""
+    `scales`, `linear_mix` and `gate`, in execution order."""
     layers = [(n, cin, cout) for n, cin, cout in unet_layers(widths) if n != "out"]
-    return layers + [(n, cin, cout) for n, cin, cout, _ in heads(widths[-1], scales, linear_mix)]
+    return layers + [(n, cin, cout) for n, cin, cout, _ in heads(widths[-1], scales, linear_mix, gate)]
 
 
 def export_tensors(model):

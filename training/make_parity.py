@@ -1,10 +1,11 @@
 """Writes a parity fixture (`tests/references/neural_parity*.safetensors`): two consecutive frames
 of per-pixel records and what `model.py` (or `kernel_model.py`, as the weights' `decoder` metadata
-says) computes from them with the given weights (half-precision storage emulated): the denoised
-radiance (`expected`), the running mean with its length (`accum`), the second moment of luminance
-(`moment`) and the range-compressed running mean with its second moment (`robust`), which
-`tests/neural_parity.rs` checks the Vulkan inference against. The synthetic pair also has each
-pixel's object id (`objects`), as do the dataset's frames of a dataset that has them.
+says) computes from them with the given weights (half-precision storage emulated; with the weights'
+`atrous_steps`, their gated a-trous filter): the denoised radiance (`expected`), the running mean
+with its length (`accum`), the second moment of luminance (`moment`) and the range-compressed
+running mean with its second moment (`robust`), which `tests/neural_parity.rs` checks the Vulkan
+inference against. The synthetic pair also has each pixel's object id (`objects`), as do the
+dataset's frames of a dataset that has them.
 
     python3 make_parity.py --weights ../passes/src/denoise/neural/lucid-rae-v3.safetensors \
         [--data DATASET_DIR | --records FIXTURE] --out ../tests/references/neural_parity.safetensors
@@ -27,7 +28,7 @@ from safetensors.torch import load_file, save_file
 
 from data import dataset_folders
 from model import OBJECT_BITS, RECORD_SIZE
-from train import build_model, file_linear_mix, file_scales, file_widths, load_weights
+from train import build_model, file_atrous_steps, file_linear_mix, file_scales, file_widths, load_weights
 
 SIZE = "32x24"
 
@@ -98,7 +99,13 @@ def main():
     args = ap.parse_args()
     W, H = (int(v) for v in args.size.split("x"))
     decoder = safe_open_metadata(args.weights).get("decoder", "direct")
-    model = build_model(decoder, file_widths(args.weights), file_scales(args.weights), file_linear_mix(args.weights))
+    model = build_model(
+        decoder,
+        file_widths(args.weights),
+        file_scales(args.weights),
+        file_linear_mix(args.weights),
+        file_atrous_steps(args.weights),
+    )
     load_weights(model, args.weights)
     objects = None
     if args.data:

@@ -6,9 +6,10 @@ Everything the shaders compute is defined here, in the same order and with the s
 the input features (with last frame's output and two running means of the noisy radiance, one of
 it and one of it range-compressed against fireflies, warped by the motion vectors and masked where
 reprojection fails), the U-Net of 3x3 convolutions, and the
-output (a blend of the network's prediction with the warped history, re-modulated by the first
-hits' albedo plus emission averaged over time with the same warp's taps of the same object,
-`antialias_surface`). With
+output (a blend of the network's prediction with the warped history; with a weights file's
+`atrous_steps`, blended per pixel, by a gate the network predicts, with its edge-aware a-trous
+filtering, `atrous`; re-modulated by the first hits' albedo plus emission averaged over time with
+the same warp's taps of the same object, `antialias_surface`). With
 `fp16_storage=True` every tensor the shaders store in half precision is rounded to it here too,
 so the parity test can compare tightly.
 
@@ -18,6 +19,7 @@ Per-pixel inputs (the "record", channels first, one frame): see `RECORD_CHANNELS
 import torch
 import torch.nn as nn
 import torch.nn.functional as F
+from torch.utils.checkpoint import checkpoint
 
 FORMAT = "lucid-rae-v3"
 # The decoders a v3 file may hold (its `decoder` metadata): this file's and `kernel_model.py`'s.
@@ -42,6 +44,9 @@ FEATURES = 24  # a multiple of 4: the shaders pack 4 half-precision channels per
 # shapes).
 HIDDEN = ("enc0", "enc1", "enc2", "bottleneck", "dec1", "dec0")
 WIDTHS = (16, 32, 64, 64, 32, 16)
+# The output layer's channels: log radiance (3) and the blend weight's logit (and, with the gated
+# a-trous filter, its gate's logit: one more).
+OUTPUTS = 4
 
 
 # What each hidden layer reads, in the order of its input channels (None: the input features); the
@@ -61,7 +66,7 @@ def sources(layer):
     return SOURCES.get(layer, ("dec0",))
 
 
-def unet_layers(widths=WIDTHS, outputs=4):
+def unet_layers(widths=WIDTHS, outputs=OUTPUTS):
     """(name, input channels, output channels) of the convolutions, in execution order, for the
     hidden layers' `widths` and `outputs` channels of the output layer."""
     width = dict(zip(HIDDEN, widths))
@@ -99,6 +104,18 @@ SPATIAL_VARIANCE_FRAMES = 0
 # The bits of an object id the emission's history keeps in the shaders (exact in a float32).
 OBJECT_BITS = 0xFFFFFF
 LUMINANCE = (0.2126, 0.7152, 0.0722)
+# The gated a-trous filter over the output's illumination (`atrous`; a weights file's
+# `atrous_steps` metadata, comma-separated spacings in pixels, and then `out`'s last channel, the
+# gate's logit): the 5x5 B-spline kernel's weights along each axis, the luminance agreement's
+# relative tolerance and the normals' agreement's power (SVGF's), what a file's steps may be, and
+# the gate's bias when weights without it start a model with it (sigmoid(-3): about 5% filtered
+# everywhere, so that fine-tuning starts near the unfiltered output; `train.load_weights`).
+B_SPLINE = (1 / 16, 1 / 4, 3 / 8, 1 / 4, 1 / 16)
+ATROUS_SIGMA = 0.1
+ATROUS_NORMAL_POWER = 128
+ATROUS_MAX_STEP = 64
+ATROUS_MAX_STEPS = 5
+ATROUS_GATE_BIAS = -3.0
 
 
 def split_record(record):
@@ -310,6 +327,68 @@ def features(rec, warped, mask, accum, moment, robust, spatial_variance_frames=S
     )
 
 
+def atrous_steps_of(text):
+    """The a-trous spacings of an `atrous_steps` metadata entry or option ("4,8,16": powers of two
+    of pixels, 1 to ATROUS_MAX_STEP, which the renderer's tiles in shared memory need; 1 to
+    ATROUS_MAX_STEPS of them); () for an empty one."""
+    if not text:
+        return ()
+    try:
+        steps = tuple(int(s) for s in text.split(","))
+    except ValueError:
+        raise ValueError(f"atrous steps '{text}' are not comma-separated whole numbers") from None
+    if len(steps) > ATROUS_MAX_STEPS or not all(1 <= s <= ATROUS_MAX_STEP and s & (s - 1) == 0 for s in steps):
+        raise ValueError(
+            f"atrous steps '{text}': 1 to {ATROUS_MAX_STEPS} spacings of 1 to {ATROUS_MAX_STEP} pixels, powers of two"
+        )
+    return steps
+
+
+def atrous_taps(t, step):
+    """The 5x5 taps of `t` [B,C,H,W] `step` pixels apart, borders replicated: [B,C,25,H,W]."""
+    b, c, h, w = t.shape
+    pad = 2 * step
+    padded = F.pad(t, (pad, pad, pad, pad), mode="replicate")
+    return F.unfold(padded, len(B_SPLINE), dilation=step).view(b, c, len(B_SPLINE) ** 2, h, w)
+
+
+def atrous_normal_weights(normal, step):
+    """The weights of `atrous`'s taps `step` pixels apart that do not depend on the image: the
+    B-spline's times the normals' agreement, [B,25,H,W] for the unit normals `normal`."""
+    kernel = torch.tensor([ky * kx for ky in B_SPLINE for kx in B_SPLINE], device=normal.device).view(1, -1, 1, 1)
+    return kernel * (normal.unsqueeze(2) * atrous_taps(normal, step)).sum(1).clamp_min(0.0) ** ATROUS_NORMAL_POWER
+
+
+def atrous_step(x, normal, step):
+    """One step of `atrous` over `x` [B,3,H,W] with the unit normals `normal`, its taps `step`
+    pixels apart."""
+    centre = luminance(x)
+    tap_lum = atrous_taps(centre, step)[:, 0]
+    w_lum = torch.exp(-(tap_lum - centre).abs() / (ATROUS_SIGMA * centre + 1e-4))
+    weight = atrous_normal_weights(normal, step) * w_lum
+    total = (weight.unsqueeze(1) * atrous_taps(x, step)).sum(2)
+    weights = weight.sum(1, keepdim=True)
+    return torch.where(weights > 1e-12, total / weights.clamp_min(1e-12), x)
+
+
+def atrous(illumination, normal, steps):
+    """The edge-aware a-trous steps (SVGF's filter without its variance) over `illumination`
+    [B,3,H,W], float32: per spacing s of `steps`, in order, each pixel p becomes the mean of the
+    5x5 taps q at (i - 2, j - 2) * s (clamped into the image, as replicate padding does), weighed
+    by B_SPLINE[i] * B_SPLINE[j], by the agreement of the normals (`normal` [B,3,H,W], normalised
+    here; max(n_p . n_q, 0)^ATROUS_NORMAL_POWER, so a pixel without a normal keeps its value) and
+    by that of the luminance, exp(-|l_q - l_p| / (ATROUS_SIGMA l_p + 1e-4)); a pixel whose weights
+    sum to 1e-12 or less keeps its value. Each step gathers its 25 taps at once (a loop over them
+    made a training step twice as slow) and is recomputed in the backward pass rather than keeping
+    its taps (which took 10 GiB more to train on windows of 8 frames of 4 crops of 368x368)."""
+    x = illumination.float()
+    normal = normal.float()
+    normal = normal / normal.norm(dim=1, keepdim=True).clamp_min(1e-6)
+    for step in steps:
+        x = checkpoint(atrous_step, x, normal, step, use_reentrant=False)
+    return x
+
+
 def pool(x):
     """2x2 average (sizes divisible by 4 in training; the shader clamps odd edges)."""
     return F.avg_pool2d(x, 2)
@@ -321,12 +400,15 @@ def up(x):
 
 
 class RecurrentDenoiser(nn.Module):
-    """The U-Net of `unet_layers(widths)` and the recurrent output blend."""
+    """The U-Net of `unet_layers(widths)` and the recurrent output blend; with `atrous_steps`
+    (non-empty) the output layer has one more channel, the last, the logit of the gate of the
+    `atrous` filter over the output."""
 
-    def __init__(self, widths=WIDTHS):
+    def __init__(self, widths=WIDTHS, atrous_steps=()):
         super().__init__()
         self.widths = tuple(widths)
-        self.layers = unet_layers(self.widths)
+        self.gate = bool(atrous_steps)
+        self.layers = unet_layers(self.widths, OUTPUTS + self.gate)
         self.convs = nn.ModuleDict({name: nn.Conv2d(cin, cout, 3, padding=1) for name, cin, cout in self.layers})
         # `antialias_surface`'s weight of this frame's emission per pixel of motion (the weights
         # file's `emission_motion` metadata).
@@ -336,6 +418,9 @@ class RecurrentDenoiser(nn.Module):
         # The history lengths whose variance inputs are spatial (`features`; the weights file's
         # `spatial_variance_frames` metadata).
         self.spatial_variance_frames = SPATIAL_VARIANCE_FRAMES
+        # The spacings of the gated `atrous` filter's steps (the weights file's `atrous_steps`
+        # metadata); () without the gate.
+        self.atrous_steps = tuple(atrous_steps)
 
     def step(self, record, state, fp16_storage=False, objects=None):
         """One frame. `record` [B,RECORD_SIZE,H,W]; `objects` [B,1,H,W] the object id of each
@@ -345,7 +430,9 @@ class RecurrentDenoiser(nn.Module):
         `accum`: running mean and its length [B,4], `moment`: second moment of luminance [B,1],
         `robust`: the compressed running mean and its second moment [B,4], `albedo` and
         `emission`: the first hits' albedo and log(1 + emission) averaged over time [B,3] each).
-        Returns (radiance [B,3,H,W], new state)."""
+        With the gate, the radiance's illumination is blended per pixel with its `atrous` filtering
+        by sigmoid(the gate's logit); the state keeps the unfiltered output, the history the
+        network reprojects. Returns (radiance [B,3,H,W], new state)."""
         rec = split_record(record)
         if objects is None:
             objects = torch.zeros_like(rec["depth"])
@@ -394,7 +481,13 @@ class RecurrentDenoiser(nn.Module):
         blend = mask * torch.sigmoid(o[:, 3:4])
         log_out = (o[:, 0:3] * (1.0 - blend) + warped * blend).clamp_min(0.0)
         log_out = half(log_out, fp16_storage)
-        radiance = torch.expm1(log_out) * albedo + torch.expm1(emission)
+        illumination = torch.expm1(log_out)
+        if self.gate:
+            gate = torch.sigmoid(o[:, -1:].float())
+            illumination = illumination.float()
+            filtered = atrous(illumination, rec["normal"], self.atrous_steps)
+            illumination = illumination + gate * (filtered - illumination)
+        radiance = illumination * albedo + torch.expm1(emission)
         surface = torch.cat([rec["depth"], rec["normal"], objects], 1)
         state = {
             "output": log_out,
@@ -408,10 +501,17 @@ class RecurrentDenoiser(nn.Module):
         return radiance, state
 
     def predict(self, d0, rec, accum, fp16_storage):
-        """The output layer on the last decoder features `d0` [B,widths[-1],H,W]: log radiance (3) and the
-        blend weight's logit (1). `rec` (the frame's record, split) and `accum` (its running mean
-        and length) serve output layers that filter the radiance (`kernel_model.py`)."""
+        """The output layer on the last decoder features `d0` [B,widths[-1],H,W]: log radiance (3), the
+        blend weight's logit (1) and, with the gate, the gate's logit (1). `rec` (the frame's record,
+        split) and `accum` (its running mean and length) serve output layers that filter the
+        radiance (`kernel_model.py`)."""
         return self.convs["out"](d0)
+
+    @property
+    def EXTRA_MACS_PER_PIXEL(self):
+        """Multiply-adds per pixel outside the convolutions: each `atrous` step's 25 taps, each
+        a normals' dot product and a weighted sum of 3 channels."""
+        return len(self.atrous_steps) * len(B_SPLINE) ** 2 * 6.0
 
     def forward(self, records, fp16_storage=False, objects=None):
         """A sequence [B,T,RECORD_SIZE,H,W] from no history, its pixels' object ids `objects`

@@ -4,6 +4,7 @@
         [--model direct|kernel] [--loss l1grad|l1msssim|l1gradflip] [--burn-in K [--burn-in-min J]]
         [--widths E0,E1,E2,B,D1,D0] [--scales N] [--fireflies RATE] [--watch SCENES]
         [--blotch WEIGHT [--blotch-margin M]] [--cold P] [--linear-mix] [--energy WEIGHT]
+        [--atrous-steps S1,S2,...]
 
 `--model kernel` trains `kernel_model.KernelDenoiser` (both export as `lucid-rae-v3`, the decoder
 named in the file's `decoder` metadata; the renderer runs either); `--loss` picks a loss of `losses.py`; `--burn-in K` runs the first K
@@ -22,7 +23,12 @@ ones. `--linear-mix` gives the kernel decoder its per-pixel mix of log-space and
 filtering (`kernel_model.py`; weights without it start it at sigmoid(LINEAR_MIX_BIAS); an `--init`
 that has it implies it); `--energy W`
 adds W times `losses.energy_l1` (the light of 8x8 blocks against the reference's, what a denoiser
-that erases a caustic loses) to the loss. A step whose loss is not finite is skipped (and counted); past 1% of the steps, training stops.
+that erases a caustic loses) to the loss. `--atrous-steps 4,8,16` gives either decoder the gated
+a-trous filter over its output (`model.atrous`, steps of those spacings in pixels, the gate one
+more channel of `out`, its last; written to the weights' `atrous_steps` metadata): weights without
+the gate start it at sigmoid(ATROUS_GATE_BIAS) everywhere, an `--init` that has it implies its
+steps (other steps are an error). A step whose loss is not finite is skipped (and counted); past
+1% of the steps, training stops.
 
 Started by `python3 parallel.py N train.py ...` it trains data-parallel on N GPUs (`parallel.py`): each
 process loads its share of the sequences, the gradients are averaged, the batch is N times
@@ -67,6 +73,7 @@ from losses import (
     worst_block_excess,
 )
 from model import (
+    ATROUS_GATE_BIAS,
     DECODERS,
     FORMAT,
     HIDDEN,
@@ -74,6 +81,7 @@ from model import (
     RECORD_SIZE,
     WIDTHS,
     RecurrentDenoiser,
+    atrous_steps_of,
     export_tensors,
     sources,
     widths_of,
@@ -88,9 +96,12 @@ NEW_SCALE_BIAS = -3.0
 PROCESS_SEED_STRIDE = 7919
 
 
-def build_model(name, widths=WIDTHS, scales=SCALES, linear_mix=False):
-    """The `name`d decoder's model of `widths` (`scales` and `linear_mix` for the kernel decoder)."""
-    return KernelDenoiser(widths, scales, linear_mix) if name == "kernel" else RecurrentDenoiser(widths)
+def build_model(name, widths=WIDTHS, scales=SCALES, linear_mix=False, atrous_steps=()):
+    """The `name`d decoder's model of `widths` (`scales` and `linear_mix` for the kernel decoder),
+    with the gated a-trous filter of `atrous_steps` when there are any."""
+    if name == "kernel":
+        return KernelDenoiser(widths, scales, linear_mix, atrous_steps)
+    return RecurrentDenoiser(widths, atrous_steps)
 
 
 def file_widths(path):
@@ -105,11 +116,19 @@ def file_scales(path):
         return scales_of(set(f.keys()))
 
 
+def file_atrous_steps(path):
+    """The a-trous filter's steps in a weights file train.py wrote (its `atrous_steps` metadata; ()
+    where it has none: no gate)."""
+    with safe_open(path, "pt") as f:
+        return atrous_steps_of((f.metadata() or {}).get("atrous_steps", ""))
+
+
 def file_linear_mix(path):
     """Whether a kernel-decoder weights file train.py wrote has the linear mix."""
+    gate = bool(file_atrous_steps(path))
     with safe_open(path, "pt") as f:
         scales = scales_of(set(f.keys()))
-        return scales >= 3 and linear_mix_of(int(f.get_slice("out.weight").get_shape()[0]), scales)
+        return scales >= 3 and linear_mix_of(int(f.get_slice("out.weight").get_shape()[0]), scales, gate)
 
 
 def named_convs(model):
@@ -155,18 +174,39 @@ def narrow(tensors, widths):
     return out
 
 
+def grown_out(w, b, had, has):
+    """The `out` layer's weight and bias `w`, `b` of a file with the optional channels `had` (the
+    linear mix's, the gate's: two bools) laid out for a model with `has`: each channel the file
+    lacks and the model has starts with weights 0 and its bias (LINEAR_MIX_BIAS, ATROUS_GATE_BIAS),
+    so that it starts near the file's output. A file with a channel the model lacks is left as it
+    is (its shape is not the model's)."""
+    if had == has or any(h and not m for h, m in zip(had, has)):
+        return w, b
+    base = w.shape[0] - sum(had)
+    weights, biases, at = [w[:base]], [b[:base]], base
+    for h, m, bias in zip(had, has, (LINEAR_MIX_BIAS, ATROUS_GATE_BIAS)):
+        if h:
+            weights.append(w[at : at + 1])
+            biases.append(b[at : at + 1])
+            at += 1
+        elif m:
+            weights.append(w.new_zeros(1, *w.shape[1:]))
+            biases.append(b.new_full((1,), bias))
+    return torch.cat(weights), torch.cat(biases)
+
+
 def load_weights(model, path):
     """Copies the tensors of a file train.py wrote into `model`. The direct model needs all of its
     layers; the kernel model takes every layer whose shapes match (so direct weights start its
     shared layers) and starts the others afresh. A `lucid-rae-v2` file's first layer, which has
     fewer inputs, starts the first layer with the new inputs' weights at zero. The file's
-    `emission_motion`, `history_frames` and `spatial_variance_frames` metadata, when there, set
-    the model's. A file of a
+    `emission_motion`, `history_frames`, `spatial_variance_frames` and `atrous_steps` metadata,
+    when there, set the model's (a file with `atrous_steps` needs a model with the gate). A file of a
     wider network starts a narrower model from the channels its layers weigh most (`narrow`). A
     file of fewer kernel scales starts a model of more: its coarsest head gains the weight `a` of
     the new scale, at sigmoid(NEW_SCALE_BIAS) everywhere, so that the new scale starts almost
-    unused. A file without the linear mix starts a model with it at sigmoid(LINEAR_MIX_BIAS)
-    everywhere."""
+    unused. A file without the linear mix or the gate starts a model with them at
+    sigmoid(LINEAR_MIX_BIAS) and sigmoid(ATROUS_GATE_BIAS) everywhere (`grown_out`)."""
     tensors = load_file(path)
     widths = widths_of(tensors) if all(f"{name}.weight" in tensors for name in HIDDEN) else model.widths
     if widths != model.widths:
@@ -180,6 +220,15 @@ def load_weights(model, path):
         model.history_frames = int(meta["history_frames"])
     if "spatial_variance_frames" in meta:
         model.spatial_variance_frames = int(meta["spatial_variance_frames"])
+    steps = atrous_steps_of(meta.get("atrous_steps", ""))
+    if steps:
+        if not model.gate:
+            raise ValueError(
+                f"{path} has the a-trous filter's gate (atrous_steps {meta['atrous_steps']}): the model needs it"
+            )
+        model.atrous_steps = steps
+    had = (file_linear_mix(path), bool(steps))
+    has = (getattr(model, "linear_mix", False), model.gate)
     loaded, skipped = [], []
     with torch.no_grad():
         for name, conv in named_convs(model).items():
@@ -189,9 +238,8 @@ def load_weights(model, path):
             if name in HEAD_NAMES and w is not None and w.shape[0] == TAPS == conv.weight.shape[0] - 1:
                 w = torch.cat([w, w.new_zeros(1, *w.shape[1:])])
                 b = torch.cat([b, b.new_full((1,), NEW_SCALE_BIAS)])
-            elif name == "out" and w is not None and w.shape[0] == conv.weight.shape[0] - 1:
-                w = torch.cat([w, w.new_zeros(1, *w.shape[1:])])
-                b = torch.cat([b, b.new_full((1,), LINEAR_MIX_BIAS)])
+            elif name == "out" and w is not None and b is not None:
+                w, b = grown_out(w, b, had, has)
             if w is None or b is None or w.shape != conv.weight.shape or b.shape != conv.bias.shape:
                 skipped.append(name)
                 continue
@@ -383,6 +431,12 @@ def main():
         help="the history lengths below which the variance inputs are taken over the 3x3 neighbourhood "
         f"of the frame's samples (0 to {int(N_MAX)}; default: --init's, else 0: never)",
     )
+    ap.add_argument(
+        "--atrous-steps",
+        default="",
+        help="the spacings in pixels, comma-separated (e.g. 4,8,16), of the a-trous filter over the output "
+        "that a gate the network predicts blends in per pixel (model.atrous; default: --init's, else none)",
+    )
     ap.add_argument("--val-every", type=int, default=250, help="validate every this many steps")
     ap.add_argument(
         "--watch",
@@ -419,7 +473,16 @@ def main():
         raise SystemExit("--linear-mix is the kernel decoder's (--model kernel)")
     if args.init and args.model == "kernel" and file_linear_mix(args.init):
         args.linear_mix = True
-    model = build_model(args.model, widths, args.scales, args.linear_mix).to(dev)
+    try:
+        atrous_steps = atrous_steps_of(args.atrous_steps)
+    except ValueError as e:
+        raise SystemExit(f"--atrous-steps: {e}") from None
+    init_steps = file_atrous_steps(args.init) if args.init else ()
+    if init_steps and atrous_steps and atrous_steps != init_steps:
+        steps = ",".join(str(s) for s in init_steps)
+        raise SystemExit(f"--atrous-steps {args.atrous_steps}: --init {args.init} has the gate of steps {steps}")
+    atrous_steps = init_steps or atrous_steps
+    model = build_model(args.model, widths, args.scales, args.linear_mix, atrous_steps).to(dev)
     if args.init:
         load_weights(model, args.init)
     if args.history_frames is not None:
@@ -502,7 +565,7 @@ def main():
         return
     final = validation(model, val, watch)
     if isinstance(model, KernelDenoiser):
-        layers = kernel_layers(model.widths, model.scales, model.linear_mix)
+        layers = kernel_layers(model.widths, model.scales, model.linear_mix, model.gate)
         tensors = kernel_export_tensors(model)
     else:
         layers, tensors = model.layers, export_tensors(model)
@@ -537,6 +600,8 @@ def main():
         "validation_light": f"{final['light']:.5f}",
         "watch": json.dumps({"scenes": args.watch, **final["watch"]}) if watch else "",
     }
+    if model.atrous_steps:
+        meta["atrous_steps"] = ",".join(str(s) for s in model.atrous_steps)
     save_file(tensors, args.out, metadata=meta)
     summary = {
         "final": final,

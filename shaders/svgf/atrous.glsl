@@ -1,78 +1,24 @@
-// One iteration of SVGF's edge-avoiding a-trous wavelet filter, its taps read from shared memory.
-// Requires math.glsl, image_coords.glsl, svgf/common.glsl, the sampler `u_in` (illumination rgb,
+// One iteration of SVGF's edge-avoiding a-trous wavelet filter, its taps read from shared memory
+// (the tile of common/atrous_tile.glsl, which declares the workgroup size). Requires math.glsl,
+// image_coords.glsl, svgf/common.glsl, the sampler `u_in` (illumination rgb,
 // standard deviation a: svgf_pack_filtered; clamped to its edge), the images `u_depth`,
 // `u_normal_roughness`, `u_depth_slope` (svgf/variance.comp), and `params` with `step` (a power
-// of two), `sigma_z`, `sigma_n`, `sigma_l`. Declares the workgroup size; the dispatch is `threads` in
-// passes/src/denoise/svgf/atrous.rs.
-//
-// Work layout. A workgroup of 16x16 invocations filters pixels `step` apart in y (one residue of
-// y modulo `step`) and, in x, runs of `run` = min(step, 4) adjacent pixels `step` apart (run
-// adjacent residues of x modulo `step`), so that the 5x5 taps of all its pixels, +-1 and +-2
-// steps away, fall on one dense tile of cells: 20 rows of `run` * (16 / run + 4) columns (20 for
-// step 1, 24 for step 2, 32 from step 4 on), the workgroup's own pixels and a halo of two steps.
-// The tile is read from memory once (1.6, 1.9 or 2.5 texels of each image per pixel instead of 25)
-// and its 24 taps per pixel come from shared memory. The runs of 4 adjacent pixels keep the reads
-// of large steps whole 32-byte sectors of the rgba16f images (a single residue would use 8 of
-// every 32 bytes fetched). Cell (column, row) is pixel
-//     origin + (column % run, 0) + step * (column / run, row),
-// and invocation (x, y) filters cell (x + 2 run, y + 2).
+// of two), `sigma_z`, `sigma_n`, `sigma_l`.
 #ifndef LUCID_SVGF_ATROUS_GLSL
 #define LUCID_SVGF_ATROUS_GLSL
 
-#define SVGF_ATROUS_GROUP 16
-layout(local_size_x = SVGF_ATROUS_GROUP, local_size_y = SVGF_ATROUS_GROUP) in;
-
-// The taps reach two steps beyond the workgroup's pixels.
-const int SVGF_ATROUS_HALO = 2;
-const int SVGF_ATROUS_ROWS = SVGF_ATROUS_GROUP + 2 * SVGF_ATROUS_HALO;
-// The longest run of adjacent residues, and the widest tile (that of the longest run).
-const int SVGF_ATROUS_MAX_RUN = 4;
-const int SVGF_ATROUS_COLUMNS =
-    SVGF_ATROUS_MAX_RUN * (SVGF_ATROUS_GROUP / SVGF_ATROUS_MAX_RUN + 2 * SVGF_ATROUS_HALO);
+#include "common/atrous_tile.glsl"
 
 // Per cell, as the halves the images hold: illumination rg, illumination b and standard
 // deviation, normal xy, normal z (and 16 unused bits).
-shared uvec4 s_svgf_texel[SVGF_ATROUS_ROWS * SVGF_ATROUS_COLUMNS];
+shared uvec4 s_svgf_texel[ATROUS_ROWS * ATROUS_COLUMNS];
 
 // Per cell, the view depth and the illumination's luminance. The depth is -infinity where no
 // surface is (the sky, outside the image): a tap there weighs exactly 0, as if skipped.
-shared vec2 s_svgf_depth_luminance[SVGF_ATROUS_ROWS * SVGF_ATROUS_COLUMNS];
-
-// Where a workgroup's tile lies (see the layout above). The step and the run are powers of two:
-// their divisions are shifts.
-struct SvgfAtrousTile {
-    ivec2 origin;
-    int run;
-    int run_shift;
-    int columns;
-};
-
-SvgfAtrousTile svgf_atrous_tile() {
-    int step = params.step;
-    int step_shift = findLSB(step);
-    SvgfAtrousTile tile;
-    tile.run = min(step, SVGF_ATROUS_MAX_RUN);
-    tile.run_shift = findLSB(tile.run);
-    tile.columns = SVGF_ATROUS_GROUP + 2 * SVGF_ATROUS_HALO * tile.run;
-    // Workgroups go through the step / run runs of residues first, then the tiles of each
-    // residue's grid.
-    int runs_shift = step_shift - tile.run_shift;
-    ivec2 group = ivec2(gl_WorkGroupID.xy);
-    ivec2 residue = ivec2((group.x & ((1 << runs_shift) - 1)) << tile.run_shift,
-                          group.y & (step - 1));
-    ivec2 first = ivec2((group.x >> runs_shift) * (SVGF_ATROUS_GROUP >> tile.run_shift),
-                        (group.y >> step_shift) * SVGF_ATROUS_GROUP);
-    tile.origin = residue + step * (first - SVGF_ATROUS_HALO);
-    return tile;
-}
-
-ivec2 svgf_atrous_cell_pixel(SvgfAtrousTile tile, ivec2 cell) {
-    return tile.origin + ivec2(cell.x & (tile.run - 1), 0)
-        + params.step * ivec2(cell.x >> tile.run_shift, cell.y);
-}
+shared vec2 s_svgf_depth_luminance[ATROUS_ROWS * ATROUS_COLUMNS];
 
 uvec4 svgf_atrous_texel(ivec2 cell) {
-    return s_svgf_texel[cell.y * SVGF_ATROUS_COLUMNS + cell.x];
+    return s_svgf_texel[atrous_cell_index(cell)];
 }
 
 vec4 svgf_atrous_color(uvec4 texel) {
@@ -89,12 +35,12 @@ float svgf_atrous_no_surface() {
 }
 
 vec2 svgf_atrous_depth_luminance(ivec2 cell) {
-    return s_svgf_depth_luminance[cell.y * SVGF_ATROUS_COLUMNS + cell.x];
+    return s_svgf_depth_luminance[atrous_cell_index(cell)];
 }
 
 // Reads tile cell `cell` into shared memory: no surface outside the image.
-void svgf_atrous_load_cell(SvgfAtrousTile tile, ivec2 cell, ivec2 size) {
-    ivec2 q = svgf_atrous_cell_pixel(tile, cell);
+void svgf_atrous_load_cell(AtrousTile tile, ivec2 cell, ivec2 size) {
+    ivec2 q = atrous_cell_pixel(tile, cell);
     uvec4 texel = uvec4(0u);
     vec2 depth_luminance = vec2(svgf_atrous_no_surface(), 0.0);
     if (inside_image(q, size)) {
@@ -105,15 +51,15 @@ void svgf_atrous_load_cell(SvgfAtrousTile tile, ivec2 cell, ivec2 size) {
         float z = imageLoad(u_depth, q).x;
         depth_luminance = vec2(z > 0.0 ? z : svgf_atrous_no_surface(), luminance(c.rgb));
     }
-    s_svgf_texel[cell.y * SVGF_ATROUS_COLUMNS + cell.x] = texel;
-    s_svgf_depth_luminance[cell.y * SVGF_ATROUS_COLUMNS + cell.x] = depth_luminance;
+    s_svgf_texel[atrous_cell_index(cell)] = texel;
+    s_svgf_depth_luminance[atrous_cell_index(cell)] = depth_luminance;
 }
 
 // Reads the tile into shared memory, invocation (x, y) taking the cells (x + 16 i, y + 16 j).
-void svgf_atrous_load(SvgfAtrousTile tile, ivec2 size) {
-    for (int row = int(gl_LocalInvocationID.y); row < SVGF_ATROUS_ROWS; row += SVGF_ATROUS_GROUP) {
+void svgf_atrous_load(AtrousTile tile, ivec2 size) {
+    for (int row = int(gl_LocalInvocationID.y); row < ATROUS_ROWS; row += ATROUS_GROUP) {
         for (int column = int(gl_LocalInvocationID.x); column < tile.columns;
-             column += SVGF_ATROUS_GROUP) {
+             column += ATROUS_GROUP) {
             svgf_atrous_load_cell(tile, ivec2(column, row), size);
         }
     }
@@ -226,10 +172,9 @@ vec4 svgf_atrous_filter(int run, ivec2 cell, float slope, float blurred_variance
 // before the tile's, so that they wait together.
 bool svgf_atrous(out ivec2 pixel, out vec4 filtered) {
     ivec2 size = textureSize(u_in, 0);
-    SvgfAtrousTile tile = svgf_atrous_tile();
-    ivec2 cell = ivec2(gl_LocalInvocationID.xy)
-        + ivec2(SVGF_ATROUS_HALO * tile.run, SVGF_ATROUS_HALO);
-    pixel = svgf_atrous_cell_pixel(tile, cell);
+    AtrousTile tile = atrous_tile(params.step);
+    ivec2 cell = atrous_own_cell(tile);
+    pixel = atrous_cell_pixel(tile, cell);
     bool inside = pixel_in_bounds(pixel, size);
     float slope = 0.0;
     float blurred_variance = 0.0;

@@ -28,7 +28,12 @@
 //! the committed weights take their first frames' variance inputs over each pixel's 3x3
 //! neighbourhood (`spatial_variance_frames` 4), and the ninth (the first's frames) is of them with
 //! `spatial_variance_frames` 0, rebuilt here the same way, so the variance inputs over the history
-//! in every frame are checked too;
+//! in every frame are checked too; the tenth (`make_parity.py`'s synthetic frames at 48x32, sky in
+//! a corner) is of the gated a-trous
+//! filter over the output (`references/neural_atrous_weights.safetensors`: the committed weights
+//! widened by `training/widen_scales.py --atrous-steps 2,4 --gate-bias 0`, the gate about half
+//! and varying from pixel to pixel), so the output's illumination and gate, the a-trous steps and
+//! the blend are checked too;
 //! `the_emission_stays_on_its_object`
 //! checks what that average is for over more frames.
 //! The running means of the noisy radiance and their
@@ -122,8 +127,9 @@ fn builtin_with_metadata(key: &str, value: u32) -> NetworkWeights {
 
 /// The committed weights' fixture, the other decoder's, the emitters', a narrower network's, one
 /// of three scales, one of five, one with the linear mix, one whose running means hold one
-/// frame and one whose first frames' variance inputs are over the history, as later frames' are.
-fn fixtures() -> [Fixture; 9] {
+/// frame, one whose first frames' variance inputs are over the history, as later frames' are, and
+/// one with the gated a-trous filter.
+fn fixtures() -> [Fixture; 10] {
     let load = |file: &str| {
         NetworkWeights::load(std::path::Path::new(&references(file)))
             .unwrap_or_else(|e| panic!("load {file}: {e}"))
@@ -162,6 +168,10 @@ fn fixtures() -> [Fixture; 9] {
             "neural_parity_history_variance.safetensors",
             builtin_with_metadata("spatial_variance_frames", 0),
         ),
+        fixture(
+            "neural_parity_atrous.safetensors",
+            load("neural_atrous_weights.safetensors"),
+        ),
     ];
     let decoders = fixtures.each_ref().map(|f| f.weights.decoder());
     assert!(
@@ -187,6 +197,12 @@ fn fixtures() -> [Fixture; 9] {
             .iter()
             .any(|f| f.weights.history_frames() < neural::HISTORY_FRAMES),
         "the fixtures cover running means of fewer frames"
+    );
+    assert!(
+        fixtures
+            .iter()
+            .any(|f| !f.weights.atrous_steps().is_empty()),
+        "the fixtures cover the gated a-trous filter"
     );
     let spatial = fixtures
         .each_ref()

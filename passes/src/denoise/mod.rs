@@ -3,6 +3,7 @@
 //! read and the emission they add back, supersampled at emitters' edges.
 
 pub mod accumulate;
+mod atrous_tile;
 pub mod edge_emission;
 mod frame_denoiser;
 pub mod gbuffer;

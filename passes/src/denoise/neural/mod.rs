@@ -41,18 +41,19 @@ mod weights;
 
 pub use network::{InferencePath, Network};
 pub use weights::{
-    Decoder, Layer, NetworkWeights, WeightsError, Widths, BUILTIN, EMISSION_MOTION, FEATURES,
-    FORMAT, HIDDEN, HISTORY_FRAMES, KERNEL_HEADS, KERNEL_SCALES, KERNEL_TAPS,
-    SPATIAL_VARIANCE_FRAMES,
+    Decoder, Layer, NetworkWeights, WeightsError, Widths, ATROUS_MAX_SPACING, ATROUS_MAX_STEPS,
+    BUILTIN, EMISSION_MOTION, FEATURES, FORMAT, HIDDEN, HISTORY_FRAMES, KERNEL_HEADS,
+    KERNEL_SCALES, KERNEL_TAPS, SPATIAL_VARIANCE_FRAMES,
 };
 
+use crate::denoise::atrous_tile;
 use crate::denoise::gbuffer::GBuffer;
 use crate::denoise::handoff::{self, Handoff};
 use crate::denoise::{DenoiseInputs, Denoised, FrameDenoiser, FrameInfo, TransportRequest};
 use crate::light_transport::SurfaceImages;
 use crate::shaders::neural::{
-    CONV, CONV_COOP, FEATURES as FEATURES_SHADER, KERNEL_FILTER, OUTPUT, POOL, RADIANCE_POOL,
-    RECORD,
+    ATROUS_BLEND, ATROUS_STEP, CONV, CONV_COOP, FEATURES as FEATURES_SHADER, KERNEL_FILTER, OUTPUT,
+    OUTPUT_ATROUS, POOL, RADIANCE_POOL, RECORD,
 };
 use lucid_engine::capture::ImageData;
 use lucid_engine::graph::{BufferHandle, ComputePass, ImageHandle, RenderGraph};
@@ -435,7 +436,9 @@ pub fn add_neural(
         (heads[0], half_filtered, quarter_detail)
     });
 
-    let mut p = g.compute_pass(&format!("{prefix}.output"), &OUTPUT);
+    let gated = !network.atrous_steps.is_empty();
+    let shader = if gated { &OUTPUT_ATROUS } else { &OUTPUT };
+    let mut p = g.compute_pass(&format!("{prefix}.output"), shader);
     // The direct decoder has no scales: its output is bound in their place (not read).
     let (half_net, half_filtered, quarter_detail) = coarse.unwrap_or((net, net.buffer, net.buffer));
     p.read("b_features", features.buffer)
@@ -451,18 +454,89 @@ pub fn add_neural(
         .specialize("LINEAR_MIX", network.linear_mix)
         .push(&[width, height]);
     p.write("u_output", output_history.cur);
-    let radiance = p.create_image(
-        "u_radiance",
-        &format!("{prefix}.radiance"),
-        ImageDesc::rgba32f(width, height),
-    );
-    p.dispatch([width, height, 1]);
+    let radiance = if gated {
+        // The gate is the output layer's last channel (`layers`' seventh is `out`).
+        p.specialize("GATE_CHANNEL", network.layers[6].out - 1);
+        let illumination = p.create_image(
+            "u_illumination",
+            &format!("{prefix}.illumination"),
+            ImageDesc::rgba32f(width, height),
+        );
+        p.dispatch([width, height, 1]);
+        add_atrous(
+            g,
+            &network.atrous_steps,
+            illumination,
+            inputs.normal_roughness,
+            (albedo, emission),
+            full,
+            prefix,
+        )
+    } else {
+        let radiance = p.create_image(
+            "u_radiance",
+            &format!("{prefix}.radiance"),
+            ImageDesc::rgba32f(width, height),
+        );
+        p.dispatch([width, height, 1]);
+        radiance
+    };
     NeuralImages {
         radiance,
         accum,
         moment,
         robust,
     }
+}
+
+/// Push constants of `atrous_step.comp`.
+#[repr(C)]
+#[derive(Clone, Copy, bytemuck::Pod, bytemuck::Zeroable)]
+struct AtrousStepParams {
+    width: u32,
+    height: u32,
+    /// The taps' spacing in pixels.
+    step: u32,
+}
+
+/// Adds the gated a-trous filter over the output (`training/model.py`, `atrous`): the output's
+/// `illumination` (rgb, its gate in alpha) filtered by one pass per spacing of `steps`
+/// (`atrous_step.comp` on the tile of [`atrous_tile`], edge-stopped by the G-buffer's
+/// `normal_roughness`), then blended with it
+/// by the gate and re-modulated by the first hits' albedo and emission averaged over time
+/// (`surface`; `atrous_blend.comp`), all at `width` x `height`. Returns the denoised radiance.
+fn add_atrous(
+    g: &mut RenderGraph,
+    steps: &[u32],
+    illumination: ImageHandle,
+    normal_roughness: ImageHandle,
+    (albedo, emission): (ImageHandle, ImageHandle),
+    (width, height): (u32, u32),
+    prefix: &str,
+) -> ImageHandle {
+    let desc = ImageDesc::rgba32f(width, height);
+    let mut filtered = illumination;
+    for (index, &step) in steps.iter().enumerate() {
+        let mut p = g.compute_pass(&format!("{prefix}.atrous{index}"), &ATROUS_STEP);
+        p.read("u_in", filtered)
+            .read("u_normal_roughness", normal_roughness)
+            .push(&AtrousStepParams {
+                width,
+                height,
+                step,
+            });
+        filtered = p.create_image("u_out", &format!("{prefix}.atrous{index}"), desc);
+        p.dispatch(atrous_tile::threads(step, (width, height)));
+    }
+    let mut p = g.compute_pass(&format!("{prefix}.atrous_blend"), &ATROUS_BLEND);
+    p.read("u_illumination", illumination)
+        .read("u_filtered", filtered)
+        .read("u_albedo_mean", albedo)
+        .read("u_emission_mean", emission)
+        .push(&[width, height]);
+    let radiance = p.create_image("u_radiance", &format!("{prefix}.radiance"), desc);
+    p.dispatch([width, height, 1]);
+    radiance
 }
 
 /// The kernel decoder's scales below full resolution, as its buffers and passes are named.

@@ -80,6 +80,8 @@ pub struct Network {
     pub(super) history_frames: u32,
     /// [`NetworkWeights::spatial_variance_frames`].
     pub(super) spatial_variance_frames: u32,
+    /// [`NetworkWeights::atrous_steps`].
+    pub(super) atrous_steps: Vec<u32>,
     /// The layers, in execution order ([`Decoder::layers`]).
     pub(super) layers: Vec<Layer>,
     /// Every layer's float32 weights and bias (`conv.comp`'s layout).
@@ -123,6 +125,7 @@ impl Network {
             emission_motion: weights.emission_motion(),
             history_frames: weights.history_frames(),
             spatial_variance_frames: weights.spatial_variance_frames(),
+            atrous_steps: weights.atrous_steps().to_vec(),
             layers: weights.layers().to_vec(),
             buffer,
             offsets: (0..weights.layers().len())

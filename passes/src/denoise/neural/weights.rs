@@ -251,6 +251,43 @@ pub const HISTORY_FRAMES: u32 = 32;
 /// does not set them: none, so a first frame's variance inputs are 0.
 pub const SPATIAL_VARIANCE_FRAMES: u32 = 0;
 
+/// The most a-trous steps of the gated filter over the output (the weights file's `atrous_steps`
+/// metadata; training/model.py, `atrous`).
+pub const ATROUS_MAX_STEPS: usize = 5;
+
+/// The widest spacing of an a-trous step's taps, in pixels (the spacings are powers of two, which
+/// the steps' tiles in shared memory need).
+pub const ATROUS_MAX_SPACING: u32 = 64;
+
+/// The a-trous steps' spacings from the metadata entry `atrous_steps` of `file` (its text
+/// `found`, comma-separated): none where the entry is absent or empty, an error where it is not 1
+/// to [`ATROUS_MAX_STEPS`] powers of two from 1 to [`ATROUS_MAX_SPACING`].
+fn atrous_steps(file: &str, found: String) -> Result<Vec<u32>, WeightsError> {
+    if found.trim().is_empty() {
+        return Ok(Vec::new());
+    }
+    let steps: Option<Vec<u32>> = found
+        .split(',')
+        .map(|step| {
+            step.trim()
+                .parse::<u32>()
+                .ok()
+                .filter(|s| s.is_power_of_two() && *s <= ATROUS_MAX_SPACING)
+        })
+        .collect();
+    steps
+        .filter(|steps| steps.len() <= ATROUS_MAX_STEPS)
+        .ok_or_else(|| WeightsError::Metadata {
+            file: file.to_owned(),
+            key: "atrous_steps".into(),
+            found,
+            expected: format!(
+                "1 to {ATROUS_MAX_STEPS} comma-separated powers of two from 1 to \
+                 {ATROUS_MAX_SPACING}"
+            ),
+        })
+}
+
 /// A number from the metadata entry `key` of `file` (its text `found`): `default` where the entry
 /// is absent, an error saying what was `expected` where it does not parse or is not `valid`.
 fn metadata_number<T: std::str::FromStr>(
@@ -285,6 +322,7 @@ pub struct NetworkWeights {
     emission_motion: f32,
     history_frames: u32,
     spatial_variance_frames: u32,
+    atrous_steps: Vec<u32>,
     widths: Widths,
     layers: Vec<Layer>,
     packed: Vec<f32>,
@@ -358,16 +396,21 @@ impl NetworkWeights {
             |v| *v <= HISTORY_FRAMES,
             &format!("a whole number from 0 to {HISTORY_FRAMES}"),
         )?;
+        let atrous_steps = atrous_steps(file, entry("atrous_steps"))?;
+        let gate = !atrous_steps.is_empty();
         let tensors = SafeTensors::deserialize(bytes).map_err(|e| format_error(e.to_string()))?;
         let widths = read_widths(&tensors, file)?;
         let (scales, linear_mix) = match decoder {
             Decoder::Direct => (KERNEL_SCALES, false),
             Decoder::Kernel => {
                 let scales = read_scales(&tensors);
-                (scales, read_linear_mix(&tensors, scales))
+                (scales, read_linear_mix(&tensors, scales, gate))
             }
         };
-        let layers = decoder.layers(widths, scales, linear_mix);
+        let mut layers = decoder.layers(widths, scales, linear_mix);
+        if gate {
+            add_gate_channel(&mut layers);
+        }
         let mut packed = Vec::with_capacity(layers.iter().map(Layer::packed_len).sum());
         let mut offsets = Vec::with_capacity(layers.len());
         for layer in &layers {
@@ -399,6 +442,7 @@ impl NetworkWeights {
             emission_motion,
             history_frames,
             spatial_variance_frames,
+            atrous_steps,
             widths,
             layers,
             packed,
@@ -438,6 +482,13 @@ impl NetworkWeights {
     /// `spatial_variance_frames` metadata, else [`SPATIAL_VARIANCE_FRAMES`]).
     pub fn spatial_variance_frames(&self) -> u32 {
         self.spatial_variance_frames
+    }
+
+    /// The spacings of the a-trous steps that filter the output's illumination further, blended in
+    /// by a gate per pixel, the output layer's last channel (the file's `atrous_steps` metadata;
+    /// none without it, and no gate channel).
+    pub fn atrous_steps(&self) -> &[u32] {
+        &self.atrous_steps
     }
 
     /// The U-Net's widths (its tensors' shapes).
@@ -500,14 +551,25 @@ fn read_scales(tensors: &SafeTensors<'_>) -> u32 {
 }
 
 /// Whether the kernel decoder's full-resolution head has the linear mix's channel: one more output
-/// channel than without (any other count is refused with the head's shape when it is read).
-fn read_linear_mix(tensors: &SafeTensors<'_>, scales: u32) -> bool {
+/// channel than without, before the `gate`'s where it has one (any other count is refused with the
+/// head's shape when it is read).
+fn read_linear_mix(tensors: &SafeTensors<'_>, scales: u32, gate: bool) -> bool {
     let name = format!("{}.weight", KERNEL_HEADS[0]);
     tensors
         .tensor(&name)
         .ok()
         .and_then(|t| t.shape().first().copied())
-        == Some(head_channels(0, scales, true) as usize)
+        == Some((head_channels(0, scales, true) + u32::from(gate)) as usize)
+}
+
+/// Adds the gate of the a-trous filter to `layers`: one more output channel, the last, of the
+/// layer `out` (the direct decoder's output layer, the kernel decoder's full-resolution head).
+fn add_gate_channel(layers: &mut [Layer]) {
+    let out = layers
+        .iter_mut()
+        .find(|layer| layer.name == KERNEL_HEADS[0])
+        .expect("both decoders have an `out` layer");
+    out.out += 1;
 }
 
 /// The float32 values of tensor `name`, which must have `shape` and be finite.
@@ -798,6 +860,50 @@ mod tests {
             ("4", 4),
             &["33", "-1", "3.5", "few"],
         );
+    }
+
+    #[test]
+    fn the_atrous_steps_come_from_the_metadata_with_the_gate_channel() {
+        assert!(NetworkWeights::builtin().atrous_steps().is_empty());
+        let gated = |decoder: Decoder, linear_mix: bool| {
+            let mut layers = decoder.layers(Widths::COMMITTED, KERNEL_SCALES, linear_mix);
+            add_gate_channel(&mut layers);
+            layers
+        };
+        let steps = [("atrous_steps", "4, 8,16")];
+        for (decoder, linear_mix, out) in [
+            (Decoder::Kernel, false, 28),
+            (Decoder::Kernel, true, 29),
+            (Decoder::Direct, false, 5),
+        ] {
+            let layers = gated(decoder, linear_mix);
+            let bytes = file_with_layers(FORMAT, decoder, &layers, &steps, |_, _, _| true);
+            let weights = NetworkWeights::from_bytes(&bytes, "w").expect("loads");
+            assert_eq!(weights.atrous_steps(), [4, 8, 16]);
+            assert_eq!(weights.linear_mix(), linear_mix, "{decoder:?}");
+            assert_eq!(weights.layers()[6].name, "out");
+            assert_eq!(weights.layers()[6].out, out, "{decoder:?}");
+        }
+        // The steps without the gate's channel: refused, naming the head and the shape it needs.
+        let layers = Decoder::Kernel.layers(Widths::COMMITTED, KERNEL_SCALES, false);
+        let bytes = file_with_layers(FORMAT, Decoder::Kernel, &layers, &steps, |_, _, _| true);
+        let message = error(&bytes);
+        assert!(
+            message.contains("out.weight") && message.contains("expected [28, 16, 3, 3]"),
+            "{message}"
+        );
+        let layers = gated(Decoder::Kernel, false);
+        for bad in ["0", "128", "12", "4,8,16,32,64,2", "4;8", "4,,8", "wide"] {
+            let metadata = [("atrous_steps", bad)];
+            let bytes =
+                file_with_layers(FORMAT, Decoder::Kernel, &layers, &metadata, |_, _, _| true);
+            let message = error(&bytes);
+            assert!(
+                message.contains("w.safetensors")
+                    && message.contains(&format!("metadata atrous_steps \"{bad}\"")),
+                "{message}"
+            );
+        }
     }
 
     #[test]

@@ -1,5 +1,5 @@
-//! The a-trous iterations of SVGF's filter (`shaders/svgf/{atrous,atrous_feedback}.comp`, layout
-//! in `shaders/svgf/atrous.glsl`).
+//! The a-trous iterations of SVGF's filter (`shaders/svgf/{atrous,atrous_feedback}.comp`, in
+//! `shaders/svgf/atrous.glsl`, on the tile of `shaders/common/atrous_tile.glsl`).
 //!
 //! Each iteration's workgroup filters 16x16 pixels a step apart (in x, runs of up to 4 adjacent
 //! pixels a step apart) and first reads the tile their 5x5 taps cover into shared memory: per
@@ -8,6 +8,7 @@
 //! blurs), about 10 in all where taps reading the images would take 87.
 
 use super::SvgfParams;
+use crate::denoise::atrous_tile::threads;
 use crate::denoise::gbuffer::GBuffer;
 use crate::shaders::svgf::{ATROUS, ATROUS_FEEDBACK};
 use lucid_engine::graph::{ImageHandle, RenderGraph};
@@ -22,11 +23,6 @@ struct AtrousParams {
     sigma_n: f32,
     sigma_l: f32,
 }
-
-/// Side of a workgroup, in invocations (`SVGF_ATROUS_GROUP`).
-const GROUP: u32 = 16;
-/// The longest run of adjacent pixels a workgroup filters in x (`SVGF_ATROUS_MAX_RUN`).
-const MAX_RUN: u32 = 4;
 
 /// Adds `params.iterations` a-trous iterations (steps 1, 2, 4, ...) on `input` (illumination and
 /// standard deviation, `svgf_pack_filtered`), with the depth slope `depth_slope` of
@@ -69,55 +65,4 @@ pub(super) fn add(
         filtered = out;
     }
     filtered
-}
-
-/// The invocations of the iteration of `step` (a power of two) on a `width` x `height` image:
-/// in x, `step / run` runs of residues times the tiles of 16 / `run` columns that cover a
-/// residue's `ceil(width / step)` columns (`run` = min(step, 4)); in y, `step` residues times the
-/// tiles of 16 rows that cover a residue's `ceil(height / step)` rows.
-fn threads(step: u32, (width, height): (u32, u32)) -> [u32; 3] {
-    let run = step.min(MAX_RUN);
-    let tiles_x = width.div_ceil(step).div_ceil(GROUP / run);
-    let tiles_y = height.div_ceil(step).div_ceil(GROUP);
-    [step / run * tiles_x * GROUP, step * tiles_y * GROUP, 1]
-}
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-
-    /// The pixel that invocation `(x, y)` filters, as `svgf_atrous_cell_pixel` maps it.
-    fn pixel(step: u32, (x, y): (u32, u32)) -> (u32, u32) {
-        let run = step.min(MAX_RUN);
-        let (group, local) = ((x / GROUP, y / GROUP), (x % GROUP, y % GROUP));
-        let runs = step / run;
-        let residue = (group.0 % runs * run, group.1 % step);
-        let first = (group.0 / runs * (GROUP / run), group.1 / step * GROUP);
-        (
-            residue.0 + local.0 % run + step * (first.0 + local.0 / run),
-            residue.1 + step * (first.1 + local.1),
-        )
-    }
-
-    #[test]
-    fn every_pixel_is_filtered_once() {
-        for (width, height) in [(64, 64), (67, 45), (1920, 1080), (5, 3)] {
-            for step in [1, 2, 4, 8, 16, 32] {
-                let [tx, ty, _] = threads(step, (width, height));
-                let mut count = vec![0u32; (width * height) as usize];
-                for y in 0..ty {
-                    for x in 0..tx {
-                        let (px, py) = pixel(step, (x, y));
-                        if px < width && py < height {
-                            count[(py * width + px) as usize] += 1;
-                        }
-                    }
-                }
-                assert!(
-                    count.iter().all(|&c| c == 1),
-                    "step {step} at {width}x{height}"
-                );
-            }
-        }
-    }
 }
