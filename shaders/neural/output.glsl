@@ -14,7 +14,7 @@
 // head's channel 27 (m) mixes the two: log + sigmoid(m) * (log(1 + max(linear, 0)) - log).
 // With ATROUS_GATE (output_atrous.comp) the pass writes the output's illumination, exp(log) - 1,
 // and the sigmoid of the output layer's last channel (GATE_CHANNEL, the gate) instead of the
-// re-modulated radiance: atrous_step.comp filters the illumination further and atrous_blend.comp
+// re-modulated radiance: atrous_step.glsl filters the illumination further, and its last step
 // blends it in by the gate and re-modulates (training/model.py, `atrous`). The includer defines
 // the version.
 #include "common/image_coords.glsl"

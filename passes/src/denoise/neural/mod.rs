@@ -52,7 +52,7 @@ use crate::denoise::handoff::{self, Handoff};
 use crate::denoise::{DenoiseInputs, Denoised, FrameDenoiser, FrameInfo, TransportRequest};
 use crate::light_transport::SurfaceImages;
 use crate::shaders::neural::{
-    ATROUS_BLEND, ATROUS_STEP, CONV, CONV_COOP, FEATURES as FEATURES_SHADER, KERNEL_FILTER, OUTPUT,
+    ATROUS_LAST, ATROUS_STEP, CONV, CONV_COOP, FEATURES as FEATURES_SHADER, KERNEL_FILTER, OUTPUT,
     OUTPUT_ATROUS, POOL, RADIANCE_POOL, RECORD,
 };
 use lucid_engine::capture::ImageData;
@@ -500,11 +500,11 @@ struct AtrousStepParams {
 }
 
 /// Adds the gated a-trous filter over the output (`training/model.py`, `atrous`): the output's
-/// `illumination` (rgb, its gate in alpha) filtered by one pass per spacing of `steps`
-/// (`atrous_step.comp` on the tile of [`atrous_tile`], edge-stopped by the G-buffer's
-/// `normal_roughness`), then blended with it
-/// by the gate and re-modulated by the first hits' albedo and emission averaged over time
-/// (`surface`; `atrous_blend.comp`), all at `width` x `height`. Returns the denoised radiance.
+/// `illumination` (rgb, its gate in alpha) filtered by one pass per spacing of `steps` (on the
+/// tile of [`atrous_tile`], edge-stopped by the G-buffer's `normal_roughness`), the last of which
+/// (`atrous_last.comp`) blends its result with the illumination by the gate and re-modulates it by
+/// the first hits' albedo and emission averaged over time (`surface`), all at `width` x
+/// `height`. Returns the denoised radiance.
 fn add_atrous(
     g: &mut RenderGraph,
     steps: &[u32],
@@ -517,7 +517,9 @@ fn add_atrous(
     let desc = ImageDesc::rgba32f(width, height);
     let mut filtered = illumination;
     for (index, &step) in steps.iter().enumerate() {
-        let mut p = g.compute_pass(&format!("{prefix}.atrous{index}"), &ATROUS_STEP);
+        let last = index + 1 == steps.len();
+        let shader = if last { &ATROUS_LAST } else { &ATROUS_STEP };
+        let mut p = g.compute_pass(&format!("{prefix}.atrous{index}"), shader);
         p.read("u_in", filtered)
             .read("u_normal_roughness", normal_roughness)
             .push(&AtrousStepParams {
@@ -525,18 +527,17 @@ fn add_atrous(
                 height,
                 step,
             });
-        filtered = p.create_image("u_out", &format!("{prefix}.atrous{index}"), desc);
+        filtered = if last {
+            p.read("u_illumination", illumination)
+                .read("u_albedo_mean", albedo)
+                .read("u_emission_mean", emission);
+            p.create_image("u_radiance", &format!("{prefix}.radiance"), desc)
+        } else {
+            p.create_image("u_out", &format!("{prefix}.atrous{index}"), desc)
+        };
         p.dispatch(atrous_tile::threads(step, (width, height)));
     }
-    let mut p = g.compute_pass(&format!("{prefix}.atrous_blend"), &ATROUS_BLEND);
-    p.read("u_illumination", illumination)
-        .read("u_filtered", filtered)
-        .read("u_albedo_mean", albedo)
-        .read("u_emission_mean", emission)
-        .push(&[width, height]);
-    let radiance = p.create_image("u_radiance", &format!("{prefix}.radiance"), desc);
-    p.dispatch([width, height, 1]);
-    radiance
+    filtered
 }
 
 /// The kernel decoder's scales below full resolution, as its buffers and passes are named.
