@@ -489,7 +489,7 @@ pub fn add_neural(
     }
 }
 
-/// Push constants of `atrous_step.comp`.
+/// Push constants of the gated filter's a-trous steps (`atrous_step.glsl`).
 #[repr(C)]
 #[derive(Clone, Copy, bytemuck::Pod, bytemuck::Zeroable)]
 struct AtrousStepParams {
@@ -503,8 +503,8 @@ struct AtrousStepParams {
 /// `illumination` (rgb, its gate in alpha) filtered by one pass per spacing of `steps` (on the
 /// tile of [`atrous_tile`], edge-stopped by the G-buffer's `normal_roughness`), the last of which
 /// (`atrous_last.comp`) blends its result with the illumination by the gate and re-modulates it by
-/// the first hits' albedo and emission averaged over time (`surface`), all at `width` x
-/// `height`. Returns the denoised radiance.
+/// the first hits' `albedo` and `emission` averaged over time, all at `width` x `height`. Returns
+/// the denoised radiance.
 fn add_atrous(
     g: &mut RenderGraph,
     steps: &[u32],
