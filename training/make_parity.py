@@ -28,7 +28,7 @@ from safetensors.torch import load_file, save_file
 
 from data import dataset_folders
 from model import OBJECT_BITS, RECORD_SIZE
-from train import build_model, file_atrous_steps, file_linear_mix, file_scales, file_widths, load_weights
+from train import build_model_for, load_weights
 
 SIZE = "32x24"
 
@@ -99,13 +99,7 @@ def main():
     args = ap.parse_args()
     W, H = (int(v) for v in args.size.split("x"))
     decoder = safe_open_metadata(args.weights).get("decoder", "direct")
-    model = build_model(
-        decoder,
-        file_widths(args.weights),
-        file_scales(args.weights),
-        file_linear_mix(args.weights),
-        file_atrous_steps(args.weights),
-    )
+    model = build_model_for(decoder, args.weights)
     load_weights(model, args.weights)
     objects = None
     if args.data:

@@ -24,7 +24,7 @@ import torch
 import model
 from data import load_split
 from losses import display_ssim
-from train import build_model, file_atrous_steps, file_linear_mix, file_scales, file_widths, load_weights
+from train import build_model_for, load_weights
 
 
 def averaged(rec, warped, n, mask):
@@ -83,13 +83,7 @@ def main():
     sequences = load_split(args.data, "study", dev)
     if not sequences:
         raise SystemExit(f"{args.data}: no sequences in the split `study` (lucid dataset --scenes)")
-    net = build_model(
-        args.decoder,
-        file_widths(args.weights),
-        file_scales(args.weights),
-        file_linear_mix(args.weights),
-        file_atrous_steps(args.weights),
-    ).to(dev)
+    net = build_model_for(args.decoder, args.weights).to(dev)
     load_weights(net, args.weights)
     shipped = model.antialias_surface
     results = {}

@@ -104,6 +104,12 @@ def build_model(name, widths=WIDTHS, scales=SCALES, linear_mix=False, atrous_ste
     return RecurrentDenoiser(widths, atrous_steps)
 
 
+def build_model_for(decoder, path):
+    """The `decoder`'s model shaped as the weights file `path` is: its widths, kernel scales,
+    linear mix and a-trous filter's steps (its weights not loaded: `load_weights`)."""
+    return build_model(decoder, file_widths(path), file_scales(path), file_linear_mix(path), file_atrous_steps(path))
+
+
 def file_widths(path):
     """The U-Net widths of a weights file train.py wrote."""
     with safe_open(path, "pt") as f:
