@@ -4,7 +4,7 @@
         [--model direct|kernel] [--loss l1grad|l1msssim|l1gradflip] [--burn-in K [--burn-in-min J]]
         [--widths E0,E1,E2,B,D1,D0] [--scales N] [--fireflies RATE] [--watch SCENES]
         [--blotch WEIGHT [--blotch-margin M]] [--cold P] [--linear-mix] [--energy WEIGHT]
-        [--atrous-steps S1,S2,...]
+        [--atrous-steps S1,S2,...] [--gate-only]
 
 `--model kernel` trains `kernel_model.KernelDenoiser` (both export as `lucid-rae-v3`, the decoder
 named in the file's `decoder` metadata; the renderer runs either); `--loss` picks a loss of `losses.py`; `--burn-in K` runs the first K
@@ -27,7 +27,9 @@ that erases a caustic loses) to the loss. `--atrous-steps 4,8,16` gives either d
 a-trous filter over its output (`model.atrous`, steps of those spacings in pixels, the gate one
 more channel of `out`, its last; written to the weights' `atrous_steps` metadata): weights without
 the gate start it at sigmoid(ATROUS_GATE_BIAS) everywhere, an `--init` that has it implies its
-steps (other steps are an error). A step whose loss is not finite is skipped (and counted); past
+steps (other steps are an error). `--gate-only` trains the gate alone (the last output channel of
+`out`; everything else stays --init's): the output, the state and so every frame's unfiltered
+result stay the initial weights', and only where the filter is blended in is learned. A step whose loss is not finite is skipped (and counted); past
 1% of the steps, training stops.
 
 Started by `python3 parallel.py N train.py ...` it trains data-parallel on N GPUs (`parallel.py`): each
@@ -335,6 +337,19 @@ def validation(model, val, watch):
     return result
 
 
+def train_gate_only(model):
+    """Freezes every weight of `model` but its gate's: the last output channel of `out` (its
+    weights' other rows get no gradient, so Adam leaves them as they are)."""
+    for p in model.parameters():
+        p.requires_grad_(False)
+    out = named_convs(model)["out"]
+    for p in (out.weight, out.bias):
+        p.requires_grad_(True)
+        last = torch.zeros_like(p)
+        last[-1] = 1.0
+        p.register_hook(lambda grad, last=last: grad * last)
+
+
 def run_window(model, rec, objects, burn_in):
     """The frames of a window [B, burn_in + frames, C, H, W] (their object ids `objects` [B, burn_in
     + frames, 1, H, W]) one `step` at a time, the first `burn_in` without gradients; returns the
@@ -443,6 +458,11 @@ def main():
         help="the spacings in pixels, comma-separated (e.g. 4,8,16), of the a-trous filter over the output "
         "that a gate the network predicts blends in per pixel (model.atrous; default: --init's, else none)",
     )
+    ap.add_argument(
+        "--gate-only",
+        action="store_true",
+        help="train only the gate of the a-trous filter (out's last channel), every other weight kept as --init's",
+    )
     ap.add_argument("--val-every", type=int, default=250, help="validate every this many steps")
     ap.add_argument(
         "--watch",
@@ -499,12 +519,16 @@ def main():
         if not 0 <= args.spatial_variance_frames <= N_MAX:
             raise SystemExit(f"--spatial-variance-frames {args.spatial_variance_frames} is not between 0 and {int(N_MAX)}")
         model.spatial_variance_frames = args.spatial_variance_frames
+    if args.gate_only:
+        if not model.gate or not args.init:
+            raise SystemExit("--gate-only trains the gate of --init's model: give --init and --atrous-steps (or a gated --init)")
+        train_gate_only(model)
     group.same_start(model)
     cost = model_cost(model, dev)
     if group.first:
         head = {"model": args.model, "loss": args.loss, "device": dev, "processes": group.world, **cost}
         print(json.dumps(head), flush=True)
-    opt = torch.optim.Adam(model.parameters(), lr=args.lr)
+    opt = torch.optim.Adam([p for p in model.parameters() if p.requires_grad], lr=args.lr)
     ws = [float(v) for v in args.weights.split(",")] if args.weights else list(DEFAULT_WEIGHTS[args.loss])
     if len(ws) != len(TERM_NAMES[args.loss]):
         raise SystemExit(f"--weights takes {len(TERM_NAMES[args.loss])} numbers for --loss {args.loss}")
@@ -592,6 +616,7 @@ def main():
         "blotch_margin": str(args.blotch_margin),
         "cold": str(args.cold),
         "energy": str(args.energy),
+        "gate_only": str(args.gate_only),
         "crop": str(args.crop),
         "batch": str(args.batch),
         "steps": str(step),
