@@ -2,7 +2,10 @@
 //! `training/kernel_model.py`): two consecutive frames of committed fixtures (`references/
 //! neural_parity*.safetensors`, made by `training/make_parity.py`), so the features, every
 //! convolution, pooling and upsampling, the kernel decoder's filtering and compositing, the history
-//! warp and the recurrent blend are all covered. One fixture is of the committed weights, another
+//! warp and the recurrent blend are all covered. One fixture is of the committed weights (which
+//! carry the gated a-trous filter over their output, steps of 8 and 16 pixels: its gate, from 0.01
+//! to 1.0 in these frames, its steps and its blend are checked on trained weights in every fixture
+//! of theirs), another
 //! of weights with the other decoder (`references/neural_alternative_weights.safetensors`), so both
 //! decoders are checked whichever one ships; the third (`make_parity.py`'s synthetic frames, the
 //! committed weights) has a visible emitter, objects of their own and sub-pixel motion, so the
@@ -15,25 +18,25 @@
 //! weights committed from the eighteenth session to the twentieth), so both the committed four
 //! scales (the eighth resolution's, the compositing between coarser scales) and three are
 //! checked; the sixth (`make_parity.py`'s synthetic frames at 48x32, sizes a sixteenth divides) is
-//! of five scales (`references/neural_five_scales_weights.safetensors`: the committed weights
-//! widened to five by `training/train.py`'s `load_weights`, the sixteenth's head fresh and the
-//! eighth's weight of it at sigmoid(0), where it changes the output by up to 3%), so the
-//! sixteenth's radiance pooling and head are checked too; the seventh (the first's frames) is of the
-//! linear mix (`references/neural_linear_mix_weights.safetensors`: the committed weights widened
-//! by `training/widen_scales.py --linear-mix 0`, the mix at about half and varying from pixel to
-//! pixel), so the filtering and compositing in linear space and the mix are checked too; the
-//! eighth (the first's frames) is of the committed weights with `history_frames` 1 in their
+//! of five scales (`references/neural_five_scales_weights.safetensors`: the then committed
+//! weights widened to five by `training/train.py`'s `load_weights`, the sixteenth's head fresh and
+//! the eighth's weight of it at sigmoid(0), where it changes the output by up to 3%), so the
+//! sixteenth's radiance pooling and head are checked too; the seventh (the first's frames) is of
+//! the linear mix (`references/neural_linear_mix_weights.safetensors`: the then committed weights
+//! widened by `training/widen_scales.py --linear-mix 0`, the mix at about half and varying from
+//! pixel to pixel), so the filtering and compositing in linear space and the mix are checked too;
+//! the eighth (the first's frames) is of the committed weights with `history_frames` 1 in their
 //! metadata (made by `training/set_metadata.py`, rebuilt here from the committed ones), so the
 //! running means' cap is checked too (in the second frame they hold that frame's values alone);
 //! the committed weights take their first frames' variance inputs over each pixel's 3x3
 //! neighbourhood (`spatial_variance_frames` 4), and the ninth (the first's frames) is of them with
 //! `spatial_variance_frames` 0, rebuilt here the same way, so the variance inputs over the history
 //! in every frame are checked too; the tenth (`make_parity.py`'s synthetic frames at 48x32, sky in
-//! a corner) is of the gated a-trous
-//! filter over the output (`references/neural_atrous_weights.safetensors`: the committed weights
-//! widened by `training/widen_scales.py --atrous-steps 2,4 --gate-bias 0`, the gate about half
-//! and varying from pixel to pixel), so the output's illumination and gate, the a-trous steps and
-//! the blend are checked too;
+//! a corner) is of the gated a-trous filter at other steps (`references/
+//! neural_atrous_weights.safetensors`: the fortieth session's committed weights, which had no gate,
+//! widened by `training/widen_scales.py --atrous-steps 2,4 --gate-bias 0`, the gate
+//! about half and varying from pixel to pixel), so other steps and the filter beside pixels
+//! without a normal (the sky) are checked too;
 //! `the_emission_stays_on_its_object`
 //! checks what that average is for over more frames.
 //! The running means of the noisy radiance and their

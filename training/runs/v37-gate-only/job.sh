@@ -19,7 +19,7 @@ rm -rf /tmp/out /tmp/heldout-* && mkdir -p /tmp/bin /tmp/out
 xz -dc .gpu/lucid.xz > /tmp/bin/lucid && chmod +x /tmp/bin/lucid
 rm -rf /tmp/repo /tmp/w-*.safetensors && cp -r . /tmp/repo && cd /tmp/repo
 committed=passes/src/denoise/neural/lucid-rae-v3.safetensors
-W=fireflies=5e-5+widths=16,32,64,64,32,16+scales=4+crop=368+batch=4+lr=5e-3+cold=0.25+blotch-margin=0.3+blotch=0.2+atrous-steps=8,16
+W=fireflies=5e-5+widths=16,32,64,64,32,16+scales=4+crop=256+batch=4+lr=5e-3+cold=0.25+blotch-margin=0.3+blotch=0.2+atrous-steps=8,16
 echo "START $(date +%s)"
 LUCID=/tmp/bin/lucid SHARDS=2 SEED_OFFSET=176 STOPS=0.3 SIZE=512x512 SIZE_FIRST=256x256 ROOMS=6 ROOMS_FIRST=0 \
   FRAMES=32 SEQUENCES=1 VARIANTS="kernel:l1gradflip:0-24:::$W" INIT="$committed" MINUTES=1.2 \
