@@ -38,6 +38,8 @@ pub struct RenderSettings {
     pub view: lucid_passes::debug::debug_view::View,
     /// SVGF's mode and parameters (used when `denoiser` is SVGF).
     pub svgf: lucid_passes::denoise::svgf::SvgfParams,
+    /// What runs of the learned denoiser's weights (used when `denoiser` is the learned one).
+    pub neural: lucid_passes::denoise::neural::NeuralParams,
 }
 
 impl RenderSettings {
@@ -76,6 +78,7 @@ impl Default for RenderSettings {
             accumulate: true,
             view: lucid_passes::debug::debug_view::View::Final,
             svgf: lucid_passes::denoise::svgf::SvgfParams::default(),
+            neural: lucid_passes::denoise::neural::NeuralParams::default(),
         }
     }
 }

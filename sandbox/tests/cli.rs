@@ -286,6 +286,31 @@ fn bench_with_edge_emission_times_its_pass_and_says_so() {
     }
 }
 
+/// The learned denoiser's gated filter runs unless `--neural-filter off`; the report says whether
+/// and times its steps; a value that is neither on nor off is refused, naming the option.
+#[test]
+fn bench_runs_the_neural_gated_filter_unless_turned_off() {
+    let json = temp("bench-neural-filter.json");
+    for (filter, on) in [(&[][..], true), (&["--neural-filter", "off"][..], false)] {
+        let report = short_bench_report(&json, "cornell-box", "neural", filter);
+        assert_eq!(report["neural_gated_filter"], on, "{filter:?}: {report}");
+        let passes = report["passes_ms"].as_object().expect("passes_ms");
+        let steps = passes.keys().filter(|k| k.contains(".atrous")).count();
+        assert_eq!(steps, if on { 2 } else { 0 }, "{filter:?}: {report}");
+    }
+    let out = short_bench(
+        &json,
+        "cornell-box",
+        "neural",
+        &["--neural-filter", "sometimes"],
+    );
+    assert!(
+        !out.status.success(),
+        "--neural-filter sometimes was accepted"
+    );
+    assert!(stderr(&out).contains("--neural-filter"), "{}", stderr(&out));
+}
+
 /// SVGF's firefly clamp is on unless `--svgf-firefly-clamp off`, with the headroom
 /// `--svgf-firefly-headroom` gives; the report says both; a value that is neither on nor off, or a
 /// headroom below 1, is an error naming the option.

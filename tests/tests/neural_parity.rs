@@ -356,7 +356,15 @@ fn denoise(
     for record in records {
         let mut g = RenderGraph::new();
         let inputs = upload_inputs(&mut g, record, (w, h));
-        let images_of = neural::add_neural(&mut g, network, &inputs, (w as u32, h as u32), &prefix);
+        let params = neural::NeuralParams::default();
+        let images_of = neural::add_neural(
+            &mut g,
+            network,
+            params,
+            &inputs,
+            (w as u32, h as u32),
+            &prefix,
+        );
         let readbacks = [
             images_of.radiance,
             images_of.accum,

@@ -123,6 +123,7 @@ impl ActiveDenoiser {
             ))),
             Denoiser::Neural => Some(Self::Neural(neural::NeuralDenoiser::new(
                 network.clone(),
+                settings.neural,
                 &format!("neural.{instance}"),
             ))),
         }
@@ -239,6 +240,9 @@ impl Renderer {
         match &mut self.denoiser {
             Some(ActiveDenoiser::Svgf(svgf)) if settings.denoiser == Denoiser::Svgf => {
                 svgf.set_params(settings.svgf);
+            }
+            Some(ActiveDenoiser::Neural(neural)) if settings.denoiser == Denoiser::Neural => {
+                neural.set_params(settings.neural);
             }
             _ if settings.denoiser != self.settings.denoiser => {
                 self.denoiser = ActiveDenoiser::new(&settings, &self.network, self.instance);

@@ -3,6 +3,7 @@
 //! feature, [`Algorithm`], [`Denoiser`] and [`EdgeEmission`] are `clap::ValueEnum`s
 //! (`renderer/value_enum.rs`).
 
+use crate::denoise::neural::NeuralParams;
 use crate::denoise::svgf::SvgfParams;
 use crate::samples_per_pixel::SamplesPerPixel;
 use lucid_engine::capture::{PngEncoding, ToneCurve};
@@ -203,7 +204,9 @@ impl EdgeEmission {
     }
 }
 
-/// Render settings. Changing anything but exposure and tone curve restarts accumulation.
+/// Render settings. Changing anything but exposure, tone curve and what runs of the learned
+/// denoiser ([`Settings::neural`], on which neither the samples nor its history depend) restarts
+/// accumulation.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Settings {
     /// The light-transport algorithm.
@@ -226,6 +229,8 @@ pub struct Settings {
     pub svgf: SvgfParams,
     /// Whether the emission the denoisers add back is supersampled at emitters' edges.
     pub edge_emission: EdgeEmission,
+    /// What the learned denoiser runs of its weights.
+    pub neural: NeuralParams,
 }
 
 impl Default for Settings {
@@ -244,6 +249,7 @@ impl Default for Settings {
             denoiser: Denoiser::None,
             svgf: SvgfParams::default(),
             edge_emission: EdgeEmission::ByDenoiser,
+            neural: NeuralParams::default(),
         }
     }
 }
@@ -255,9 +261,22 @@ impl Settings {
     }
 
     /// Whether going from `self` to `other` invalidates accumulated samples.
+    ///
+    /// ```
+    /// use lucid_passes::denoise::neural::NeuralParams;
+    /// use lucid_passes::renderer::Settings;
+    /// let settings = Settings::default();
+    /// let unfiltered = Settings {
+    ///     neural: NeuralParams { gated_filter: false },
+    ///     ..settings
+    /// };
+    /// assert!(!settings.restarts_accumulation(&unfiltered));
+    /// assert!(settings.restarts_accumulation(&Settings { seed: 1, ..settings }));
+    /// ```
     pub fn restarts_accumulation(&self, other: &Settings) -> bool {
         Settings {
             display: other.display,
+            neural: other.neural,
             ..*self
         } != *other
     }

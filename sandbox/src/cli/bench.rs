@@ -144,6 +144,7 @@ pub fn run(args: &BenchArgs) -> anyhow::Result<()> {
         "edge_emission": settings.supersamples_edges(),
         "svgf_firefly_clamp": settings.svgf.firefly_clamp,
         "svgf_firefly_headroom": settings.svgf.firefly_headroom,
+        "neural_gated_filter": settings.neural.gated_filter,
         "neural_path": renderer.neural_path().short_name(),
         "neural_decoder": renderer.neural_decoder().name(),
         "bvh": renderer.bvh_layout().name(),

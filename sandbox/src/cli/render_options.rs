@@ -10,7 +10,7 @@ use lucid_engine::capture::{PngEncoding, ToneCurve};
 use lucid_engine::scene::gpu::BvhLayout;
 use lucid_engine::scene::Scene;
 use lucid_engine::Context;
-use lucid_passes::denoise::neural::{InferencePath, NetworkWeights};
+use lucid_passes::denoise::neural::{InferencePath, NetworkWeights, NeuralParams};
 use lucid_passes::denoise::svgf::SvgfParams;
 use lucid_passes::renderer::{
     Algorithm, Denoiser, EdgeEmission, Renderer, SamplesPerPixel, Settings,
@@ -79,6 +79,12 @@ pub struct RenderOptions {
     #[arg(long, value_name = "RATIO", default_value_t = SvgfParams::default().firefly_headroom,
           value_parser = finite_f32(1.0, 1e6))]
     pub svgf_firefly_headroom: f32,
+    /// The learned denoiser's gated a-trous filter over its output (`on` or `off`; the committed
+    /// weights have one): off, the first frames after a cut are filtered less, for 0.24 ms less at
+    /// 1080p on an H200.
+    #[arg(long, value_name = "on|off", default_value = "on", action = clap::ArgAction::Set,
+          value_parser = clap::builder::BoolishValueParser::new())]
+    pub neural_filter: bool,
     /// Layout of the BVH nodes on the GPU (both find the same hits; for A/B timing).
     #[arg(long, value_enum, default_value_t = BvhLayout::default())]
     pub bvh: BvhLayout,
@@ -107,6 +113,9 @@ impl RenderOptions {
                 firefly_clamp: self.svgf_firefly_clamp,
                 firefly_headroom: self.svgf_firefly_headroom,
                 ..SvgfParams::default()
+            },
+            neural: NeuralParams {
+                gated_filter: self.neural_filter,
             },
             ..Settings::default()
         }

@@ -53,6 +53,7 @@ pub fn renderer_settings(base: &Settings, panel: &RenderSettings) -> Settings {
         denoiser: panel.denoiser,
         edge_emission: panel.edge_emission,
         svgf: panel.svgf,
+        neural: panel.neural,
         ..*base
     }
 }

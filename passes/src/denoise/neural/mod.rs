@@ -27,6 +27,10 @@
 //!    those of the running means' taps that saw the same object, the G-buffer's object id; each
 //!    frame's samples are jittered over the pixel, so one frame's would make texture, emitter and
 //!    object edges flicker; `training/model.py`, `antialias_surface`).
+//! 6. **Gated filter** (weights with `atrous_steps` metadata, as the committed ones are, unless
+//!    [`NeuralParams::gated_filter`] turns it off): before the re-modulation, the output's
+//!    illumination filtered by edge-aware a-trous steps and blended back per pixel by a gate the
+//!    network predicts (`shaders/neural/atrous_step.glsl`); the history keeps the unfiltered output.
 //!
 //! The history (last output, surface, running means and second moments, averaged albedo and
 //! emission) is the render graph's
@@ -37,9 +41,11 @@
 //! implementation against it.
 
 mod network;
+mod params;
 mod weights;
 
 pub use network::{InferencePath, Network};
+pub use params::NeuralParams;
 pub use weights::{
     Decoder, Layer, NetworkWeights, WeightsError, Widths, ATROUS_MAX_SPACING, ATROUS_MAX_STEPS,
     BUILTIN, EMISSION_MOTION, FEATURES, FORMAT, HIDDEN, HISTORY_FRAMES, KERNEL_HEADS,
@@ -108,22 +114,29 @@ pub fn record_bytes(width: u32, height: u32) -> u64 {
     u64::from(RECORD_CHANNELS + 1) * u64::from(width) * u64::from(height) * 4
 }
 
-/// The learned denoiser as the renderer's denoiser: the network and its history prefix. It runs
-/// every frame on the frame's own radiance, and starts afresh when the scene changes (its history
-/// describes the old scene).
+/// The learned denoiser as the renderer's denoiser: the network, what runs of it and its history
+/// prefix. It runs every frame on the frame's own radiance, and starts afresh when the scene
+/// changes (its history describes the old scene).
 #[derive(Clone)]
 pub struct NeuralDenoiser {
     network: Network,
+    params: NeuralParams,
     prefix: String,
 }
 
 impl NeuralDenoiser {
-    /// The denoiser running `network`, its history under `prefix`.
-    pub fn new(network: Network, prefix: &str) -> Self {
+    /// The denoiser running `network` as `params` choose, its history under `prefix`.
+    pub fn new(network: Network, params: NeuralParams, prefix: &str) -> Self {
         Self {
             network,
+            params,
             prefix: prefix.to_owned(),
         }
+    }
+
+    /// Changes what runs from the next frame on; the history is kept (it does not depend on them).
+    pub fn set_params(&mut self, params: NeuralParams) {
+        self.params = params;
     }
 }
 
@@ -135,7 +148,8 @@ impl FrameDenoiser for NeuralDenoiser {
     fn add(&mut self, g: &mut RenderGraph, inputs: &DenoiseInputs) -> Denoised {
         let size = (inputs.width, inputs.height);
         let frame = FrameInputs::new(&inputs.surface, &inputs.gbuffer);
-        let denoised = add_neural(g, &self.network, &frame, size, &self.prefix).radiance;
+        let denoised = add_neural(g, &self.network, self.params, &frame, size, &self.prefix);
+        let denoised = denoised.radiance;
         Denoised {
             image: handoff::add_handoff(g, inputs, denoised, &self.prefix, Handoff::NEURAL),
             gradient: None,
@@ -302,11 +316,12 @@ struct FeaturesParams {
 /// keys `<prefix>.output`, `<prefix>.surface`, `<prefix>.accum` (running mean and its length),
 /// `<prefix>.moment` (second moment of luminance), `<prefix>.robust` (the range-compressed running
 /// mean and its second moment), `<prefix>.albedo` and `<prefix>.emission` (the first hits' albedo
-/// and log emission averaged over time); returns the denoised radiance and this frame's
-/// accumulation.
+/// and log emission averaged over time), running of `network` what `params` choose; returns the
+/// denoised radiance and this frame's accumulation.
 pub fn add_neural(
     g: &mut RenderGraph,
     network: &Network,
+    params: NeuralParams,
     inputs: &FrameInputs,
     (width, height): (u32, u32),
     prefix: &str,
@@ -436,7 +451,7 @@ pub fn add_neural(
         (heads[0], half_filtered, quarter_detail)
     });
 
-    let gated = !network.atrous_steps.is_empty();
+    let gated = params.gated_filter && !network.atrous_steps.is_empty();
     let shader = if gated { &OUTPUT_ATROUS } else { &OUTPUT };
     let mut p = g.compute_pass(&format!("{prefix}.output"), shader);
     // The direct decoder has no scales: its output is bound in their place (not read).
