@@ -7,18 +7,20 @@
 #   1. the committed weights (gated) over 30 frames and their first 20 at 1080p on both scenes,
 #      with the maps (the light kept by brightness: the gate filters the illumination, so a small
 #      caustic could lose light), beside the ungated weights they replaced (98fc622's, carried as
-#      .gpu/ungated.safetensors) and the two trainings below;
+#      .gpu/ungated.safetensors) and the two trainings below; and their time on both inference
+#      paths from 640x360 to 1920x1080 (training/bench_gpu.sh: neural_times.json), the table the
+#      issue asks for, last written with the twentieth session's weights;
 #   2. two gate-only trainings (train.py --gate-only) of the ungated weights, 4 minutes each at
 #      once on runs/v36's full dataset (4 shards of 512x512, SEED_OFFSET 176, crops of 368, so
 #      about 2.5x the steps and 4x the rooms of runs/v37's): `long`, runs/v37's recipe, and
 #      `energy`, the same with --energy 10 (the light of 8x8 blocks against the reference's, what a
 #      filter that spreads a caustic loses; runs/v29's weight).
-# Writes into /tmp/out: compare.json, long.json, energy.json, weights.tgz (w-long, w-energy), and
-# the metrics, summary and by_brightness per scene; job_gpu.sh brings them back as one out.tgz.
+# Writes into /tmp/out: compare.json, long.json, energy.json, weights.tgz (w-long, w-energy),
+# neural_times.json, and the metrics, summary and by_brightness per scene; job_gpu.sh brings them back as one out.tgz.
 #   source .gpu/env.sh && training/job_gpu.sh start training/runs/v38-gate-held-out/job.sh
 #   source .gpu/env.sh && training/job_gpu.sh wait
-# About 180 s for the dataset, 240 s to train and 60 s to export, 321 s for the 30-frame evaluation
-# and 66 s a weights file (three): some 1,000 s.
+# About 180 s for the dataset, 240 s to train and 60 s to export, 60 s for the times, 321 s for the
+# 30-frame evaluation and 66 s a weights file (three): some 1,060 s.
 # .gpu/lucid.xz: the release lucid binary of the commit this file came with.
 set -u
 rm -rf /tmp/out /tmp/heldout-* && mkdir -p /tmp/bin /tmp/out
@@ -35,7 +37,7 @@ training/variant_weights.sh /tmp/train-out/variants.tar.gz /tmp /tmp/out '*energ
 cp /tmp/train-out/compare.json /tmp/out/
 tar czf /tmp/out/weights.tgz -C /tmp w-long.safetensors w-energy.safetensors
 echo "EVAL-START $(date +%s)"
-FRAMES=30 FIRST=20 BENCH=0 MAPS=1 OIDN=0 SCENES="caustics classroom" LUCID=/tmp/bin/lucid \
+FRAMES=30 FIRST=20 BENCH=1 MAPS=1 OIDN=0 SCENES="caustics classroom" LUCID=/tmp/bin/lucid \
   ALSO="$PWD/.gpu/ungated.safetensors /tmp/w-long.safetensors /tmp/w-energy.safetensors" \
   training/evaluate_gpu.sh /tmp/out
 echo "EVAL-END $? $(date +%s)"
