@@ -2,9 +2,12 @@
 // output's illumination filtered by the 5x5 B-spline kernel with its taps STEP pixels apart (the
 // image's edge pixels repeated beyond it), each tap weighed by the agreement of the G-buffer
 // normals, max(dot, 0)^128, and of the illumination's luminance, exp(-|l_q - l_p| / (SIGMA l_p +
-// 1e-4)); a pixel whose taps all weigh nothing (the sky: no normal) keeps its value. Float32. The
-// taps come from shared memory, the tile of common/atrous_tile.glsl (STEP a power of two), each
-// cell holding its pixel's illumination and luminance and its unit normal. With ATROUS_LAST
+// 1e-4)); a pixel whose taps all weigh nothing (the sky: no normal) keeps its value. The taps come
+// from shared memory, the tile of common/atrous_tile.glsl (STEP a power of two), each cell holding
+// its pixel's illumination and luminance in half precision (8 bytes: their relative error, 2^-11,
+// is a twentieth of the luminance weight's scale) and its unit normal in three float32 arrays (12
+// bytes: the normals' weight, a 128th power, needs their precision); the sums are float32. With
+// ATROUS_LAST
 // (atrous_last.comp) the step is the last: it blends the output's illumination with its result by
 // the gate and re-modulates it by the first hits' albedo plus emission averaged over time
 // (features.comp), as output.comp does without the filter. The includer defines the version.
@@ -36,9 +39,23 @@ layout(push_constant) uniform Params {
 const float SIGMA = 0.1;
 const float B_SPLINE[5] = float[5](1.0 / 16.0, 1.0 / 4.0, 3.0 / 8.0, 1.0 / 4.0, 1.0 / 16.0);
 
-// Per cell: the illumination (rgb) and its luminance (a); the unit normal.
-shared vec4 s_illumination[ATROUS_ROWS * ATROUS_COLUMNS];
-shared vec3 s_normal[ATROUS_ROWS * ATROUS_COLUMNS];
+// Per cell: the illumination (rgb) and its luminance (a), as packHalf2x16 pairs; the unit
+// normal's components.
+shared uvec2 s_illumination[ATROUS_ROWS * ATROUS_COLUMNS];
+shared float s_normal_x[ATROUS_ROWS * ATROUS_COLUMNS];
+shared float s_normal_y[ATROUS_ROWS * ATROUS_COLUMNS];
+shared float s_normal_z[ATROUS_ROWS * ATROUS_COLUMNS];
+
+// A cell's illumination (rgb) and luminance (a).
+vec4 cell_illumination(int at) {
+    uvec2 packed = s_illumination[at];
+    return vec4(unpackHalf2x16(packed.x), unpackHalf2x16(packed.y));
+}
+
+// A cell's unit normal.
+vec3 cell_normal(int at) {
+    return vec3(s_normal_x[at], s_normal_y[at], s_normal_z[at]);
+}
 
 // x^128, by squaring.
 float pow128(float x) {
@@ -59,8 +76,13 @@ void load_tile(AtrousTile tile, ivec2 size) {
             vec3 illumination = imageLoad(u_in, q).rgb;
             vec3 n = imageLoad(u_normal_roughness, q).xyz;
             float l = dot(illumination, vec3(0.2126, 0.7152, 0.0722));
-            s_illumination[atrous_cell_index(cell)] = vec4(illumination, l);
-            s_normal[atrous_cell_index(cell)] = n / max(length(n), 1e-6);
+            int at = atrous_cell_index(cell);
+            s_illumination[at] = uvec2(packHalf2x16(illumination.rg),
+                                       packHalf2x16(vec2(illumination.b, l)));
+            n /= max(length(n), 1e-6);
+            s_normal_x[at] = n.x;
+            s_normal_y[at] = n.y;
+            s_normal_z[at] = n.z;
         }
     }
 }
@@ -75,23 +97,24 @@ void main() {
     if (!pixel_in_bounds(pixel, size)) {
         return;
     }
-    vec4 centre = s_illumination[atrous_cell_index(cell)];
-    vec3 normal = s_normal[atrous_cell_index(cell)];
+    vec4 centre = cell_illumination(atrous_cell_index(cell));
+    vec3 normal = cell_normal(atrous_cell_index(cell));
     float scale = 1.0 / (SIGMA * centre.a + 1e-4);
     vec3 total = vec3(0.0);
     float weights = 0.0;
     for (int i = 0; i < 5; ++i) {
         for (int j = 0; j < 5; ++j) {
             int at = atrous_cell_index(cell + ivec2((j - 2) * tile.run, i - 2));
-            vec4 tap = s_illumination[at];
-            float w_normal = pow128(max(dot(normal, s_normal[at]), 0.0));
+            vec4 tap = cell_illumination(at);
+            float w_normal = pow128(max(dot(normal, cell_normal(at)), 0.0));
             float w_luminance = exp(-abs(tap.a - centre.a) * scale);
             float w = B_SPLINE[i] * B_SPLINE[j] * w_normal * w_luminance;
             total += w * tap.rgb;
             weights += w;
         }
     }
-    vec3 filtered = weights > 1e-12 ? total / weights : centre.rgb;
+    // A pixel without weight keeps its value, as it was, not as the tile rounds it.
+    vec3 filtered = weights > 1e-12 ? total / weights : imageLoad(u_in, pixel).rgb;
 #ifdef ATROUS_LAST
     vec4 illumination = imageLoad(u_illumination, pixel);
     vec3 blended = mix(illumination.rgb, filtered, illumination.a);
