@@ -287,7 +287,8 @@ fn bench_with_edge_emission_times_its_pass_and_says_so() {
 }
 
 /// The learned denoiser's gated filter runs unless `--neural-filter off`; the report says whether
-/// and times its steps; a value that is neither on nor off is refused, naming the option.
+/// and times its steps; a value that is neither on nor off is refused, naming the option, by
+/// `bench` and by `view` (before any window opens).
 #[test]
 fn bench_runs_the_neural_gated_filter_unless_turned_off() {
     let json = temp("bench-neural-filter.json");
@@ -298,17 +299,17 @@ fn bench_runs_the_neural_gated_filter_unless_turned_off() {
         let steps = passes.keys().filter(|k| k.contains(".atrous")).count();
         assert_eq!(steps, if on { 2 } else { 0 }, "{filter:?}: {report}");
     }
-    let out = short_bench(
-        &json,
-        "cornell-box",
-        "neural",
-        &["--neural-filter", "sometimes"],
-    );
-    assert!(
-        !out.status.success(),
-        "--neural-filter sometimes was accepted"
-    );
-    assert!(stderr(&out).contains("--neural-filter"), "{}", stderr(&out));
+    let sometimes = ["--neural-filter", "sometimes"];
+    let bench = short_bench(&json, "cornell-box", "neural", &sometimes);
+    let view = lucid(&["view", "--denoise", "neural", sometimes[0], sometimes[1]]);
+    for out in [bench, view] {
+        assert!(!out.status.success(), "{sometimes:?} was accepted");
+        let message = stderr(&out);
+        assert!(
+            message.contains("invalid value") && message.contains("--neural-filter"),
+            "{message}"
+        );
+    }
 }
 
 /// SVGF's firefly clamp is on unless `--svgf-firefly-clamp off`, with the headroom

@@ -6,6 +6,7 @@ use super::size::Size;
 use super::split::SplitSpec;
 use anyhow::Context as _;
 use clap::Args;
+use lucid_passes::denoise::neural::NeuralParams;
 use lucid_sandbox::{
     Algorithm, AppOptions, Denoiser, EdgeEmission, RenderSettings, SamplesPerPixel, Screenshot,
     Startup, DEFAULT_SCENE,
@@ -44,6 +45,10 @@ pub struct ViewArgs {
     #[arg(long, value_enum, value_name = "WHEN", default_value_t = EdgeEmission::ByDenoiser,
           num_args = 0..=1, default_missing_value = "on")]
     edge_emission: EdgeEmission,
+    /// The learned denoiser's gated filter over its output, `on` or `off` (also a panel choice).
+    #[arg(long, value_name = "on|off", default_value = "on", action = clap::ArgAction::Set,
+          value_parser = clap::builder::BoolishValueParser::new())]
+    neural_filter: bool,
     /// Samples per pixel per frame.
     #[arg(long, default_value_t = SamplesPerPixel::ONE, value_parser = samples_per_pixel(1024))]
     spp: SamplesPerPixel,
@@ -81,6 +86,9 @@ pub fn run(args: &ViewArgs) -> anyhow::Result<()> {
         },
         denoiser: args.denoise,
         edge_emission: args.edge_emission,
+        neural: NeuralParams {
+            gated_filter: args.neural_filter,
+        },
         spp: args.spp,
         max_depth: args.max_depth,
         ..RenderSettings::default()
