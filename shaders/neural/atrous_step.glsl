@@ -5,12 +5,12 @@
 // 1e-4)); a pixel whose taps all weigh nothing (the sky: no normal) keeps its value. The taps come
 // from shared memory, the tile of common/atrous_tile.glsl (STEP a power of two), each cell holding
 // its pixel's illumination and luminance in half precision (8 bytes: their relative error, 2^-11,
-// is a twentieth of the luminance weight's scale) and its unit normal in three float32 arrays (12
-// bytes: the normals' weight, a 128th power, needs their precision); the sums are float32. With
-// ATROUS_LAST
-// (atrous_last.comp) the step is the last: it blends the output's illumination with its result by
-// the gate and re-modulates it by the first hits' albedo plus emission averaged over time
-// (features.comp), as output.comp does without the filter. The includer defines the version.
+// is a two-hundredth of the luminance weight's scale, 0.1) and its unit normal in three float32
+// arrays (12 bytes: the normals' weight, a 128th power, needs their precision); the sums are
+// float32. With ATROUS_LAST (atrous_last.comp) the step is the last: it blends the output's
+// illumination with its result by the gate and re-modulates it by the first hits' albedo plus
+// emission averaged over time (features.comp), as output.comp does without the filter. The
+// includer defines the version.
 #include "common/image_coords.glsl"
 #include "common/atrous_tile.glsl"
 
