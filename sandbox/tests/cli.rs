@@ -343,7 +343,8 @@ fn bench_reports_the_svgf_firefly_clamp() {
 #[test]
 fn a_short_soak_keeps_memory_flat_without_validation_messages() {
     // 200 frames through every algorithm and denoiser (12 configurations of 5 frames: three cycles;
-    // every other one with the edge pass), the camera and an object moving.
+    // every other one with the edge pass and without the learned denoiser's gated filter), the
+    // camera and an object moving.
     let out = lucid(&[
         "soak",
         "--frames",

@@ -1,9 +1,9 @@
 //! `lucid soak`: many frames with everything changing — the camera along the scene's path, an
 //! object moving, the algorithm and the denoiser switching through every combination, every other
-//! one with the emission supersampled at emitters' edges — sampling
-//! host memory (resident set) and GPU memory (the memory tracker) every few frames. Fails when
-//! either grows after the first full cycle of configurations, or when the validation layer says
-//! anything.
+//! one with the emission supersampled at emitters' edges and the learned denoiser's gated filter
+//! off — sampling host memory (resident set) and GPU memory (the memory tracker) every few frames.
+//! Fails when either grows after the first full cycle of configurations, or when the validation
+//! layer says anything.
 
 use super::progress::Progress;
 use super::scene_source;
@@ -12,6 +12,7 @@ use anyhow::{bail, Context as _};
 use clap::Args;
 use glam::{Affine3A, Vec3};
 use lucid_engine::{Context, ContextDesc, Validation};
+use lucid_passes::denoise::neural::NeuralParams;
 use lucid_passes::renderer::{Algorithm, Denoiser, EdgeEmission, Renderer, Settings};
 use std::path::PathBuf;
 
@@ -130,15 +131,19 @@ pub fn run(args: &SoakArgs) -> anyhow::Result<()> {
         .into_iter()
         .filter(|a| *a != Algorithm::Bidirectional || ctx.info().int64_atomics)
         .collect();
-    // Every other configuration supersamples the emission at emitters' edges, so that each
-    // denoiser runs with and without it and the edge pass comes and goes.
-    let configurations: Vec<(Algorithm, Denoiser, EdgeEmission)> = algorithms
+    // Every other configuration supersamples the emission at emitters' edges and turns the learned
+    // denoiser's gated filter off, so that each denoiser runs with and without the edge pass and
+    // the learned one with and without its filter's passes, all of them coming and going.
+    let configurations: Vec<(Algorithm, Denoiser, EdgeEmission, NeuralParams)> = algorithms
         .iter()
         .flat_map(|&a| Denoiser::ALL.map(|d| (a, d)))
         .enumerate()
         .map(|(i, (a, d))| {
             let edges = [EdgeEmission::Off, EdgeEmission::On][i % 2];
-            (a, d, edges)
+            let neural = NeuralParams {
+                gated_filter: i % 2 == 0,
+            };
+            (a, d, edges, neural)
         })
         .collect();
     // The first cycle of configurations creates pipelines and histories; memory is compared from
@@ -170,20 +175,22 @@ pub fn run(args: &SoakArgs) -> anyhow::Result<()> {
         if frame == timed_from {
             started = std::time::Instant::now();
         }
-        let (algorithm, denoiser, edge_emission) =
+        let (algorithm, denoiser, edge_emission, neural) =
             configurations[(frame / args.switch_every) as usize % configurations.len()];
         let settings = renderer.settings();
-        let wanted = (algorithm, denoiser, edge_emission);
+        let wanted = (algorithm, denoiser, edge_emission, neural);
         if (
             settings.algorithm,
             settings.denoiser,
             settings.edge_emission,
+            settings.neural,
         ) != wanted
         {
             renderer.set_settings(Settings {
                 algorithm,
                 denoiser,
                 edge_emission,
+                neural,
                 ..*settings
             });
         }
