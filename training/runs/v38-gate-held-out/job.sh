@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Forty-first session, for the next session's device time (one H200; not yet run): the shipped
+# Forty-first session, run in the forty-second (one H200; out/, training/README.md): the shipped
 # gate (runs/v37, trained alone on the committed weights for 72 s) held out as the weights before
 # it were, and two longer gate-only trainings that might keep `caustics` where it was. runs/v37
 # measured 16 frames without maps: `classroom` FLIP 0.0459 -> 0.0438 (every frame below SVGF's),
