@@ -3,7 +3,7 @@
 //! neural_parity*.safetensors`, made by `training/make_parity.py`), so the features, every
 //! convolution, pooling and upsampling, the kernel decoder's filtering and compositing, the history
 //! warp and the recurrent blend are all covered. One fixture is of the committed weights (which
-//! carry the gated a-trous filter over their output, steps of 8 and 16 pixels: its gate, from 0.01
+//! carry the gated a-trous filter over their output, steps of 4 and 8 pixels: its gate, from 0.001
 //! to 1.0 in these frames, its steps and its blend are checked on trained weights in every fixture
 //! of theirs), another
 //! of weights with the other decoder (`references/neural_alternative_weights.safetensors`), so both

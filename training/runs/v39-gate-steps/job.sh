@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Forty-second session (one H200, the device seconds runs/v38 and the standings left): the gate
+# Forty-second session (one H200, the device seconds left after runs/v38; out/): the gate
 # trained alone as runs/v37 trained the shipped one (steps 8 and 16 px), with the filter's two
 # steps at other spacings, which cost the same: `s4-8` (less reach: what spreads a caustic's bright
 # pixels less) and `s16-32` (more: the ordinary surfaces' residual noise, three quarters of the

@@ -864,7 +864,7 @@ mod tests {
 
     #[test]
     fn the_atrous_steps_come_from_the_metadata_with_the_gate_channel() {
-        assert_eq!(NetworkWeights::builtin().atrous_steps(), [8, 16]);
+        assert_eq!(NetworkWeights::builtin().atrous_steps(), [4, 8]);
         let gated = |decoder: Decoder, linear_mix: bool| {
             let mut layers = decoder.layers(Widths::COMMITTED, KERNEL_SCALES, linear_mix);
             add_gate_channel(&mut layers);
