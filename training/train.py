@@ -4,7 +4,7 @@
         [--model direct|kernel] [--loss l1grad|l1msssim|l1gradflip] [--burn-in K [--burn-in-min J]]
         [--widths E0,E1,E2,B,D1,D0] [--scales N] [--fireflies RATE] [--watch SCENES]
         [--blotch WEIGHT [--blotch-margin M]] [--cold P] [--linear-mix] [--energy WEIGHT]
-        [--atrous-steps S1,S2,...] [--gate-only]
+        [--atrous-steps S1,S2,...] [--gate-only | --train-layers NAMES]
 
 `--model kernel` trains `kernel_model.KernelDenoiser` (both export as `lucid-rae-v3`, the decoder
 named in the file's `decoder` metadata; the renderer runs either); `--loss` picks a loss of `losses.py`; `--burn-in K` runs the first K
@@ -29,7 +29,9 @@ more channel of `out`, its last; written to the weights' `atrous_steps` metadata
 the gate start it at sigmoid(ATROUS_GATE_BIAS) everywhere, an `--init` that has it implies its
 steps (other steps are an error). `--gate-only` trains the gate alone (the last output channel of
 `out`; everything else stays --init's): the output, the state and so every frame's unfiltered
-result stay the initial weights', and only where the filter is blended in is learned. A step whose loss is not finite is skipped (and counted); past
+result stay the initial weights', and only where the filter is blended in is learned. `--train-layers
+out,out_half` trains only the layers named (their names in the weights file), every other weight
+kept as --init's. A step whose loss is not finite is skipped (and counted); past
 1% of the steps, training stops.
 
 Started by `python3 parallel.py N train.py ...` it trains data-parallel on N GPUs (`parallel.py`): each
@@ -350,6 +352,20 @@ def train_gate_only(model):
         p.register_hook(lambda grad, last=last: grad * last)
 
 
+def train_layers_only(model, names):
+    """Freezes every weight of `model` but those of the convolutions `names` (their names in a
+    weights file, e.g. out, out_half)."""
+    convs = named_convs(model)
+    unknown = [name for name in names if name not in convs]
+    if unknown:
+        raise SystemExit(f"--train-layers: the model has no layer {', '.join(unknown)} (it has {', '.join(convs)})")
+    for p in model.parameters():
+        p.requires_grad_(False)
+    for name in names:
+        for p in convs[name].parameters():
+            p.requires_grad_(True)
+
+
 def run_window(model, rec, objects, burn_in):
     """The frames of a window [B, burn_in + frames, C, H, W] (their object ids `objects` [B, burn_in
     + frames, 1, H, W]) one `step` at a time, the first `burn_in` without gradients; returns the
@@ -463,6 +479,12 @@ def main():
         action="store_true",
         help="train only the gate of the a-trous filter (out's last channel), every other weight kept as --init's",
     )
+    ap.add_argument(
+        "--train-layers",
+        default="",
+        help="train only these layers (comma-separated names of the weights file, e.g. out,out_half), "
+        "every other weight kept as --init's",
+    )
     ap.add_argument("--val-every", type=int, default=250, help="validate every this many steps")
     ap.add_argument(
         "--watch",
@@ -523,6 +545,11 @@ def main():
         if not model.gate or not args.init:
             raise SystemExit("--gate-only trains the gate of --init's model: give --init and --atrous-steps (or a gated --init)")
         train_gate_only(model)
+    train_layers = [name for name in args.train_layers.split(",") if name]
+    if train_layers:
+        if not args.init or args.gate_only:
+            raise SystemExit("--train-layers trains layers of --init's model, and not with --gate-only")
+        train_layers_only(model, train_layers)
     group.same_start(model)
     cost = model_cost(model, dev)
     if group.first:
@@ -617,6 +644,7 @@ def main():
         "cold": str(args.cold),
         "energy": str(args.energy),
         "gate_only": str(args.gate_only),
+        "train_layers": args.train_layers,
         "crop": str(args.crop),
         "batch": str(args.batch),
         "steps": str(step),
