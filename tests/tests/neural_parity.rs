@@ -485,6 +485,51 @@ fn vulkan_inference_matches_pytorch_over_two_frames() {
     lucid_tests::assert_no_validation_messages(&ctx);
 }
 
+/// The portable convolutions give the same output whatever pixels side by side an invocation
+/// computes (a GPU computes two, a CPU device eight): on a crop of the committed weights' fixture
+/// whose width none of them divides, at every count from one to eight, each pixel's sums run in
+/// the same order, so only the compiler's fusing of a product into a sum may tell them apart.
+#[test]
+fn portable_convolutions_agree_whatever_pixels_an_invocation_computes() {
+    let (ctx, mut executor) = lucid_tests::executor(false);
+    let fixture = fixture("neural_parity.safetensors", NetworkWeights::builtin());
+    let (w, h) = fixture.size;
+    let crop = (w - 3, h);
+    let records = records(&fixture, crop);
+    let run = |executor: &mut lucid_engine::graph::Executor, pixels: u32| {
+        let network = Network::with_path(&ctx, &fixture.weights, InferencePath::Portable)
+            .and_then(|n| n.with_portable_pixels(pixels))
+            .expect("upload weights");
+        denoise(executor, &network, &records, crop)
+    };
+    let one = run(&mut executor, 1);
+    for pixels in 2..=8 {
+        assert_ne!(
+            crop.0 % pixels as usize,
+            0,
+            "a width {pixels} does not divide"
+        );
+        for (t, (a, b)) in one.iter().zip(&run(&mut executor, pixels)).enumerate() {
+            for (i, (pa, pb)) in a.radiance.iter().zip(&b.radiance).enumerate() {
+                for c in 0..3 {
+                    let err = (pa[c] - pb[c]).abs() / (pa[c].abs() + 0.05);
+                    assert!(
+                        err <= 1e-5,
+                        "{pixels} pixels an invocation, frame {t} pixel {i} channel {c}: {} \
+                         against {} with one",
+                        pb[c],
+                        pa[c]
+                    );
+                }
+            }
+        }
+    }
+    let too_many = Network::with_path(&ctx, &fixture.weights, InferencePath::Portable)
+        .and_then(|n| n.with_portable_pixels(9));
+    assert!(too_many.is_err(), "nine pixels an invocation are refused");
+    lucid_tests::assert_no_validation_messages(&ctx);
+}
+
 /// Where a device runs both paths (NVIDIA), they agree on a crop of each fixture of odd width and
 /// height, so partial tiles, odd pooling edges and upsampling are covered too. On a device with
 /// one path (lavapipe) there is nothing to compare: the test says so and checks nothing.

@@ -732,12 +732,15 @@ fn add_conv(
             (output, pooled)
         }
         _ => {
-            // Up to four groups of four output channels an invocation, a divisor of them all.
+            // Up to four groups of four output channels an invocation, a divisor of them all, for
+            // the network's portable pixels side by side.
             let groups = out_channels / 4;
             let per_thread = 4 * [4, 2, 1].into_iter().find(|d| groups % d == 0).unwrap_or(1);
+            let pixels = network.portable_pixels;
             p.specialize("OUT_PER_THREAD", per_thread)
+                .specialize("PIXELS", pixels)
                 .push(&[push[0], push[1], push[2], push[3], offset]);
-            p.dispatch([size.0, size.1, out_channels / per_thread]);
+            p.dispatch([size.0.div_ceil(pixels), size.1, out_channels / per_thread]);
             let half = (pool_levels >= 1).then(|| add_pool(g, output, &format!("{name}.pool")));
             let quarter = half
                 .filter(|_| pool_levels >= 2)
