@@ -51,6 +51,7 @@ void main() {
             acc[o * PIXELS + i] = b;
         }
     }
+    ivec2 in0_last = ivec2(params.in0_width, params.in0_height) - 1;
     for (int tap = 0; tap < 9; ++tap) {
         ivec2 offset = ivec2(tap % 3 - 1, tap / 3 - 1);
         uint w_tap = params.weight_offset + uint(tap) * cin * out4_all + group;
@@ -62,7 +63,6 @@ void main() {
             ivec2 q = first + ivec2(i, 0) + offset;
             reads[i] = all(greaterThanEqual(q, ivec2(0))) && all(lessThan(q, size))
                 && first.x + int(i) < size.x;
-            ivec2 in0_last = ivec2(params.in0_width, params.in0_height) - 1;
             ivec2 q0 = IN0_UPSAMPLED ? min(q >> 1, in0_last) : q;
             at0[i] = reads[i] ? tensor_index(q0, params.in0_width, IN0_CHANNELS / 4u, 0u) : 0u;
             at1[i] = reads[i] ? tensor_index(q, params.width, IN1_CHANNELS / 4u, 0u) : 0u;
