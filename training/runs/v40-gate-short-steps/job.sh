@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Forty-second session, for the next session's device time (one H200; not yet run). runs/v39 found
+# Forty-second session, for the next session's device time (one H200; run in the forty-third session, training/README.md). runs/v39 found
 # the gate trained alone better with the filter's steps at 4 and 8 pixels than at 8 and 16, and
 # worse at 16 and 32 (held out over 16 frames; shipped). Here:
 #   1. the gate trained alone as in runs/v39 (from the weights without it, .gpu/ungated.safetensors;

@@ -105,7 +105,8 @@ const MAX_PORTABLE_PIXELS: u32 = 8;
 /// Pixels side by side that one invocation of the portable convolution (`conv.comp`) computes on a
 /// device of `kind`, every weight it loads serving each: eight on a CPU (on lavapipe the
 /// convolutions of a 256x256 frame take 186 ms against 732 with one), two on a GPU, whose
-/// registers hold the sums of each.
+/// registers hold the sums of each (on an H200 at 1080p, 10.14 ms against 11.32 with one and 11.77
+/// with four).
 fn portable_conv_pixels(kind: DeviceKind) -> u32 {
     if kind == DeviceKind::Cpu {
         MAX_PORTABLE_PIXELS
