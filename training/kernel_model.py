@@ -166,8 +166,8 @@ class KernelOutput(nn.Module):
 class KernelDenoiser(RecurrentDenoiser):
     """`RecurrentDenoiser` with the kernel-predicting output layer; same `step`, `forward`, state."""
 
-    def __init__(self, widths=WIDTHS, scales=SCALES, linear_mix=False, atrous_steps=()):
-        super().__init__(widths, atrous_steps)
+    def __init__(self, widths=WIDTHS, scales=SCALES, linear_mix=False, atrous_steps=(), recurrent=0):
+        super().__init__(widths, atrous_steps, recurrent)
         self.convs["out"] = KernelOutput(self.widths[-1], scales, linear_mix, self.gate)
 
     @property
@@ -198,10 +198,11 @@ class KernelDenoiser(RecurrentDenoiser):
         return kernels + super().EXTRA_MACS_PER_PIXEL
 
 
-def kernel_layers(widths=WIDTHS, scales=SCALES, linear_mix=False, gate=False):
+def kernel_layers(widths=WIDTHS, scales=SCALES, linear_mix=False, gate=False, recurrent=0):
     """(name, input channels, output channels) of every exported layer of a network of `widths`,
-    `scales`, `linear_mix` and `gate`, in execution order."""
-    layers = [(n, cin, cout) for n, cin, cout in unet_layers(widths) if n != "out"]
+    `scales`, `linear_mix`, `gate` and `recurrent` channels of recurrent state, in execution
+    order."""
+    layers = [(n, cin, cout) for n, cin, cout in unet_layers(widths, recurrent=recurrent) if n != "out"]
     return layers + [(n, cin, cout) for n, cin, cout, _ in heads(widths[-1], scales, linear_mix, gate)]
 
 

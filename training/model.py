@@ -66,12 +66,15 @@ def sources(layer):
     return SOURCES.get(layer, ("dec0",))
 
 
-def unet_layers(widths=WIDTHS, outputs=OUTPUTS):
+def unet_layers(widths=WIDTHS, outputs=OUTPUTS, recurrent=0):
     """(name, input channels, output channels) of the convolutions, in execution order, for the
-    hidden layers' `widths` and `outputs` channels of the output layer."""
+    hidden layers' `widths` and `outputs` channels of the output layer; with `recurrent` channels
+    of recurrent state, `enc0` reads them after the input features and the layer `recurrent` (on
+    `dec0`'s features, before `out`) writes them."""
     width = dict(zip(HIDDEN, widths))
-    inputs = lambda layer: sum(FEATURES if s is None else width[s] for s in sources(layer))  # noqa: E731
-    return [(name, inputs(name), width[name]) for name in HIDDEN] + [("out", inputs("out"), outputs)]
+    inputs = lambda layer: sum(FEATURES + recurrent if s is None else width[s] for s in sources(layer))  # noqa: E731
+    state_layer = [("recurrent", inputs("recurrent"), recurrent)] if recurrent else []
+    return [(name, inputs(name), width[name]) for name in HIDDEN] + state_layer + [("out", inputs("out"), outputs)]
 
 
 def widths_of(tensors):
@@ -406,13 +409,16 @@ def up(x):
 class RecurrentDenoiser(nn.Module):
     """The U-Net of `unet_layers(widths)` and the recurrent output blend; with `atrous_steps`
     (non-empty) the output layer has one more channel, the last, the logit of the gate of the
-    `atrous` filter over the output."""
+    `atrous` filter over the output; with `recurrent` > 0, that many channels of recurrent state
+    (tanh of the layer `recurrent` on `dec0`'s features), warped with the output's history and
+    read by `enc0` beside the input features in the next frame (zero in the first)."""
 
-    def __init__(self, widths=WIDTHS, atrous_steps=()):
+    def __init__(self, widths=WIDTHS, atrous_steps=(), recurrent=0):
         super().__init__()
         self.widths = tuple(widths)
         self.gate = bool(atrous_steps)
-        self.layers = unet_layers(self.widths, OUTPUTS + self.gate)
+        self.recurrent = recurrent
+        self.layers = unet_layers(self.widths, OUTPUTS + self.gate, recurrent)
         self.convs = nn.ModuleDict({name: nn.Conv2d(cin, cout, 3, padding=1) for name, cin, cout in self.layers})
         # `antialias_surface`'s weight of this frame's emission per pixel of motion (the weights
         # file's `emission_motion` metadata).
@@ -433,13 +439,15 @@ class RecurrentDenoiser(nn.Module):
         (`output`: log radiance [B,3], `surface`: depth, normal and object [B,5],
         `accum`: running mean and its length [B,4], `moment`: second moment of luminance [B,1],
         `robust`: the compressed running mean and its second moment [B,4], `albedo` and
-        `emission`: the first hits' albedo and log(1 + emission) averaged over time [B,3] each).
+        `emission`: the first hits' albedo and log(1 + emission) averaged over time [B,3] each;
+        with recurrent state, `recurrent` [B,self.recurrent]).
         With the gate, the radiance's illumination is blended per pixel with its `atrous` filtering
         by sigmoid(the gate's logit); the state keeps the unfiltered output, the history the
         network reprojects. Returns (radiance [B,3,H,W], new state)."""
         rec = split_record(record)
         if objects is None:
             objects = torch.zeros_like(rec["depth"])
+        k = self.recurrent
         if state is None:
             zero = torch.zeros_like(rec["depth"])
             warped, mask = torch.zeros_like(rec["demodulated"]), zero
@@ -448,17 +456,19 @@ class RecurrentDenoiser(nn.Module):
             surface_mask = zero
             warped_albedo = torch.zeros_like(rec["albedo"])
             warped_emission = torch.zeros_like(rec["emission"])
+            warped_recurrent = zero.expand(-1, k, -1, -1)
         else:
-            # One warp (the same taps and mask) for the output, the running means and, from the taps
-            # of the same object, the albedo and emission.
-            names = ("output", "accum", "moment", "robust", "albedo", "emission")
-            history = torch.cat([state[k] for k in names], 1)
+            # One warp (the same taps and mask) for the output, the running means, the recurrent
+            # state and, from the taps of the same object, the albedo and emission.
+            names = ("output", "accum", "moment", "robust") + (("recurrent",) if k else ()) + ("albedo", "emission")
+            history = torch.cat([state[n] for n in names], 1)
             history, mask, surface_mask = warp_history(
                 history, state["surface"], rec["motion"], rec["normal"], rec["depth"], objects, 6
             )
             warped, warped_accum = history[:, 0:3], history[:, 3:7]
             warped_moment, warped_robust = history[:, 7:8], history[:, 8:12]
-            warped_albedo, warped_emission = history[:, 12:15], history[:, 15:18]
+            warped_recurrent = history[:, 12 : 12 + k]
+            warped_albedo, warped_emission = history[:, 12 + k : 15 + k], history[:, 15 + k : 18 + k]
         # The accumulation depends on the records only (no weights): no gradient through it.
         accum, moment, robust = accumulate(
             rec["demodulated"],
@@ -473,6 +483,7 @@ class RecurrentDenoiser(nn.Module):
         )
         x = half(features(rec, warped, mask, accum, moment, robust, self.spatial_variance_frames), fp16_storage)
         warped, mask = x[:, 11:14], x[:, 14:15]  # as the output pass reads them: stored
+        x = torch.cat([x, half(warped_recurrent, fp16_storage)], 1)
         c = self.convs
         r = lambda t: half(F.relu(t), fp16_storage)  # noqa: E731
         e0 = r(c["enc0"](x))
@@ -481,6 +492,7 @@ class RecurrentDenoiser(nn.Module):
         b = r(c["bottleneck"](e2))
         d1 = r(c["dec1"](torch.cat([up(b), e1], 1)))
         d0 = r(c["dec0"](torch.cat([up(d1), e0], 1)))
+        recurrent = half(torch.tanh(c["recurrent"](d0)), fp16_storage) if k else None
         o = half(self.predict(d0, rec, accum, fp16_storage), fp16_storage)
         blend = mask * torch.sigmoid(o[:, 3:4])
         log_out = (o[:, 0:3] * (1.0 - blend) + warped * blend).clamp_min(0.0)
@@ -502,6 +514,8 @@ class RecurrentDenoiser(nn.Module):
             "albedo": albedo,
             "emission": emission,
         }
+        if k:
+            state["recurrent"] = recurrent
         return radiance, state
 
     def predict(self, d0, rec, accum, fp16_storage):

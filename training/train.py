@@ -100,18 +100,27 @@ NEW_SCALE_BIAS = -3.0
 PROCESS_SEED_STRIDE = 7919
 
 
-def build_model(name, widths=WIDTHS, scales=SCALES, linear_mix=False, atrous_steps=()):
+def build_model(name, widths=WIDTHS, scales=SCALES, linear_mix=False, atrous_steps=(), recurrent=0):
     """The `name`d decoder's model of `widths` (`scales` and `linear_mix` for the kernel decoder),
-    with the gated a-trous filter of `atrous_steps` when there are any."""
+    with the gated a-trous filter of `atrous_steps` when there are any and `recurrent` channels of
+    recurrent state."""
     if name == "kernel":
-        return KernelDenoiser(widths, scales, linear_mix, atrous_steps)
-    return RecurrentDenoiser(widths, atrous_steps)
+        return KernelDenoiser(widths, scales, linear_mix, atrous_steps, recurrent)
+    return RecurrentDenoiser(widths, atrous_steps, recurrent)
 
 
 def build_model_for(decoder, path):
     """The `decoder`'s model shaped as the weights file `path` is: its widths, kernel scales,
-    linear mix and a-trous filter's steps (its weights not loaded: `load_weights`)."""
-    return build_model(decoder, file_widths(path), file_scales(path), file_linear_mix(path), file_atrous_steps(path))
+    linear mix, a-trous filter's steps and recurrent state (its weights not loaded:
+    `load_weights`)."""
+    return build_model(
+        decoder,
+        file_widths(path),
+        file_scales(path),
+        file_linear_mix(path),
+        file_atrous_steps(path),
+        file_recurrent(path),
+    )
 
 
 def file_widths(path):
@@ -131,6 +140,13 @@ def file_atrous_steps(path):
     where it has none: no gate)."""
     with safe_open(path, "pt") as f:
         return atrous_steps_of((f.metadata() or {}).get("atrous_steps", ""))
+
+
+def file_recurrent(path):
+    """The channels of recurrent state of a weights file train.py wrote (its layer `recurrent`'s
+    outputs; 0 where it has none)."""
+    with safe_open(path, "pt") as f:
+        return int(f.get_slice("recurrent.weight").get_shape()[0]) if "recurrent.weight" in f.keys() else 0
 
 
 def file_linear_mix(path):
@@ -216,7 +232,9 @@ def load_weights(model, path):
     file of fewer kernel scales starts a model of more: its coarsest head gains the weight `a` of
     the new scale, at sigmoid(NEW_SCALE_BIAS) everywhere, so that the new scale starts almost
     unused. A file without the linear mix or the gate starts a model with them at
-    sigmoid(LINEAR_MIX_BIAS) and sigmoid(ATROUS_GATE_BIAS) everywhere (`grown_out`)."""
+    sigmoid(LINEAR_MIX_BIAS) and sigmoid(ATROUS_GATE_BIAS) everywhere (`grown_out`). A file
+    without recurrent state starts a model with it as the v2 file's first layer above: `enc0`'s
+    weights for the state at zero, the layer `recurrent` afresh."""
     tensors = load_file(path)
     widths = widths_of(tensors) if all(f"{name}.weight" in tensors for name in HIDDEN) else model.widths
     if widths != model.widths:
@@ -237,6 +255,9 @@ def load_weights(model, path):
                 f"{path} has the a-trous filter's gate (atrous_steps {meta['atrous_steps']}): the model needs it"
             )
         model.atrous_steps = steps
+    recurrent = file_recurrent(path)
+    if recurrent and recurrent != model.recurrent:
+        raise ValueError(f"{path} has {recurrent} channels of recurrent state: the model has {model.recurrent}")
     had = (file_linear_mix(path), bool(steps))
     has = (getattr(model, "linear_mix", False), model.gate)
     loaded, skipped = [], []
@@ -475,6 +496,13 @@ def main():
         "that a gate the network predicts blends in per pixel (model.atrous; default: --init's, else none)",
     )
     ap.add_argument(
+        "--recurrent",
+        type=int,
+        help="channels of recurrent state the network writes at full resolution and reads, warped, in the next "
+        "frame beside its input features (model.RecurrentDenoiser; default: --init's, else none; weights "
+        "without it start it with enc0's weights for it at zero and the layer writing it afresh)",
+    )
+    ap.add_argument(
         "--gate-only",
         action="store_true",
         help="train only the gate of the a-trous filter (out's last channel), every other weight kept as --init's",
@@ -530,7 +558,11 @@ def main():
         steps = ",".join(str(s) for s in init_steps)
         raise SystemExit(f"--atrous-steps {args.atrous_steps}: --init {args.init} has the gate of steps {steps}")
     atrous_steps = init_steps or atrous_steps
-    model = build_model(args.model, widths, args.scales, args.linear_mix, atrous_steps).to(dev)
+    init_recurrent = file_recurrent(args.init) if args.init else 0
+    if args.recurrent is not None and (args.recurrent < 0 or init_recurrent not in (0, args.recurrent)):
+        raise SystemExit(f"--recurrent {args.recurrent}: --init {args.init} has {init_recurrent} channels of it")
+    recurrent = init_recurrent if args.recurrent is None else args.recurrent
+    model = build_model(args.model, widths, args.scales, args.linear_mix, atrous_steps, recurrent).to(dev)
     if args.init:
         load_weights(model, args.init)
     if args.history_frames is not None:
@@ -622,7 +654,7 @@ def main():
         return
     final = validation(model, val, watch)
     if isinstance(model, KernelDenoiser):
-        layers = kernel_layers(model.widths, model.scales, model.linear_mix, model.gate)
+        layers = kernel_layers(model.widths, model.scales, model.linear_mix, model.gate, model.recurrent)
         tensors = kernel_export_tensors(model)
     else:
         layers, tensors = model.layers, export_tensors(model)
