@@ -10,9 +10,14 @@
 # `control` (the whole network fine-tuned) and `recurrent` (the same with the state, enc0's
 # weights for it at zero and its layer afresh), 4 minutes at lr 1e-3. The renderer does not run
 # recurrent state yet: the question is the validation rooms' FLIP and temporal instability
-# against the control (compare.json); only a clear gain there is worth the shaders.
+# against the control (compare.json), then the held-out scenes' through PyTorch (study.json:
+# `lucid dataset --scenes classroom,caustics`, 3 sequences of 30 frames each at 512x512 against
+# 1024 samples, and study_compare.py over the committed weights and both variants); only a clear
+# gain on both is worth the shaders.
 #   source .gpu/env.sh && training/job_gpu.sh start training/runs/v42-recurrent-state/job.sh
-# About 100 s for the dataset, 240 s to train, 40 s to export: some 390 s.
+#   source .gpu/env.sh && training/job_gpu.sh wait      (if the first command ran out first)
+# About 100 s for the dataset, 240 s to train, 40 s to export, 120 s for the held-out study:
+# some 510 s.
 # .gpu/lucid.xz: a release lucid binary (the dataset's renderer).
 set -u
 rm -rf /tmp/out && mkdir -p /tmp/bin /tmp/out
@@ -28,4 +33,9 @@ echo "TRAIN-END $? $(date +%s)"
 training/variant_weights.sh /tmp/train-out/variants.tar.gz /tmp /tmp/out '*recurrent_8*=recurrent' '*=control'
 cp /tmp/train-out/compare.json /tmp/out/compare.json
 tar czf /tmp/out/weights.tgz -C /tmp w-control.safetensors w-recurrent.safetensors
+/tmp/bin/lucid dataset --scenes classroom,caustics --size 512x512 --frames 30 --sequences 3 \
+  --reference-spp 1024 --out /tmp/study
+(cd training && python3 study_compare.py --data /tmp/study ../passes/src/denoise/neural/lucid-rae-v3.safetensors \
+  /tmp/w-control.safetensors /tmp/w-recurrent.safetensors --out /tmp/out/study.json)
+echo "STUDY-END $? $(date +%s)"
 echo JOB-END
