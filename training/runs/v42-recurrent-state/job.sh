@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # Forty-third session, for the next session's device time (one H200; not yet run). runs/v41 found
 # the committed network's history weight and gate where the held-out scenes would put them: the
-# warmed-up state, not the blend, is what 0.7x SVGF's FLIP needs 9% more of. The network's memory
+# warmed-up state, not the blend, is what 0.7x SVGF's FLIP needs 10% more of. The network's memory
 # of past frames is its output, the running means and the averaged surface, all fixed in meaning;
 # this gives it state of its own (train.py --recurrent 8: 8 channels at full resolution that a
 # layer on dec0's features writes, warped with the output's history, and enc0 reads in the next
