@@ -36,8 +36,6 @@ def main():
     args = ap.parse_args()
     device = "cuda" if torch.cuda.is_available() else "cpu"
     sequences = load_split(args.data, "study", device)
-    if not sequences:
-        raise SystemExit(f"{args.data}: no sequences in the split `study` (lucid dataset --scenes)")
     scenes = sorted({s["scene"] for s in sequences})
     results = {}
     for path in args.weights:
