@@ -373,6 +373,22 @@ def train_gate_only(model):
         p.register_hook(lambda grad, last=last: grad * last)
 
 
+def train_state_only(model):
+    """Freezes every weight of `model` but its recurrent state's: the layer `recurrent` and the
+    columns of `enc0`'s weights that read the state (its last `model.recurrent` inputs), so that
+    the rest of the network stays --init's and the state can only add to it."""
+    for p in model.parameters():
+        p.requires_grad_(False)
+    convs = named_convs(model)
+    for p in convs["recurrent"].parameters():
+        p.requires_grad_(True)
+    weight = convs["enc0"].weight
+    weight.requires_grad_(True)
+    columns = torch.zeros_like(weight)
+    columns[:, -model.recurrent :] = 1.0
+    weight.register_hook(lambda grad: grad * columns)
+
+
 def train_layers_only(model, names):
     """Freezes every weight of `model` but those of the convolutions `names` (their names in a
     weights file, e.g. out, out_half)."""
@@ -508,6 +524,12 @@ def main():
         help="train only the gate of the a-trous filter (out's last channel), every other weight kept as --init's",
     )
     ap.add_argument(
+        "--state-only",
+        action="store_true",
+        help="train only the recurrent state: its layer and enc0's weights reading it, every other weight "
+        "kept as --init's (with --recurrent)",
+    )
+    ap.add_argument(
         "--train-layers",
         default="",
         help="train only these layers (comma-separated names of the weights file, e.g. out,out_half), "
@@ -577,10 +599,14 @@ def main():
         if not model.gate or not args.init:
             raise SystemExit("--gate-only trains the gate of --init's model: give --init and --atrous-steps (or a gated --init)")
         train_gate_only(model)
+    if args.state_only:
+        if not args.init or not model.recurrent or args.gate_only:
+            raise SystemExit("--state-only trains the recurrent state added to --init's model: give --init and --recurrent")
+        train_state_only(model)
     train_layers = [name for name in args.train_layers.split(",") if name]
     if train_layers:
-        if not args.init or args.gate_only:
-            raise SystemExit("--train-layers trains layers of --init's model, and not with --gate-only")
+        if not args.init or args.gate_only or args.state_only:
+            raise SystemExit("--train-layers trains layers of --init's model, and not with --gate-only or --state-only")
         train_layers_only(model, train_layers)
     group.same_start(model)
     cost = model_cost(model, dev)
@@ -676,6 +702,7 @@ def main():
         "cold": str(args.cold),
         "energy": str(args.energy),
         "gate_only": str(args.gate_only),
+        "state_only": str(args.state_only),
         "train_layers": args.train_layers,
         "crop": str(args.crop),
         "batch": str(args.batch),
