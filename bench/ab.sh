@@ -1,6 +1,8 @@
 # A/B of several lucid binaries, back to back: pass medians (ms) at 1920x1080 (SCENES, ALGO and
 # DENOISE override), with the main pass's register count when the driver reports pipeline statistics.
-set -e
+# The lines also go to $OUT/ab.txt when OUT is set (the device returns only a command's last
+# 12,000 characters of output).
+set -eo pipefail
 for s in ${SCENES:-cornell-box classroom cornell-teapot covered-light blinds-room caustics}; do
   for b in "$@"; do
     .gpu/$b bench --scene $s --algo ${ALGO:-pt} --denoise ${DENOISE:-none} --size 1920x1080 --spp 1 \
@@ -12,4 +14,4 @@ regs = {k.split('/')[-1]: v.get('Register Count') for k, v in (r.get('pipelines'
 main = {k: v for k, v in regs.items() if k in ('path_trace', 'path_trace_surfaces', 'camera', 'light')}
 print('$s', '$b', ' '.join('%s=%.3f' % (k, v['median']) for k, v in r['passes_ms'].items() if v['median'] > 0.05), main)"
   done
-done
+done | if [ -n "${OUT:-}" ]; then tee -a "$OUT/ab.txt"; else cat; fi
