@@ -59,7 +59,8 @@ def main():
         for scene, figures in by_scene.items():
             figures["ratios"] = {k: v / baseline[scene][k] for k, v in figures.items() if baseline[scene][k]}
             print(f"{name} {scene}: " + ", ".join(f"{k} {v:.5f}" for k, v in figures.items() if k != "ratios"))
-    summary = {"data": args.data, "split": args.split, "sequences": {scene: sum(s["scene"] == scene for s in sequences) for scene in scenes}}
+    counts = {scene: sum(s["scene"] == scene for s in sequences) for scene in scenes}
+    summary = {"data": args.data, "split": args.split, "sequences": counts}
     Path(args.out).write_text(json.dumps({**summary, "weights": results}, indent=1))
 
 

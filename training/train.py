@@ -601,7 +601,10 @@ def main():
         train_gate_only(model)
     if args.state_only:
         if not args.init or not model.recurrent or args.gate_only:
-            raise SystemExit("--state-only trains the recurrent state added to --init's model: give --init and --recurrent")
+            raise SystemExit(
+                "--state-only trains the recurrent state added to --init's model: give --init and --recurrent, "
+                "without --gate-only"
+            )
         train_state_only(model)
     train_layers = [name for name in args.train_layers.split(",") if name]
     if train_layers:
