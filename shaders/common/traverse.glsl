@@ -50,7 +50,9 @@ vec3 safe_inverse(vec3 d) {
                       abs(d.z) > tiny ? d.z : (d.z >= 0.0 ? tiny : -tiny));
 }
 
-// Moller-Trumbore; returns t (or T_INFINITY) and barycentrics.
+// Moller-Trumbore with one early exit, on the first barycentric; the other tests are one select
+// (the lanes of a subgroup test different triangles, so each further exit costs a branch and
+// saves little). Returns t (or T_INFINITY) and barycentrics (zero on a miss).
 float intersect_triangle(uint tri, vec3 o, vec3 d, float t_max, out vec2 bary) {
     uint f = 3u * tri;
     vec4 a = b_triangles.t[f];
@@ -60,24 +62,19 @@ float intersect_triangle(uint tri, vec3 o, vec3 d, float t_max, out vec2 bary) {
     vec3 e2 = vec3(b.zw, b_triangles.t[f + 2u].x);
     vec3 pv = cross(d, e2);
     float det = dot(e1, pv);
-    bary = vec2(0.0);
-    if (abs(det) < 1e-12) {
-        return T_INFINITY;
-    }
     float inv_det = 1.0 / det;
     vec3 tv = o - p0;
     float u = dot(tv, pv) * inv_det;
-    if (u < 0.0 || u > 1.0) {
+    if (!(u >= 0.0 && u <= 1.0)) {
+        bary = vec2(0.0);
         return T_INFINITY;
     }
     vec3 qv = cross(tv, e1);
     float v = dot(d, qv) * inv_det;
-    if (v < 0.0 || u + v > 1.0) {
-        return T_INFINITY;
-    }
     float t = dot(e2, qv) * inv_det;
-    bary = vec2(u, v);
-    return (t > 0.0 && t < t_max) ? t : T_INFINITY;
+    bool hit = abs(det) >= 1e-12 && v >= 0.0 && u + v <= 1.0 && t > 0.0 && t < t_max;
+    bary = hit ? vec2(u, v) : vec2(0.0);
+    return hit ? t : T_INFINITY;
 }
 
 // Nearest positive root of |o + t d - c| = r within (0, t_max).
