@@ -49,7 +49,7 @@ import torch
 import torch.nn as nn
 import torch.nn.functional as F
 
-from model import WIDTHS, RecurrentDenoiser, half, pool, unet_layers
+from model import MOTION_INPUTS, WIDTHS, RecurrentDenoiser, half, pool, unet_layers
 
 KERNEL = 5
 TAPS = KERNEL * KERNEL
@@ -166,8 +166,8 @@ class KernelOutput(nn.Module):
 class KernelDenoiser(RecurrentDenoiser):
     """`RecurrentDenoiser` with the kernel-predicting output layer; same `step`, `forward`, state."""
 
-    def __init__(self, widths=WIDTHS, scales=SCALES, linear_mix=False, atrous_steps=(), recurrent=0):
-        super().__init__(widths, atrous_steps, recurrent)
+    def __init__(self, widths=WIDTHS, scales=SCALES, linear_mix=False, atrous_steps=(), recurrent=0, motion=False):
+        super().__init__(widths, atrous_steps, recurrent, motion)
         self.convs["out"] = KernelOutput(self.widths[-1], scales, linear_mix, self.gate)
 
     @property
@@ -198,11 +198,12 @@ class KernelDenoiser(RecurrentDenoiser):
         return kernels + super().EXTRA_MACS_PER_PIXEL
 
 
-def kernel_layers(widths=WIDTHS, scales=SCALES, linear_mix=False, gate=False, recurrent=0):
+def kernel_layers(widths=WIDTHS, scales=SCALES, linear_mix=False, gate=False, recurrent=0, motion=False):
     """(name, input channels, output channels) of every exported layer of a network of `widths`,
-    `scales`, `linear_mix`, `gate` and `recurrent` channels of recurrent state, in execution
-    order."""
-    layers = [(n, cin, cout) for n, cin, cout in unet_layers(widths, recurrent=recurrent) if n != "out"]
+    `scales`, `linear_mix`, `gate`, `recurrent` channels of recurrent state and, with `motion`,
+    `motion_inputs`, in execution order."""
+    unet = unet_layers(widths, recurrent=recurrent, motion=MOTION_INPUTS * motion)
+    layers = [(n, cin, cout) for n, cin, cout in unet if n != "out"]
     return layers + [(n, cin, cout) for n, cin, cout, _ in heads(widths[-1], scales, linear_mix, gate)]
 
 

@@ -66,15 +66,33 @@ def sources(layer):
     return SOURCES.get(layer, ("dec0",))
 
 
-def unet_layers(widths=WIDTHS, outputs=OUTPUTS, recurrent=0):
+def unet_layers(widths=WIDTHS, outputs=OUTPUTS, recurrent=0, motion=0):
     """(name, input channels, output channels) of the convolutions, in execution order, for the
-    hidden layers' `widths` and `outputs` channels of the output layer; with `recurrent` channels
-    of recurrent state, `enc0` reads them after the input features and the layer `recurrent` (on
-    `dec0`'s features, before `out`) writes them."""
+    hidden layers' `widths` and `outputs` channels of the output layer; with `motion` channels of
+    the reprojection's motion (`motion_inputs`), `enc0` reads them after the input features; with
+    `recurrent` channels of recurrent state, `enc0` reads them after those and the layer
+    `recurrent` (on `dec0`'s features, before `out`) writes them."""
     width = dict(zip(HIDDEN, widths))
-    inputs = lambda layer: sum(FEATURES + recurrent if s is None else width[s] for s in sources(layer))  # noqa: E731
+    inputs = lambda layer: sum(FEATURES + motion + recurrent if s is None else width[s] for s in sources(layer))  # noqa: E731
     state_layer = [("recurrent", inputs("recurrent"), recurrent)] if recurrent else []
     return [(name, inputs(name), width[name]) for name in HIDDEN] + state_layer + [("out", inputs("out"), outputs)]
+
+
+# Channels of `motion_inputs`.
+MOTION_INPUTS = 2
+
+
+def motion_inputs(motion):
+    """What the reprojection of the history does at each pixel, from the G-buffer's `motion`
+    [B,3,H,W] (pixels to last frame's position, then the depth expected there): log(1 + its length
+    in pixels), and how much its bilinear taps blur, 2 (fx (1 - fx) + fy (1 - fy)) with (fx, fy) the
+    fractional offset (0 on whole pixels, 1 halfway in both). The history is resampled every frame,
+    so these say how fast the view moves and how soft the reprojected history has become."""
+    m = motion[:, 0:2]
+    frac = m - torch.floor(m)
+    length = torch.log1p(torch.sqrt((m * m).sum(1, keepdim=True)))
+    blur = 2.0 * (frac * (1.0 - frac)).sum(1, keepdim=True)
+    return torch.cat([length, blur], 1)
 
 
 def widths_of(tensors):
@@ -411,14 +429,17 @@ class RecurrentDenoiser(nn.Module):
     (non-empty) the output layer has one more channel, the last, the logit of the gate of the
     `atrous` filter over the output; with `recurrent` > 0, that many channels of recurrent state
     (tanh of the layer `recurrent` on `dec0`'s features), warped with the output's history and
-    read by `enc0` beside the input features in the next frame (zero in the first)."""
+    read by `enc0` beside the input features in the next frame (zero in the first); with `motion`,
+    `enc0` also reads `motion_inputs`."""
 
-    def __init__(self, widths=WIDTHS, atrous_steps=(), recurrent=0):
+    def __init__(self, widths=WIDTHS, atrous_steps=(), recurrent=0, motion=False):
         super().__init__()
         self.widths = tuple(widths)
         self.gate = bool(atrous_steps)
         self.recurrent = recurrent
-        self.layers = unet_layers(self.widths, OUTPUTS + self.gate, recurrent)
+        # Whether `enc0` reads `motion_inputs` after the input features.
+        self.motion = motion
+        self.layers = unet_layers(self.widths, OUTPUTS + self.gate, recurrent, MOTION_INPUTS * motion)
         self.convs = nn.ModuleDict({name: nn.Conv2d(cin, cout, 3, padding=1) for name, cin, cout in self.layers})
         # `antialias_surface`'s weight of this frame's emission per pixel of motion (the weights
         # file's `emission_motion` metadata).
@@ -483,6 +504,8 @@ class RecurrentDenoiser(nn.Module):
         )
         x = half(features(rec, warped, mask, accum, moment, robust, self.spatial_variance_frames), fp16_storage)
         warped, mask = x[:, 11:14], x[:, 14:15]  # as the output pass reads them: stored
+        if self.motion:
+            x = torch.cat([x, half(motion_inputs(rec["motion"]), fp16_storage)], 1)
         x = torch.cat([x, half(warped_recurrent, fp16_storage)], 1)
         c = self.convs
         r = lambda t: half(F.relu(t), fp16_storage)  # noqa: E731

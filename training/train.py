@@ -81,6 +81,7 @@ from model import (
     DECODERS,
     FORMAT,
     HIDDEN,
+    MOTION_INPUTS,
     N_MAX,
     RECORD_SIZE,
     WIDTHS,
@@ -100,18 +101,18 @@ NEW_SCALE_BIAS = -3.0
 PROCESS_SEED_STRIDE = 7919
 
 
-def build_model(name, widths=WIDTHS, scales=SCALES, linear_mix=False, atrous_steps=(), recurrent=0):
+def build_model(name, widths=WIDTHS, scales=SCALES, linear_mix=False, atrous_steps=(), recurrent=0, motion=False):
     """The `name`d decoder's model of `widths` (`scales` and `linear_mix` for the kernel decoder),
-    with the gated a-trous filter of `atrous_steps` when there are any and `recurrent` channels of
-    recurrent state."""
+    with the gated a-trous filter of `atrous_steps` when there are any, `recurrent` channels of
+    recurrent state and, with `motion`, the reprojection's motion among its inputs."""
     if name == "kernel":
-        return KernelDenoiser(widths, scales, linear_mix, atrous_steps, recurrent)
-    return RecurrentDenoiser(widths, atrous_steps, recurrent)
+        return KernelDenoiser(widths, scales, linear_mix, atrous_steps, recurrent, motion)
+    return RecurrentDenoiser(widths, atrous_steps, recurrent, motion)
 
 
 def build_model_for(decoder, path):
     """The `decoder`'s model shaped as the weights file `path` is: its widths, kernel scales,
-    linear mix, a-trous filter's steps and recurrent state (its weights not loaded:
+    linear mix, a-trous filter's steps, recurrent state and motion inputs (its weights not loaded:
     `load_weights`)."""
     return build_model(
         decoder,
@@ -120,6 +121,7 @@ def build_model_for(decoder, path):
         file_linear_mix(path),
         file_atrous_steps(path),
         file_recurrent(path),
+        file_motion(path),
     )
 
 
@@ -147,6 +149,13 @@ def file_recurrent(path):
     outputs; 0 where it has none)."""
     with safe_open(path, "pt") as f:
         return int(f.get_slice("recurrent.weight").get_shape()[0]) if "recurrent.weight" in f.keys() else 0
+
+
+def file_motion(path):
+    """Whether a weights file train.py wrote reads the reprojection's motion (its `motion_inputs`
+    metadata)."""
+    with safe_open(path, "pt") as f:
+        return (f.metadata() or {}).get("motion_inputs", "") == str(MOTION_INPUTS)
 
 
 def file_linear_mix(path):
@@ -258,6 +267,10 @@ def load_weights(model, path):
     recurrent = file_recurrent(path)
     if recurrent and recurrent != model.recurrent:
         raise ValueError(f"{path} has {recurrent} channels of recurrent state: the model has {model.recurrent}")
+    if file_motion(path) and not model.motion:
+        raise ValueError(f"{path} reads the reprojection's motion: the model needs --motion-inputs")
+    if recurrent and model.motion and not file_motion(path):
+        raise ValueError(f"{path} has recurrent state where the model reads motion inputs: start from a file without")
     had = (file_linear_mix(path), bool(steps))
     has = (getattr(model, "linear_mix", False), model.gate)
     loaded, skipped = [], []
@@ -519,6 +532,12 @@ def main():
         "without it start it with enc0's weights for it at zero and the layer writing it afresh)",
     )
     ap.add_argument(
+        "--motion-inputs",
+        action="store_true",
+        help="enc0 also reads the reprojection's motion (model.motion_inputs: its length and how much its "
+        "bilinear taps blur); default: --init's; weights without it start with enc0's weights for it at zero",
+    )
+    ap.add_argument(
         "--gate-only",
         action="store_true",
         help="train only the gate of the a-trous filter (out's last channel), every other weight kept as --init's",
@@ -584,7 +603,8 @@ def main():
     if args.recurrent is not None and (args.recurrent < 0 or init_recurrent not in (0, args.recurrent)):
         raise SystemExit(f"--recurrent {args.recurrent}: --init {args.init} has {init_recurrent} channels of it")
     recurrent = init_recurrent if args.recurrent is None else args.recurrent
-    model = build_model(args.model, widths, args.scales, args.linear_mix, atrous_steps, recurrent).to(dev)
+    motion = args.motion_inputs or bool(args.init and file_motion(args.init))
+    model = build_model(args.model, widths, args.scales, args.linear_mix, atrous_steps, recurrent, motion).to(dev)
     if args.init:
         load_weights(model, args.init)
     if args.history_frames is not None:
@@ -683,7 +703,7 @@ def main():
         return
     final = validation(model, val, watch)
     if isinstance(model, KernelDenoiser):
-        layers = kernel_layers(model.widths, model.scales, model.linear_mix, model.gate, model.recurrent)
+        layers = kernel_layers(model.widths, model.scales, model.linear_mix, model.gate, model.recurrent, model.motion)
         tensors = kernel_export_tensors(model)
     else:
         layers, tensors = model.layers, export_tensors(model)
@@ -723,6 +743,8 @@ def main():
     }
     if model.atrous_steps:
         meta["atrous_steps"] = ",".join(str(s) for s in model.atrous_steps)
+    if model.motion:
+        meta["motion_inputs"] = str(MOTION_INPUTS)
     save_file(tensors, args.out, metadata=meta)
     summary = {
         "final": final,
