@@ -223,6 +223,25 @@ fn bench_times_passes_that_share_a_name_as_their_sum() {
     );
 }
 
+#[test]
+fn bench_reports_every_frames_image_time() {
+    // Each timed frame's HDR image time, in order, for transients the summary hides.
+    let report = short_bench_report(&temp("bench-per-frame.json"), "cornell-box", "none", &[]);
+    let per_frame: Vec<f64> = report["image_ms_per_frame"]
+        .as_array()
+        .expect("image_ms_per_frame")
+        .iter()
+        .map(|v| v.as_f64().unwrap())
+        .collect();
+    assert_eq!(per_frame.len(), 2, "{report}");
+    let mean = per_frame.iter().sum::<f64>() / 2.0;
+    let image = report["image_ms"]["mean"].as_f64().unwrap();
+    assert!(
+        (mean - image).abs() <= 1e-9 * image.max(1.0),
+        "{mean} against {image}"
+    );
+}
+
 /// Runs a short 32x32 `lucid bench` of `scene` with `denoiser` and the `extra` options, its JSON
 /// report written to `json`.
 fn short_bench(

@@ -159,6 +159,7 @@ pub fn run(args: &BenchArgs) -> anyhow::Result<()> {
         "passes_ms": passes.iter().map(|(k, v)| (k.clone(), summary(v))).collect::<BTreeMap<_, _>>(),
         "paths_per_second": paths / (mean_ms / 1e3),
         "image_ms": summary(&image_ms),
+        "image_ms_per_frame": image_ms,
         "image_paths_per_second": paths / (image_mean_ms / 1e3),
         "rays_per_frame": mean_rays,
         "rays_per_second": mean_rays / (mean_ms / 1e3),
