@@ -73,7 +73,8 @@ def unet_layers(widths=WIDTHS, outputs=OUTPUTS, recurrent=0, motion=0):
     `recurrent` channels of recurrent state, `enc0` reads them after those and the layer
     `recurrent` (on `dec0`'s features, before `out`) writes them."""
     width = dict(zip(HIDDEN, widths))
-    inputs = lambda layer: sum(FEATURES + motion + recurrent if s is None else width[s] for s in sources(layer))  # noqa: E731
+    first = FEATURES + motion + recurrent  # what `enc0` reads
+    inputs = lambda layer: sum(first if s is None else width[s] for s in sources(layer))  # noqa: E731
     state_layer = [("recurrent", inputs("recurrent"), recurrent)] if recurrent else []
     return [(name, inputs(name), width[name]) for name in HIDDEN] + state_layer + [("out", inputs("out"), outputs)]
 
@@ -86,8 +87,8 @@ def motion_inputs(motion):
     """What the reprojection of the history does at each pixel, from the G-buffer's `motion`
     [B,3,H,W] (pixels to last frame's position, then the depth expected there): log(1 + its length
     in pixels), and how much its bilinear taps blur, 2 (fx (1 - fx) + fy (1 - fy)) with (fx, fy) the
-    fractional offset (0 on whole pixels, 1 halfway in both). The history is resampled every frame,
-    so these say how fast the view moves and how soft the reprojected history has become."""
+    fractional offset (0 on whole pixels, 1 halfway in both). The history is resampled every frame:
+    these say how fast the view moves and how much this frame's resampling softens the history."""
     m = motion[:, 0:2]
     frac = m - torch.floor(m)
     length = torch.log1p(torch.sqrt((m * m).sum(1, keepdim=True)))
