@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Forty-fifth session, for the next session's device time (one H200; not yet run). runs/v44 found
+# Forty-fifth session, run in the forty-sixth (one H200, 512 s; results in out/ and training/README.md). runs/v44 found
 # the whole network fine-tuned for 4 minutes (`control`, its weights in runs/v44-motion-inputs/out/)
 # 6.2% worse than the committed weights on the held-out `classroom` at 512x512 in PyTorch, but
 # half and half with them (blend.py --t 0.5) 0.9% worse there and 3.0% better on `caustics`, whose
