@@ -154,16 +154,13 @@ def half(x, enabled):
     return x.half().float() if enabled else x
 
 
-def warp_history(history, prev_surface, motion, normal, depth, objects, surface_channels, sharp=()):
+def warp_history(history, prev_surface, motion, normal, depth, objects, surface_channels):
     """Bilinear reprojection of last frame's `history` [B,C,H,W] to this frame's pixels, each of
     the four taps kept only where last frame saw the same surface (depth within 5% of the depth
     the motion vectors expect, normals within about 25 degrees; sky only to sky). The last
     `surface_channels` of the history (the averaged albedo and emission) keep, of those taps, only
     the ones whose object (`prev_surface` channel 4) is this pixel's (`objects` [B,1,H,W]), and
-    are normalised by their own weights. The channels listed in `sharp` are resampled with the
-    Catmull-Rom kernel instead where all 16 of its taps are kept, clamped to the range of the
-    bilinear taps (no ringing past them), so that a history resampled every frame is not blurred
-    every frame; elsewhere bilinearly. Returns the warped history, the validity mask [B,1,H,W]
+    are normalised by their own weights. Returns the warped history, the validity mask [B,1,H,W]
     (1 where the taps' weights sum to at least 0.01) and the surface channels' own mask."""
     b, _, h, w = history.shape
     ys, xs = torch.meshgrid(
@@ -187,11 +184,10 @@ def warp_history(history, prev_surface, motion, normal, depth, objects, surface_
     surface_acc = torch.zeros_like(history[:, split:])
     wsum = torch.zeros_like(expected)
     surface_wsum = torch.zeros_like(expected)
-
-    def tap(dx, dy):
-        """The gather of last frame's pixel (bx + dx, by + dy), and whether it is kept."""
+    for dx, dy in ((0, 0), (1, 0), (0, 1), (1, 1)):
         qx = bx + dx
         qy = by + dy
+        wgt = (fx if dx else 1.0 - fx) * (fy if dy else 1.0 - fy)
         inside = (qx >= 0) & (qx < w) & (qy >= 0) & (qy < h)
         ix = qx.clamp(0, w - 1).long()
         iy = qy.clamp(0, h - 1).long()
@@ -204,23 +200,13 @@ def warp_history(history, prev_surface, motion, normal, depth, objects, surface_
 
         q_depth = gather(prev_depth)[:, 0]
         q_normal = gather(prev_normal)
+        q_hist = gather(history)
         q_sky = q_depth <= 0.0
         same = (torch.abs(q_depth - expected) <= DEPTH_TOLERANCE * expected) & (
             (q_normal * normal).sum(1) > NORMAL_COS
         )
-        return gather, inside & torch.where(here_sky, q_sky, (~q_sky) & same)
-
-    sharp = list(sharp)
-    low = high = None
-    for dx, dy in ((0, 0), (1, 0), (0, 1), (1, 1)):
-        wgt = (fx if dx else 1.0 - fx) * (fy if dy else 1.0 - fy)
-        gather, valid = tap(dx, dy)
-        q_hist = gather(history)
+        valid = inside & torch.where(here_sky, q_sky, (~q_sky) & same)
         wv = torch.where(valid, wgt, torch.zeros_like(wgt))
-        if sharp:
-            q_sharp = q_hist[:, sharp]
-            low = q_sharp if low is None else torch.minimum(low, q_sharp)
-            high = q_sharp if high is None else torch.maximum(high, q_sharp)
         acc = acc + wv.unsqueeze(1) * q_hist[:, :split]
         wsum = wsum + wv
         same_object = valid & (gather(prev_objects)[:, 0] == objects[:, 0])
@@ -233,44 +219,8 @@ def warp_history(history, prev_surface, motion, normal, depth, objects, surface_
         return torch.where(ok.unsqueeze(1), total / weights.clamp_min(1e-8).unsqueeze(1), torch.zeros_like(total)), ok
 
     warped, ok = normalised(acc, wsum)
-    if sharp:
-        kernel_x, kernel_y = catmull_rom_weights(fx), catmull_rom_weights(fy)
-        sharp_acc = torch.zeros_like(warped[:, sharp])
-        all_kept = torch.ones_like(ok)
-        for j, dy in enumerate(CATMULL_ROM_OFFSETS):
-            for i, dx in enumerate(CATMULL_ROM_OFFSETS):
-                gather, valid = tap(dx, dy)
-                sharp_acc = sharp_acc + (kernel_x[i] * kernel_y[j]).unsqueeze(1) * gather(history)[:, sharp]
-                all_kept = all_kept & valid
-        sharp_warped = torch.minimum(torch.maximum(sharp_acc, low), high)
-        warped = warped.clone()
-        warped[:, sharp] = torch.where(all_kept.unsqueeze(1), sharp_warped, warped[:, sharp])
     warped_surface, surface_ok = normalised(surface_acc, surface_wsum)
     return torch.cat([warped, warped_surface], 1), ok.float().unsqueeze(1), surface_ok.float().unsqueeze(1)
-
-
-# The history channels (in `Model.step`'s order: output 0-2, running mean 3-5 and its length 6,
-# moment 7, compressed mean and moment 8-11) each `Model.history_warp` resamples with the
-# Catmull-Rom kernel: none, the network's output, or the output and the running means (their
-# lengths stay bilinear).
-HISTORY_WARPS = {
-    "bilinear": (),
-    "output": (0, 1, 2),
-    "means": (0, 1, 2, 3, 4, 5, 7, 8, 9, 10, 11),
-}
-
-# The Catmull-Rom kernel's taps, relative to the pixel below the resampled point, per axis.
-CATMULL_ROM_OFFSETS = (-1, 0, 1, 2)
-
-
-def catmull_rom_weights(t):
-    """The Catmull-Rom kernel's four weights at fractional offset `t` (they sum to 1)."""
-    return (
-        t * (-0.5 + t * (1.0 - 0.5 * t)),
-        1.0 + t * t * (-2.5 + 1.5 * t),
-        t * (0.5 + t * (2.0 - 1.5 * t)),
-        t * t * (-0.5 + 0.5 * t),
-    )
 
 
 def luminance(rgb):
@@ -503,9 +453,6 @@ class RecurrentDenoiser(nn.Module):
         # The spacings of the gated `atrous` filter's steps (the weights file's `atrous_steps`
         # metadata); () without the gate.
         self.atrous_steps = tuple(atrous_steps)
-        # Which reprojected histories are resampled with the Catmull-Rom kernel rather than
-        # bilinearly (`HISTORY_WARPS`; `warp_history`).
-        self.history_warp = "bilinear"
 
     def step(self, record, state, fp16_storage=False, objects=None):
         """One frame. `record` [B,RECORD_SIZE,H,W]; `objects` [B,1,H,W] the object id of each
@@ -537,9 +484,8 @@ class RecurrentDenoiser(nn.Module):
             # state and, from the taps of the same object, the albedo and emission.
             names = ("output", "accum", "moment", "robust") + (("recurrent",) if k else ()) + ("albedo", "emission")
             history = torch.cat([state[n] for n in names], 1)
-            sharp = HISTORY_WARPS[self.history_warp]
             history, mask, surface_mask = warp_history(
-                history, state["surface"], rec["motion"], rec["normal"], rec["depth"], objects, 6, sharp
+                history, state["surface"], rec["motion"], rec["normal"], rec["depth"], objects, 6
             )
             warped, warped_accum = history[:, 0:3], history[:, 3:7]
             warped_moment, warped_robust = history[:, 7:8], history[:, 8:12]

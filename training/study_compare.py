@@ -21,7 +21,6 @@ import torch
 from safetensors import safe_open
 
 from data import load_split
-from model import HISTORY_WARPS
 from train import build_model_for, load_weights, validate
 
 
@@ -41,12 +40,6 @@ def main():
         help="the split compared: `study` (default) or a training dataset's `validation`",
     )
     ap.add_argument("weights", nargs="+", help="weights files train.py wrote; the first is the baseline")
-    ap.add_argument(
-        "--history-warp",
-        choices=sorted(HISTORY_WARPS),
-        help="which histories every file's model resamples with the Catmull-Rom kernel "
-        "(model.HISTORY_WARPS; default: each file's `history_warp` metadata, else bilinear)",
-    )
     ap.add_argument("--out", required=True)
     args = ap.parse_args()
     device = "cuda" if torch.cuda.is_available() else "cpu"
@@ -56,8 +49,6 @@ def main():
     for path in args.weights:
         model = build_model_for(decoder_of(path), path).to(device)
         load_weights(model, path)
-        if args.history_warp is not None:
-            model.history_warp = args.history_warp
         results[Path(path).name] = {
             scene: validate(model, [s for s in sequences if s["scene"] == scene]) for scene in scenes
         }
@@ -69,7 +60,7 @@ def main():
             figures["ratios"] = {k: v / baseline[scene][k] for k, v in figures.items() if baseline[scene][k]}
             print(f"{name} {scene}: " + ", ".join(f"{k} {v:.5f}" for k, v in figures.items() if k != "ratios"))
     counts = {scene: sum(s["scene"] == scene for s in sequences) for scene in scenes}
-    summary = {"data": args.data, "split": args.split, "history_warp": args.history_warp or "the files'", "sequences": counts}
+    summary = {"data": args.data, "split": args.split, "sequences": counts}
     Path(args.out).write_text(json.dumps({**summary, "weights": results}, indent=1))
 
 

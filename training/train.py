@@ -81,7 +81,6 @@ from model import (
     DECODERS,
     FORMAT,
     HIDDEN,
-    HISTORY_WARPS,
     MOTION_INPUTS,
     N_MAX,
     RECORD_SIZE,
@@ -236,8 +235,8 @@ def load_weights(model, path):
     layers; the kernel model takes every layer whose shapes match (so direct weights start its
     shared layers) and starts the others afresh. A `lucid-rae-v2` file's first layer, which has
     fewer inputs, starts the first layer with the new inputs' weights at zero. The file's
-    `emission_motion`, `history_frames`, `spatial_variance_frames`, `history_warp` and
-    `atrous_steps` metadata, when there, set the model's (a file with `atrous_steps` needs a model with the gate). A file of a
+    `emission_motion`, `history_frames`, `spatial_variance_frames` and `atrous_steps` metadata,
+    when there, set the model's (a file with `atrous_steps` needs a model with the gate). A file of a
     wider network starts a narrower model from the channels its layers weigh most (`narrow`). A
     file of fewer kernel scales starts a model of more: its coarsest head gains the weight `a` of
     the new scale, at sigmoid(NEW_SCALE_BIAS) everywhere, so that the new scale starts almost
@@ -258,8 +257,6 @@ def load_weights(model, path):
         model.history_frames = int(meta["history_frames"])
     if "spatial_variance_frames" in meta:
         model.spatial_variance_frames = int(meta["spatial_variance_frames"])
-    if "history_warp" in meta:
-        model.history_warp = meta["history_warp"]
     steps = atrous_steps_of(meta.get("atrous_steps", ""))
     if steps:
         if not model.gate:
@@ -516,12 +513,6 @@ def main():
         f"(1 to {int(N_MAX)}; default: --init's, else {int(N_MAX)})",
     )
     ap.add_argument(
-        "--history-warp",
-        choices=sorted(HISTORY_WARPS),
-        help="which reprojected histories are resampled with the Catmull-Rom kernel rather than "
-        "bilinearly (model.HISTORY_WARPS; default: --init's, else bilinear)",
-    )
-    ap.add_argument(
         "--spatial-variance-frames",
         type=int,
         help="the history lengths below which the variance inputs are taken over the 3x3 neighbourhood "
@@ -620,8 +611,6 @@ def main():
         if not 1 <= args.history_frames <= N_MAX:
             raise SystemExit(f"--history-frames {args.history_frames} is not between 1 and {int(N_MAX)}")
         model.history_frames = args.history_frames
-    if args.history_warp is not None:
-        model.history_warp = args.history_warp
     if args.spatial_variance_frames is not None:
         if not 0 <= args.spatial_variance_frames <= N_MAX:
             raise SystemExit(f"--spatial-variance-frames {args.spatial_variance_frames} is not between 0 and {int(N_MAX)}")
@@ -756,8 +745,6 @@ def main():
         meta["atrous_steps"] = ",".join(str(s) for s in model.atrous_steps)
     if model.motion:
         meta["motion_inputs"] = str(MOTION_INPUTS)
-    if model.history_warp != "bilinear":
-        meta["history_warp"] = model.history_warp
     save_file(tensors, args.out, metadata=meta)
     summary = {
         "final": final,

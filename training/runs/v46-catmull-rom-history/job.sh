@@ -1,4 +1,6 @@
 #!/usr/bin/env bash
+# Run once, at 331310c (whose train.py and study_compare.py have --history-warp; removed after it
+# changed nothing: training/README.md, "The history resampled with the Catmull-Rom kernel").
 # Forty-sixth session (one H200). Every frame the network blends its output with last frame's,
 # reprojected by bilinear taps (model.warp_history, as the shaders do); most reprojections land
 # near half-pixel offsets, where bilinear taps are a [1/2 1/2] blur, so a history carried for n
