@@ -453,8 +453,6 @@ class RecurrentDenoiser(nn.Module):
         # The spacings of the gated `atrous` filter's steps (the weights file's `atrous_steps`
         # metadata); () without the gate.
         self.atrous_steps = tuple(atrous_steps)
-        # Whether the output blends with its warped history in linear space rather than in log space.
-        self.linear_blend = False
 
     def step(self, record, state, fp16_storage=False, objects=None):
         """One frame. `record` [B,RECORD_SIZE,H,W]; `objects` [B,1,H,W] the object id of each
@@ -521,11 +519,7 @@ class RecurrentDenoiser(nn.Module):
         recurrent = half(torch.tanh(c["recurrent"](d0)), fp16_storage) if k else None
         o = half(self.predict(d0, rec, accum, fp16_storage), fp16_storage)
         blend = mask * torch.sigmoid(o[:, 3:4])
-        if self.linear_blend:
-            mixed = torch.expm1(o[:, 0:3].clamp_min(0.0)) * (1.0 - blend) + torch.expm1(warped.clamp_min(0.0)) * blend
-            log_out = torch.log1p(mixed)
-        else:
-            log_out = (o[:, 0:3] * (1.0 - blend) + warped * blend).clamp_min(0.0)
+        log_out = (o[:, 0:3] * (1.0 - blend) + warped * blend).clamp_min(0.0)
         log_out = half(log_out, fp16_storage)
         illumination = torch.expm1(log_out)
         if self.gate:

@@ -40,7 +40,6 @@ def main():
         help="the split compared: `study` (default) or a training dataset's `validation`",
     )
     ap.add_argument("weights", nargs="+", help="weights files train.py wrote; the first is the baseline")
-    ap.add_argument("--linear-blend", action="store_true", help="every model blends its history in linear space")
     ap.add_argument("--out", required=True)
     args = ap.parse_args()
     device = "cuda" if torch.cuda.is_available() else "cpu"
@@ -50,7 +49,6 @@ def main():
     for path in args.weights:
         model = build_model_for(decoder_of(path), path).to(device)
         load_weights(model, path)
-        model.linear_blend = args.linear_blend
         results[Path(path).name] = {
             scene: validate(model, [s for s in sequences if s["scene"] == scene]) for scene in scenes
         }

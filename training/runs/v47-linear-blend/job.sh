@@ -1,5 +1,7 @@
 #!/usr/bin/env bash
-# Forty-sixth session (one H200), at f240567. On the held-out `caustics` path the learned denoiser's FLIP
+# Run once, at f240567 (whose model.py and study_compare.py have the linear blend; removed after it:
+# training/README.md, "The history blended in linear space").
+# Forty-sixth session (one H200). On the held-out `caustics` path the learned denoiser's FLIP
 # rises 7% from frames 2-4 to frames 12 on (0.0162 to 0.0173, runs/v45) while the per-frame spatial
 # filter's stays flat (content of equal difficulty) and SVGF's falls: error that grows with the
 # history. The output blends with its warped history in log space, an exponential moving average
