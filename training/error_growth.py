@@ -1,0 +1,186 @@
+"""Where a method's error grows or shrinks along a camera path: per-pixel FLIP (as `lucid
+evaluate` computes it, `flip.py`) averaged over an early and a late window of a `lucid sequence`
+folder's frames, per method, split by what the reference shows there.
+
+    python3 error_growth.py /tmp/heldout-caustics --early 2 5 --late 12 30 --out /tmp/growth
+
+Writes OUT/growth.json: per method, the mean FLIP of each window and its change, split
+- by the reference's brightness (bands of its mean luminance, as `lucid evaluate --maps`),
+- by how noisy the path tracer's samples are there (the `none` frames' mean absolute deviation
+  from the reference's luminance over the late window, relative to it: none, then quartiles),
+- by the method's bias there (its late-window mean luminance over the reference's: too dark,
+  within 5%, too bright),
+and OUT/<method>.png, three panels side by side at a quarter of the resolution: the early
+window's FLIP, the late window's, and late minus early (red where it grew, blue where it fell),
+each on one scale for every method.
+"""
+
+import argparse
+import json
+import struct
+import zlib
+from pathlib import Path
+
+import numpy as np
+import OpenEXR
+import torch
+
+from flip import Flip
+from losses import display_linear
+
+LUMINANCE = (0.2126, 0.7152, 0.0722)
+BRIGHTNESS_EDGES = (0.1, 0.5, 2.0, 8.0)
+
+
+def read(path, device):
+    """The RGB channels of an EXR frame Lucid wrote, [1, 3, H, W] float32."""
+    with OpenEXR.File(str(path)) as f:
+        rgba = f.channels()["RGBA"].pixels
+    rgb = torch.from_numpy(np.ascontiguousarray(rgba[:, :, :3], dtype=np.float32))
+    return rgb.permute(2, 0, 1).unsqueeze(0).to(device)
+
+
+def luminance(x):
+    """Rec. 709 luminance of [1, 3, H, W] -> [H, W]."""
+    return (x[0, 0] * LUMINANCE[0] + x[0, 1] * LUMINANCE[1] + x[0, 2] * LUMINANCE[2]).float()
+
+
+def window_means(folder, method, frames, flip, reference, device):
+    """A method's per-pixel FLIP and luminance averaged over `frames` [H, W] each."""
+    error, light = None, None
+    for i in frames:
+        test = read(folder / method / f"{i:04d}.exr", device)
+        e = flip.error_map(display_linear(test), display_linear(reference[i]))[0].float()
+        error = e if error is None else error + e
+        lum = luminance(test)
+        light = lum if light is None else light + lum
+    return error / len(frames), light / len(frames)
+
+
+def class_figures(e_err, l_err, classes, names):
+    """Per class (a boolean mask [H, W]): its share of the pixels, its mean FLIP in each window,
+    and its share of the whole image's change of FLIP."""
+    total = float((l_err - e_err).mean())
+    figures = {}
+    for name, mask in zip(names, classes):
+        pixels = float(mask.float().mean())
+        if not mask.any():
+            figures[name] = {"pixels": 0.0}
+            continue
+        change = float((l_err - e_err)[mask].mean())
+        figures[name] = {
+            "pixels": pixels,
+            "early": float(e_err[mask].mean()),
+            "late": float(l_err[mask].mean()),
+            "change_share": change * pixels / total if total else 0.0,
+        }
+    return figures
+
+
+def brightness_classes(reference_light):
+    """Bands of the reference's luminance relative to its mean, as `lucid evaluate --maps`."""
+    relative = reference_light / reference_light.mean().clamp_min(1e-12)
+    edges = (0.0,) + BRIGHTNESS_EDGES + (float("inf"),)
+    names = [f"{lo}-{hi}x" for lo, hi in zip(edges[:-1], edges[1:])]
+    return [(relative >= lo) & (relative < hi) for lo, hi in zip(edges[:-1], edges[1:])], names
+
+
+def quartile_classes(values, label):
+    """Pixels where `values` [H, W] is 0 (no noise: sky, black), and quartiles of the others."""
+    positive = values > 0
+    sample = values[positive][:: max(1, int(positive.sum()) // 1_000_000)]
+    q = torch.quantile(sample, torch.tensor([0.25, 0.5, 0.75], device=values.device)).tolist() if sample.numel() else [0.0] * 3
+    edges = [0.0, *q, float("inf")]
+    classes = [~positive] + [positive & (values > lo) & (values <= hi) for lo, hi in zip(edges[:-1], edges[1:])]
+    return classes, [f"no {label}"] + [f"{label} quartile {k + 1}" for k in range(4)]
+
+
+def bias_classes(light, reference_light):
+    """Where the method's mean is too dark, within 5% of the reference's, or too bright."""
+    ratio = light / reference_light.clamp_min(1e-6)
+    return [ratio < 0.95, (ratio >= 0.95) & (ratio <= 1.05), ratio > 1.05], ["darker", "within 5%", "brighter"]
+
+
+def viridis_like(x):
+    """[H, W] in [0, 1] to an RGB uint8 image [H, W, 3] (black - blue - green - yellow)."""
+    stops = np.array([[0, 0, 0], [40, 60, 160], [30, 170, 120], [250, 230, 40]], dtype=np.float64)
+    t = np.clip(x, 0.0, 1.0) * (len(stops) - 1)
+    i = np.minimum(t.astype(int), len(stops) - 2)
+    f = (t - i)[..., None]
+    return (stops[i] * (1 - f) + stops[i + 1] * f).astype(np.uint8)
+
+
+def diverging(x):
+    """[H, W] in [-1, 1] to RGB uint8: blue below 0, black at 0, red above."""
+    x = np.clip(x, -1.0, 1.0)
+    rgb = np.zeros(x.shape + (3,))
+    rgb[..., 0] = np.clip(x, 0, 1) * 255
+    rgb[..., 2] = np.clip(-x, 0, 1) * 255
+    return rgb.astype(np.uint8)
+
+
+def write_png(path, rgb):
+    """Writes an RGB uint8 image [H, W, 3] as a PNG."""
+    h, w, _ = rgb.shape
+    raw = b"".join(b"\x00" + rgb[y].tobytes() for y in range(h))
+
+    def chunk(kind, data):
+        body = kind + data
+        return struct.pack(">I", len(data)) + body + struct.pack(">I", zlib.crc32(body) & 0xFFFFFFFF)
+
+    png = b"\x89PNG\r\n\x1a\n" + chunk(b"IHDR", struct.pack(">IIBBBBB", w, h, 8, 2, 0, 0, 0))
+    png += chunk(b"IDAT", zlib.compress(raw, 9)) + chunk(b"IEND", b"")
+    Path(path).write_bytes(png)
+
+
+def quarter(x):
+    """[H, W] averaged over 4x4 blocks, as numpy."""
+    h, w = x.shape[0] // 4 * 4, x.shape[1] // 4 * 4
+    return x[:h, :w].reshape(h // 4, 4, w // 4, 4).mean(dim=(1, 3)).cpu().numpy()
+
+
+def main():
+    ap = argparse.ArgumentParser()
+    ap.add_argument("folder", help="a `lucid sequence` folder (reference/, none/ and the methods' frames)")
+    ap.add_argument("--methods", nargs="+", default=["neural", "svgf", "spatial"])
+    ap.add_argument("--early", nargs=2, type=int, default=[2, 5], metavar=("FROM", "TO"), help="frames FROM..TO-1")
+    ap.add_argument("--late", nargs=2, type=int, default=[12, 30], metavar=("FROM", "TO"), help="frames FROM..TO-1")
+    ap.add_argument("--out", required=True)
+    args = ap.parse_args()
+    device = "cuda" if torch.cuda.is_available() else "cpu"
+    folder, out = Path(args.folder), Path(args.out)
+    out.mkdir(parents=True, exist_ok=True)
+    early, late = range(*args.early), range(*args.late)
+    needed = sorted(set(early) | set(late))
+    reference = {i: read(folder / "reference" / f"{i:04d}.exr", device) for i in needed}
+    flip = Flip(device)
+    reference_light = sum(luminance(reference[i]) for i in late) / len(late)
+    # How noisy one sample is at each pixel: the 1-sample frames' mean absolute deviation from the
+    # reference, relative to it, over the late window.
+    noise = sum((luminance(read(folder / "none" / f"{i:04d}.exr", device)) - luminance(reference[i])).abs() for i in late)
+    noise = noise / len(late) / reference_light.clamp_min(1e-6)
+    shared = [brightness_classes(reference_light), quartile_classes(noise, "sample noise")]
+    report = {"folder": str(folder), "early": list(early), "late": list(late), "methods": {}}
+    maps = {}
+    for method in args.methods:
+        e_err, _ = window_means(folder, method, early, flip, reference, device)
+        l_err, l_light = window_means(folder, method, late, flip, reference, device)
+        change = l_err - e_err
+        entry = {"early": float(e_err.mean()), "late": float(l_err.mean()), "change": float(change.mean())}
+        for (classes, names), label in zip(shared + [bias_classes(l_light, reference_light)], ("brightness", "noise", "bias")):
+            entry[label] = class_figures(e_err, l_err, classes, names)
+        report["methods"][method] = entry
+        maps[method] = (quarter(e_err), quarter(l_err), quarter(change))
+        print(f"{method}: FLIP {entry['early']:.5f} (frames {args.early[0]}-{args.early[1] - 1}) -> {entry['late']:.5f}", flush=True)
+    top = max(np.quantile(np.concatenate([m[1].ravel() for m in maps.values()]), 0.995), 1e-6)
+    span = max(np.quantile(np.abs(np.concatenate([m[2].ravel() for m in maps.values()])), 0.995), 1e-6)
+    for method, (e, l, c) in maps.items():
+        gap = np.full((e.shape[0], 4, 3), 255, dtype=np.uint8)
+        panel = np.concatenate([viridis_like(e / top), gap, viridis_like(l / top), gap, diverging(c / span)], axis=1)
+        write_png(out / f"{method}.png", panel)
+    report["scales"] = {"flip_top": float(top), "change_span": float(span)}
+    (out / "growth.json").write_text(json.dumps(report, indent=1))
+
+
+if __name__ == "__main__":
+    main()
