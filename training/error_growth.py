@@ -10,7 +10,10 @@ Writes OUT/growth.json: per method, the mean FLIP of each window and its change,
   from the reference's luminance over the late window, relative to it: none, then quartiles),
 - by the method's bias there (its late-window mean luminance over the reference's: too dark,
   within 5%, too bright),
-and OUT/<method>.png, three panels side by side at a quarter of the resolution: the early
+and, per frame from the first window's start to the last's end, on the reference's ordinary lit
+pixels (0.5-2x its mean luminance): the light the method keeps, its luminance's relative squared
+error at the pixel and over 4x4 and 16x16 blocks (the error's scale), and its error's correlation
+with the frame before (how long it persists); and OUT/<method>.png, three panels side by side at a quarter of the resolution: the early
 window's FLIP, the late window's, and late minus early (red where it grew, blue where it fell),
 each on one scale for every method.
 """
@@ -139,6 +142,40 @@ def quarter(x):
     return x[:h, :w].reshape(h // 4, 4, w // 4, 4).mean(dim=(1, 3)).cpu().numpy()
 
 
+def pooled(x, k):
+    """[H, W] averaged over k x k blocks."""
+    h, w = x.shape[0] // k * k, x.shape[1] // k * k
+    return x[:h, :w].reshape(h // k, k, w // k, k).mean(dim=(1, 3))
+
+
+def frame_series(folder, method, frames, reference, device):
+    """Per frame, on the reference's ordinary lit pixels (0.5-2x its mean luminance): the light the
+    method keeps (its luminance summed over the reference's), the relative squared error of the
+    luminance at the pixel and averaged over 4x4 and 16x16 blocks (blocks at least 90% lit), which
+    says at what scale the error lies, and the correlation of the luminance error with the same
+    pixels' error in the frame before (how long it persists; the per-frame filter's is the
+    control: the content and its own bias)."""
+    rows, previous = [], None
+    for i in frames:
+        ref = luminance(reference[i])
+        out = luminance(read(folder / method / f"{i:04d}.exr", device))
+        relative = ref / ref.mean().clamp_min(1e-12)
+        lit = (relative >= 0.5) & (relative < 2.0)
+        row = {"frame": i, "light": float(out[lit].sum() / ref[lit].sum().clamp_min(1e-12))}
+        for k in (1, 4, 16):
+            o, r, m = pooled(out, k), pooled(ref, k), pooled(lit.float(), k) >= 0.9
+            row[f"rel_mse_{k}"] = float((((o - r) ** 2) / (r * r + 1e-2))[m].mean()) if m.any() else 0.0
+        error = out - ref
+        if previous is not None:
+            both = lit & previous[1]
+            a, b = error[both], previous[0][both]
+            a, b = a - a.mean(), b - b.mean()
+            row["persistence"] = float((a * b).sum() / ((a * a).sum() * (b * b).sum()).sqrt().clamp_min(1e-12))
+        previous = (error, lit)
+        rows.append(row)
+    return rows
+
+
 def main():
     ap = argparse.ArgumentParser()
     ap.add_argument("folder", help="a `lucid sequence` folder (reference/, none/ and the methods' frames)")
@@ -151,7 +188,7 @@ def main():
     folder, out = Path(args.folder), Path(args.out)
     out.mkdir(parents=True, exist_ok=True)
     early, late = range(*args.early), range(*args.late)
-    needed = sorted(set(early) | set(late))
+    needed = list(range(min(early.start, late.start), max(early.stop, late.stop)))
     reference = {i: read(folder / "reference" / f"{i:04d}.exr", device) for i in needed}
     flip = Flip(device)
     reference_light = sum(luminance(reference[i]) for i in late) / len(late)
@@ -169,6 +206,7 @@ def main():
         entry = {"early": float(e_err.mean()), "late": float(l_err.mean()), "change": float(change.mean())}
         for (classes, names), label in zip(shared + [bias_classes(l_light, reference_light)], ("brightness", "noise", "bias")):
             entry[label] = class_figures(e_err, l_err, classes, names)
+        entry["per_frame"] = frame_series(folder, method, needed, reference, device)
         report["methods"][method] = entry
         maps[method] = (quarter(e_err), quarter(l_err), quarter(change))
         print(f"{method}: FLIP {entry['early']:.5f} (frames {args.early[0]}-{args.early[1] - 1}) -> {entry['late']:.5f}", flush=True)

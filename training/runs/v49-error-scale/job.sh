@@ -1,0 +1,28 @@
+#!/usr/bin/env bash
+# Forty-sixth session, for the next session's device time (one H200; not yet run). runs/v48 found
+# the learned denoiser's error on `caustics` growing on the ordinary lit floor as the path goes on
+# (+24% from frames 2-4 to 12-29 in the band of 0.5-2x the mean brightness, twice SVGF's growth,
+# six times the per-frame filter's). error_growth.py now also writes, per frame on those pixels,
+# the light kept, the relative squared error at the pixel and over 4x4 and 16x16 blocks (at what
+# scale the error lies: speckle or blotches) and the error's correlation with the frame before
+# (how long it persists). This runs it on both held-out paths, `classroom` (where the learned
+# denoiser's error falls along the path) beside `caustics`, with the committed weights and the same
+# with the running means capped at 8 frames.
+#   source .gpu/env.sh && training/runs/v49-error-scale/job.sh
+# About 110 s for `caustics` and 200 s for `classroom` (its 1024-sample reference).
+set -u
+mkdir -p /tmp/bin /tmp/pylib
+xz -dc .gpu/lucid.xz > /tmp/bin/lucid && chmod +x /tmp/bin/lucid
+python3 -c "import OpenEXR" 2>/dev/null || pip install -q --no-index --no-deps --target /tmp/pylib .gpu/wheels/openexr-*.whl
+echo "START $(date +%s)"
+(cd training && python3 set_metadata.py ../passes/src/denoise/neural/lucid-rae-v3.safetensors history_frames=8 \
+  --out /tmp/w-h8.safetensors)
+for scene in caustics classroom; do
+  rm -rf "/tmp/heldout-$scene"
+  /tmp/bin/lucid sequence --scene "$scene" --size 1920x1080 --frames 30 --reference-spp 1024 \
+    --out "/tmp/heldout-$scene" --no-evaluate --also-neural-weights /tmp/w-h8.safetensors > /dev/null
+  echo "SEQUENCE-END $scene $? $(date +%s)"
+  (cd training && PYTHONPATH=/tmp/pylib python3 error_growth.py "/tmp/heldout-$scene" \
+    --methods neural neural-w-h8 svgf spatial --early 2 5 --late 12 30 --out "$OUT/growth-$scene")
+  echo "GROWTH-END $scene $? $(date +%s)"
+done
