@@ -242,6 +242,26 @@ fn bench_reports_every_frames_image_time() {
     );
 }
 
+#[test]
+fn bench_reports_the_image_span_with_the_gaps_between_passes() {
+    // From the first pass's start to the last image pass's end: at least the passes' own times
+    // (they run one after another), at most the wall time of a frame (each is waited for).
+    let report = short_bench_report(&temp("bench-span.json"), "cornell-box", "svgf", &[]);
+    let span = report["image_span_ms"]["mean"]
+        .as_f64()
+        .expect("image_span_ms");
+    let image = report["image_ms"]["mean"].as_f64().unwrap();
+    let wall_ms = 1e3 / report["wall_fps"].as_f64().unwrap();
+    assert!(
+        span >= image * (1.0 - 1e-9),
+        "span {span} against the passes' {image}"
+    );
+    assert!(
+        span <= wall_ms,
+        "span {span} against {wall_ms} ms of wall time a frame"
+    );
+}
+
 /// Runs a short 32x32 `lucid bench` of `scene` with `denoiser` and the `extra` options, its JSON
 /// report written to `json`.
 fn short_bench(

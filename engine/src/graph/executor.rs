@@ -39,6 +39,9 @@ pub struct PassTiming {
     pub name: String,
     /// Milliseconds between the timestamps around the pass.
     pub ms: f64,
+    /// Milliseconds from the timestamp before the frame's first pass to the one before this pass:
+    /// with `ms`, where the pass lies in the frame, gaps between passes (their barriers) included.
+    pub start_ms: f64,
 }
 
 /// Semaphores a submission waits on and signals (for presenting to a window).
@@ -234,6 +237,7 @@ impl Executor {
                 .map(|(i, name)| PassTiming {
                     name: name.clone(),
                     ms: stamps[2 * i + 1].saturating_sub(stamps[2 * i]) as f64 * period / 1e6,
+                    start_ms: stamps[2 * i].saturating_sub(stamps[0]) as f64 * period / 1e6,
                 })
                 .collect();
             self.last_timings = outputs.timings.clone();

@@ -99,6 +99,7 @@ mod timing_tests {
         let timing = |name: &str, ms| PassTiming {
             name: name.into(),
             ms,
+            start_ms: 0.0,
         };
         let timings = [
             timing("gbuffer", 1.0),

@@ -96,6 +96,7 @@ mod tests {
         let timing = |name: &str, ms| PassTiming {
             name: name.into(),
             ms,
+            start_ms: 0.0,
         };
         let timings = [
             timing("generate", 1.0),
