@@ -9,7 +9,8 @@
 # denoiser's error falls along the path) beside `caustics`, with the committed weights and the same
 # with the running means capped at 8 frames.
 #   source .gpu/env.sh && training/runs/v49-error-scale/job.sh
-# About 110 s for `caustics` and 200 s for `classroom` (its 1024-sample reference).
+# About 330 s: 80 s for `caustics`, some 210 s for `classroom` (its 1024-sample reference), 16 s an
+# analysis (runs/v48: 79 s and 16 s).
 set -u
 mkdir -p /tmp/bin /tmp/pylib
 xz -dc .gpu/lucid.xz > /tmp/bin/lucid && chmod +x /tmp/bin/lucid
