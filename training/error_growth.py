@@ -151,7 +151,7 @@ def pooled(x, k):
 def frame_series(folder, method, frames, reference, device):
     """Per frame, on the reference's ordinary lit pixels (0.5-2x its mean luminance): the light the
     method keeps (its luminance summed over the reference's), the relative squared error of the
-    luminance at the pixel and averaged over 4x4 and 16x16 blocks (blocks at least 90% lit), which
+    luminance at the pixel and averaged over 4x4 and 16x16 blocks (blocks wholly of such pixels), which
     says at what scale the error lies, and the correlation of the luminance error with the same
     pixels' error in the frame before (how long it persists; the per-frame filter's is the
     control: the content and its own bias)."""
@@ -163,7 +163,7 @@ def frame_series(folder, method, frames, reference, device):
         lit = (relative >= 0.5) & (relative < 2.0)
         row = {"frame": i, "light": float(out[lit].sum() / ref[lit].sum().clamp_min(1e-12))}
         for k in (1, 4, 16):
-            o, r, m = pooled(out, k), pooled(ref, k), pooled(lit.float(), k) >= 0.9
+            o, r, m = pooled(out, k), pooled(ref, k), pooled(lit.float(), k) >= 1.0 - 1e-6
             row[f"rel_mse_{k}"] = float((((o - r) ** 2) / (r * r + 1e-2))[m].mean()) if m.any() else 0.0
         error = out - ref
         if previous is not None:
