@@ -13,9 +13,9 @@ Writes OUT/growth.json: per method, the mean FLIP of each window and its change,
 and, per frame from the first window's start to the last's end, on the reference's ordinary lit
 pixels (0.5-2x its mean luminance): the light the method keeps, its luminance's relative squared
 error at the pixel and over 4x4 and 16x16 blocks (the error's scale), and its error's correlation
-with the frame before (how long it persists); and OUT/<method>.png, three panels side by side at a quarter of the resolution: the early
-window's FLIP, the late window's, and late minus early (red where it grew, blue where it fell),
-each on one scale for every method.
+with the frame before (how long it persists); and OUT/<method>.png, three panels side by side at
+a quarter of the resolution: the early window's FLIP, the late window's, and late minus early
+(red where it grew, blue where it fell), each on one scale for every method.
 """
 
 import argparse
@@ -25,34 +25,32 @@ import zlib
 from pathlib import Path
 
 import numpy as np
-import OpenEXR
 import torch
 
+import cold_filter_study
+import model
 from flip import Flip
 from losses import display_linear
 
-LUMINANCE = (0.2126, 0.7152, 0.0722)
 BRIGHTNESS_EDGES = (0.1, 0.5, 2.0, 8.0)
 
 
 def read(path, device):
-    """The RGB channels of an EXR frame Lucid wrote, [1, 3, H, W] float32."""
-    with OpenEXR.File(str(path)) as f:
-        rgba = f.channels()["RGBA"].pixels
-    rgb = torch.from_numpy(np.ascontiguousarray(rgba[:, :, :3], dtype=np.float32))
-    return rgb.permute(2, 0, 1).unsqueeze(0).to(device)
+    """The RGB channels of an EXR frame Lucid wrote, [1, 3, H, W] float32 on `device`."""
+    return cold_filter_study.read(path).float().unsqueeze(0).to(device)
 
 
 def luminance(x):
-    """Rec. 709 luminance of [1, 3, H, W] -> [H, W]."""
-    return (x[0, 0] * LUMINANCE[0] + x[0, 1] * LUMINANCE[1] + x[0, 2] * LUMINANCE[2]).float()
+    """Rec. 709 luminance of [1, 3, H, W] -> [H, W] (`model.luminance`)."""
+    return model.luminance(x)[0, 0]
 
 
-def window_means(folder, method, frames, flip, reference, device):
-    """A method's per-pixel FLIP and luminance averaged over `frames` [H, W] each."""
+def window_means(test_frames, frames, flip, reference):
+    """A method's per-pixel FLIP and luminance averaged over `frames` (of `test_frames`, frame
+    index -> image) [H, W] each."""
     error, light = None, None
     for i in frames:
-        test = read(folder / method / f"{i:04d}.exr", device)
+        test = test_frames[i]
         e = flip.error_map(display_linear(test), display_linear(reference[i]))[0].float()
         error = e if error is None else error + e
         lum = luminance(test)
@@ -136,29 +134,23 @@ def write_png(path, rgb):
     Path(path).write_bytes(png)
 
 
-def quarter(x):
-    """[H, W] averaged over 4x4 blocks, as numpy."""
-    h, w = x.shape[0] // 4 * 4, x.shape[1] // 4 * 4
-    return x[:h, :w].reshape(h // 4, 4, w // 4, 4).mean(dim=(1, 3)).cpu().numpy()
-
-
 def pooled(x, k):
     """[H, W] averaged over k x k blocks."""
     h, w = x.shape[0] // k * k, x.shape[1] // k * k
     return x[:h, :w].reshape(h // k, k, w // k, k).mean(dim=(1, 3))
 
 
-def frame_series(folder, method, frames, reference, device):
+def frame_series(test_frames, frames, reference):
     """Per frame, on the reference's ordinary lit pixels (0.5-2x its mean luminance): the light the
     method keeps (its luminance summed over the reference's), the relative squared error of the
-    luminance at the pixel and averaged over 4x4 and 16x16 blocks (blocks wholly of such pixels), which
-    says at what scale the error lies, and the correlation of the luminance error with the same
+    luminance at the pixel and averaged over 4x4 and 16x16 blocks (blocks wholly of such pixels),
+    which says at what scale the error lies, and the correlation of the luminance error with the same
     pixels' error in the frame before (how long it persists; the per-frame filter's is the
     control: the content and its own bias)."""
     rows, previous = [], None
     for i in frames:
         ref = luminance(reference[i])
-        out = luminance(read(folder / method / f"{i:04d}.exr", device))
+        out = luminance(test_frames[i])
         relative = ref / ref.mean().clamp_min(1e-12)
         lit = (relative >= 0.5) & (relative < 2.0)
         row = {"frame": i, "light": float(out[lit].sum() / ref[lit].sum().clamp_min(1e-12))}
@@ -200,15 +192,16 @@ def main():
     report = {"folder": str(folder), "early": list(early), "late": list(late), "methods": {}}
     maps = {}
     for method in args.methods:
-        e_err, _ = window_means(folder, method, early, flip, reference, device)
-        l_err, l_light = window_means(folder, method, late, flip, reference, device)
+        test_frames = {i: read(folder / method / f"{i:04d}.exr", device) for i in needed}
+        e_err, _ = window_means(test_frames, early, flip, reference)
+        l_err, l_light = window_means(test_frames, late, flip, reference)
         change = l_err - e_err
         entry = {"early": float(e_err.mean()), "late": float(l_err.mean()), "change": float(change.mean())}
         for (classes, names), label in zip(shared + [bias_classes(l_light, reference_light)], ("brightness", "noise", "bias")):
             entry[label] = class_figures(e_err, l_err, classes, names)
-        entry["per_frame"] = frame_series(folder, method, needed, reference, device)
+        entry["per_frame"] = frame_series(test_frames, needed, reference)
         report["methods"][method] = entry
-        maps[method] = (quarter(e_err), quarter(l_err), quarter(change))
+        maps[method] = tuple(pooled(x, 4).cpu().numpy() for x in (e_err, l_err, change))
         print(f"{method}: FLIP {entry['early']:.5f} (frames {args.early[0]}-{args.early[1] - 1}) -> {entry['late']:.5f}", flush=True)
     top = max(np.quantile(np.concatenate([m[1].ravel() for m in maps.values()]), 0.995), 1e-6)
     span = max(np.quantile(np.abs(np.concatenate([m[2].ravel() for m in maps.values()])), 0.995), 1e-6)
