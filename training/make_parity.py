@@ -1,6 +1,6 @@
-"""Writes a parity fixture (`tests/references/neural_parity*.safetensors`): two consecutive frames
-of per-pixel records and what `model.py` (or `kernel_model.py`, as the weights' `decoder` metadata
-says) computes from them with the given weights (half-precision storage emulated; with the weights'
+"""Writes a parity fixture (`tests/references/neural_parity*.safetensors`): consecutive frames (two,
+or `--frames` of a dataset's sequence) of per-pixel records and what `model.py` (or
+`kernel_model.py`, as the weights' `decoder` metadata says) computes from them with the given weights (half-precision storage emulated; with the weights'
 `atrous_steps`, their gated a-trous filter): the denoised radiance (`expected`), the running mean
 with its length (`accum`), the second moment of luminance (`moment`) and the range-compressed
 running mean with its second moment (`robust`), which `tests/neural_parity.rs` checks the Vulkan
@@ -10,8 +10,9 @@ dataset's frames of a dataset that has them.
     python3 make_parity.py --weights ../passes/src/denoise/neural/lucid-rae-v3.safetensors \
         [--data DATASET_DIR | --records FIXTURE] --out ../tests/references/neural_parity.safetensors
 
-With `--data`, the frames are a crop (`--size`, 32x24 by default) of the first validation
-sequence's first two frames (and their object ids, where the dataset has them);
+With `--data`, the frames are a crop (`--size`, 32x24 by default) of the first validation (or
+`--scenes` study) sequence's first two frames, or `--frames` (and their object ids, where the
+dataset has them);
 with `--records`, the records of an existing fixture (to keep its frames when only the model or
 the weights change); without either, a synthetic pair (a textured plane seen by a camera that
 moves by a sub-pixel offset, an emitter on it that is an object of its own, sky in a corner, and
@@ -68,18 +69,18 @@ def synthetic(W, H):
     return rec.half().float(), objects
 
 
-def from_dataset(root, W, H):
+def from_dataset(root, W, H, frames):
     folder = dataset_folders(root)[0]
     index = json.loads((folder / "index.json").read_text())
-    entry = next(e for e in index["sequences"] if e["split"] == "validation")
+    entry = next(e for e in index["sequences"] if e["split"] in ("validation", "study"))
     tensors = load_file(str(folder / entry["file"]))
-    rec = tensors["record"][:2].float()
+    rec = tensors["record"][:frames].float()
     _, _, h, w = rec.shape
     y0, x0 = (h - H) // 2 // 4 * 4, (w - W) // 2 // 4 * 4
     crop = rec[:, :, y0 : y0 + H, x0 : x0 + W].contiguous()
     objects = tensors.get("objects")
     if objects is not None:
-        objects = objects[:2, None, y0 : y0 + H, x0 : x0 + W].float().contiguous()
+        objects = objects[:frames, None, y0 : y0 + H, x0 : x0 + W].float().contiguous()
     return crop, objects
 
 
@@ -95,6 +96,7 @@ def main():
         help="WxH of the synthetic frames or the dataset's crop (a network of N kernel scales needs "
         "sizes divisible by 2^(N-1), as training's crops are)",
     )
+    ap.add_argument("--frames", type=int, default=2, help="frames of a dataset's sequence")
     ap.add_argument("--out", required=True)
     args = ap.parse_args()
     W, H = (int(v) for v in args.size.split("x"))
@@ -103,7 +105,7 @@ def main():
     load_weights(model, args.weights)
     objects = None
     if args.data:
-        (record, objects), source = from_dataset(args.data, W, H), args.data
+        (record, objects), source = from_dataset(args.data, W, H, args.frames), args.data
     elif args.records:
         fixture = load_file(args.records)
         record, objects = fixture["record"], fixture.get("objects")

@@ -32,7 +32,8 @@ layout(local_size_x = 8, local_size_y = 8) in;
 
 layout(constant_id = 0) const uint POOLED_LEVELS = 0;
 
-layout(set = 0, binding = 0, rgba16f) uniform readonly image2D u_prev_output;
+// The last frame's output: its log radiance as packed halves (`pack_channels`), exact.
+layout(set = 0, binding = 0, rg32ui) uniform readonly uimage2D u_prev_output;
 layout(set = 0, binding = 1, rgba32f) uniform readonly image2D u_prev_surface;
 layout(set = 0, binding = 2, rgba32f) uniform writeonly image2D u_surface;
 layout(set = 0, binding = 3, std430) writeonly buffer Features { uvec2 v[]; } b_features;
@@ -273,7 +274,7 @@ void main() {
             bool same = abs(s.x - motion.z) <= DEPTH_TOLERANCE * motion.z && dot(s.yzw, normal) > NORMAL_COS;
             bool valid = here_sky ? q_sky : (!q_sky && same);
             if (valid) {
-                warped += w * imageLoad(u_prev_output, ivec2(q)).rgb;
+                warped += w * unpack_channels(imageLoad(u_prev_output, ivec2(q)).xy).rgb;
                 warped_accum += w * imageLoad(u_prev_accum, ivec2(q));
                 warped_moment += w * imageLoad(u_prev_moment, ivec2(q)).r;
                 warped_robust += w * imageLoad(u_prev_robust, ivec2(q));

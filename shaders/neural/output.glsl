@@ -32,7 +32,9 @@ layout(constant_id = 2) const uint HALF_CHANNELS = 28;  // the half scale's head
 
 layout(set = 0, binding = 1, std430) readonly buffer Features { uvec2 v[]; } b_features;
 layout(set = 0, binding = 2, std430) readonly buffer Net { uvec2 v[]; } b_net;
-layout(set = 0, binding = 3, rgba16f) uniform writeonly image2D u_output;
+// The output's log radiance for the next frame, as packed halves: an rgba16f image store may
+// truncate instead of rounding (passes/src/denoise/neural/mod.rs).
+layout(set = 0, binding = 3, rg32ui) uniform writeonly uimage2D u_output;
 #ifdef ATROUS_GATE
 // The output's illumination (rgb) and its gate (a).
 layout(set = 0, binding = 4, rgba32f) uniform writeonly image2D u_illumination;
@@ -184,8 +186,9 @@ void main() {
     }
     float blend = mask / (1.0 + exp(-blend_logit));
     vec3 log_out = max(predicted * (1.0 - blend) + warped * blend, vec3(0.0));
-    log_out = unpack_channels(pack_channels(vec4(log_out, 0.0))).rgb;
-    imageStore(u_output, pixel, vec4(log_out, 0.0));
+    uvec2 packed_out = pack_channels(vec4(log_out, 0.0));
+    log_out = unpack_channels(packed_out).rgb;
+    imageStore(u_output, pixel, uvec4(packed_out, 0u, 0u));
 #ifdef ATROUS_GATE
     float gate_logit = kernel_logits(pixel, GATE_CHANNEL / 4u)[GATE_CHANNEL % 4u];
     imageStore(u_illumination, pixel, vec4(exp(log_out) - 1.0, 1.0 / (1.0 + exp(-gate_logit))));

@@ -1,6 +1,8 @@
 //! Passes for looking inside a frame and for testing the engine: debug views of intermediate
-//! images, a test pattern with a known output, and batch ray queries.
+//! images, a test pattern with a known output, batch ray queries and the learned denoiser's
+//! half-precision packing.
 
 pub mod debug_view;
+pub mod half_pack;
 pub mod ray_query;
 pub mod test_pattern;

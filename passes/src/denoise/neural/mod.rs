@@ -61,6 +61,7 @@ use crate::shaders::neural::{
     ATROUS_LAST, ATROUS_STEP, CONV, CONV_COOP, FEATURES as FEATURES_SHADER, KERNEL_FILTER, OUTPUT,
     OUTPUT_ATROUS, POOL, RADIANCE_POOL, RECORD,
 };
+use ash::vk;
 use lucid_engine::capture::ImageData;
 use lucid_engine::graph::{BufferHandle, ComputePass, ImageHandle, RenderGraph};
 use lucid_engine::memory::ImageDesc;
@@ -334,7 +335,14 @@ pub fn add_neural(
             .map(|(buffer, _)| g.import_buffer("neural.half_weights", buffer.clone())),
     };
     let keys = HistoryKeys::new(prefix);
-    let output_history = g.temporal_image(&keys.output, ImageDesc::rgba16f(width, height));
+    // The output's log radiance as the packed halves `pack_channels` rounds it to, exactly: an
+    // `rgba16f` image store may truncate (lavapipe's and NVIDIA's do, and NVIDIA's compiler folds
+    // the shader's own rounding into the store), which the recurrence would compound frame after
+    // frame into a darker output.
+    let output_history = g.temporal_image(
+        &keys.output,
+        ImageDesc::new(width, height, vk::Format::R32G32_UINT),
+    );
     let surface_history = g.temporal_image(&keys.surface, ImageDesc::rgba32f(width, height));
     let accum_history = g.temporal_image(&keys.accum, ImageDesc::rgba32f(width, height));
     let moment_history = g.temporal_image(&keys.moment, ImageDesc::r32f(width, height));
