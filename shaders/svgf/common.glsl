@@ -3,14 +3,17 @@
 #ifndef LUCID_SVGF_COMMON_GLSL
 #define LUCID_SVGF_COMMON_GLSL
 
+#include "common/half_round.glsl"
+
 // The object id the G-buffer writes where the sky is seen.
 const uint SVGF_SKY = 0xffffffffu;
 
 // What the a-trous iterations read and write (rgba16f): illumination clamped to half precision's
 // range, and the standard deviation rather than the variance, whose small values half precision
-// would flush to zero.
+// would flush to zero; rounded to nearest (common/half_round.glsl), since the store's own
+// conversion may truncate, which would darken the image a little at every iteration.
 vec4 svgf_pack_filtered(vec3 illumination, float variance) {
-    return vec4(min(illumination, vec3(60000.0)), sqrt(max(variance, 0.0)));
+    return round_to_half(vec4(min(illumination, vec3(60000.0)), sqrt(max(variance, 0.0))));
 }
 
 // The variance of a texel written by svgf_pack_filtered.

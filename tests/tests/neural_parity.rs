@@ -38,7 +38,9 @@
 //! about half and varying from pixel to pixel), so other steps and the filter beside pixels
 //! without a normal (the sky) are checked too;
 //! `the_emission_stays_on_its_object`
-//! checks what that average is for over more frames.
+//! checks what that average is for over more frames, and
+//! `vulkan_inference_keeps_pytorch_light_over_thirty_frames` that no rounding the recurrence
+//! compounds drifts from PyTorch's over thirty.
 //! The running means of the noisy radiance and their
 //! second moments (reprojected in the second frame) are also compared directly, so they are checked
 //! whatever weight the network gives them. Every inference path the device runs is checked
@@ -654,8 +656,9 @@ fn the_emission_stays_on_its_object() {
 const LIGHT_TOLERANCE: f64 = 2e-4;
 
 /// Thirty frames of a moving camera (`references/neural_parity_thirty_frames.safetensors`: a 32x32
-/// crop of `lucid dataset --scenes cornell-box --size 64x64 --frames 30 --sequences 1
-/// --reference-spp 1`, by `training/make_parity.py --frames 30`) with the committed weights, so the
+/// crop of the first sequence, the Cornell box's, of `lucid dataset --scenes
+/// cornell-box,covered-light --size 64x64 --frames 30 --sequences 1 --reference-spp 1`, by
+/// `training/make_parity.py --size 32x32 --frames 30`) with the committed weights, so the
 /// running means reach their longest and the output's history has been fed back 29 times: each
 /// frame's light within LIGHT_TOLERANCE of PyTorch's, its pixels and running means within the
 /// two-frame test's tolerances.

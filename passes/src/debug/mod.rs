@@ -3,6 +3,6 @@
 //! half-precision packing.
 
 pub mod debug_view;
-pub mod half_pack;
+pub mod half_rounding;
 pub mod ray_query;
 pub mod test_pattern;

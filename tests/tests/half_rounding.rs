@@ -1,20 +1,21 @@
-//! The learned denoiser's half-precision packing (`pack_channels`, `shaders/neural/tensor.glsl`),
-//! and the round trip through it that rounds values in place, round to nearest with ties to even,
-//! as PyTorch's `half()` does in training. Vulkan leaves the rounding of `packHalf2x16` to the
-//! implementation; the denoiser's activations and its output's history (fed back frame after
-//! frame, where a truncation would compound into a darker image) are rounded by it, so a device
-//! that rounds otherwise fails here. (Its history is stored as these packed halves, not in an
-//! `rgba16f` image: lavapipe's and NVIDIA's `rgba16f` stores truncate, and NVIDIA's compiler folds
-//! a round trip before such a store into it; `neural_parity.rs` checks thirty frames' light.)
-//! Checked on every finite half, the points between each and the next (the tie, the floats either
-//! side of it, a quarter and three quarters of the way), both signs, and on overflow, infinities
-//! and NaN.
+//! Every way Lucid's shaders round to half precision rounds to nearest with ties to even, as
+//! PyTorch's `half()` does in training: the learned denoiser's packing (`pack_channels`,
+//! `shaders/neural/tensor.glsl`), which rounds its activations and its output's history (fed back
+//! frame after frame, where a truncation would compound into a darker image), the round trip
+//! through it that rounds values in place, and `round_to_half` (`shaders/common/half_round.glsl`)
+//! before an `rgba16f` image store, as SVGF stores its a-trous steps. Vulkan leaves the rounding of
+//! `packHalf2x16` and of a store's conversion to the implementation: lavapipe's and NVIDIA's
+//! `rgba16f` stores truncate, and NVIDIA's compiler folds a packing round trip before a store into
+//! it (so the denoiser's history is stored as packed halves; `neural_parity.rs` checks thirty
+//! frames' light). Checked on every finite half, the points between each and the next (the tie,
+//! the floats either side of it, a quarter and three quarters of the way), both signs, and on
+//! overflow, infinities and NaN.
 
 use ash::vk;
 use half::f16;
 use lucid_engine::graph::RenderGraph;
 use lucid_engine::memory::Buffer;
-use lucid_passes::debug::half_pack;
+use lucid_passes::debug::half_rounding::{self, IMAGE_WIDTH};
 use lucid_tests::{assert_no_validation_messages, executor, run};
 use std::sync::Arc;
 
@@ -52,7 +53,7 @@ fn values() -> Vec<f32> {
 }
 
 #[test]
-fn pack_channels_rounds_to_nearest_even() {
+fn half_precision_rounds_to_nearest_even() {
     let (ctx, mut executor) = executor(false);
     let values = values();
     let count = (values.len() / 4) as u32;
@@ -66,9 +67,10 @@ fn pack_channels_rounds_to_nearest_even() {
     .expect("upload the values");
     let mut g = RenderGraph::new();
     let input = g.import_buffer("values", Arc::new(buffer));
-    let out = half_pack::add_half_pack(&mut g, input, count);
+    let out = half_rounding::add_half_rounding(&mut g, input, count);
     let packed = g.readback(out.packed);
     let rounded = g.readback(out.rounded);
+    let stored = g.readback(out.stored);
     let outputs = run(&mut executor, g);
     let words: Vec<u32> = bytemuck::pod_collect_to_vec(outputs.bytes(packed).expect("read back"));
     let halves = words
@@ -77,11 +79,15 @@ fn pack_channels_rounds_to_nearest_even() {
         .map(f16::from_bits);
     let rounded: Vec<f32> =
         bytemuck::pod_collect_to_vec(outputs.bytes(rounded).expect("read back"));
+    // Exact halves, so converting them back to half is exact.
     let rounded = rounded.iter().map(|r| f16::from_f32(*r));
+    let stored = outputs.image(stored).expect("read back");
+    assert_eq!(stored.width, IMAGE_WIDTH);
+    let stored = stored.pixels.iter().flatten().map(|v| f16::from_f32(*v));
     assert_no_validation_messages(&ctx);
     check("packed", &values, halves);
-    // Exact halves, so converting them back to half is exact.
     check("rounded in place", &values, rounded);
+    check("stored after round_to_half", &values, stored);
 }
 
 /// Panics listing the values that `got` (one half a value) does not round to nearest, ties to even.
