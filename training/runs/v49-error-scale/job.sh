@@ -1,16 +1,17 @@
 #!/usr/bin/env bash
-# Forty-sixth session, for the next session's device time (one H200; not yet run). runs/v48 found
-# the learned denoiser's error on `caustics` growing on the ordinary lit floor as the path goes on
-# (+24% from frames 2-4 to 12-29 in the band of 0.5-2x the mean brightness, twice SVGF's growth,
-# six times the per-frame filter's). error_growth.py now also writes, per frame on those pixels,
-# the light kept, the relative squared error at the pixel and over 4x4 and 16x16 blocks (at what
-# scale the error lies: speckle or blotches) and the error's correlation with the frame before
-# (how long it persists). On lavapipe at 960x540 (portable inference, 256-sample reference) the
-# same path shows no rise at all (0.01666 -> 0.01550), so this also separates the two causes that
-# differ: `caustics` at 1080p on the tensor-core path (runs/v48's case), at 1080p on the portable
-# path (`--neural-path portable`), and at 960x540; then `classroom` at 1080p, where the learned
-# denoiser's error falls along the path. Each with the committed weights and the same with the
-# running means capped at 8 frames.
+# Forty-sixth session, run in the forty-seventh (one H200, 542 s; out/ keeps each path's
+# growth.json; training/README.md, "The output's history stored exactly, and SVGF's steps rounded").
+# runs/v48 found the learned denoiser's error on `caustics` growing on the ordinary lit floor as the
+# path goes on (+24% from frames 2-4 to 12-29 in the band of 0.5-2x the mean brightness, twice
+# SVGF's growth, six times the per-frame filter's). error_growth.py now also writes, per frame on
+# those pixels, the light kept, the relative squared error at the pixel and over 4x4 and 16x16
+# blocks (at what scale the error lies: speckle or blotches) and the error's correlation with the
+# frame before (how long it persists). On lavapipe at 960x540 (portable inference, 256-sample
+# reference) the same path shows no rise at all (0.01666 -> 0.01550), so this also separates the two
+# causes that differ: `caustics` at 1080p on the tensor-core path (runs/v48's case), at 1080p on the
+# portable path (`--neural-path portable`), and at 960x540; then `classroom` at 1080p, where the
+# learned denoiser's error falls along the path. Each with the committed weights and the same with
+# the running means capped at 8 frames.
 #   source .gpu/env.sh && training/runs/v49-error-scale/job.sh
 # About 460 s: 80 s a `caustics` path at 1080p, 25 s at 960x540, some 210 s for `classroom` (its
 # 1024-sample reference), 16 s an analysis (runs/v48: 79 s and 16 s).
