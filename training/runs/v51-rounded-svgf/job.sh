@@ -8,11 +8,13 @@
 # .gpu/neural_parity.xz; bench/pack_parity.sh's .gpu/layers.tar.xz):
 #   1. tests/tests/half_rounding.rs (not yet run on NVIDIA: `round_to_half` through an rgba16f
 #      store) and tests/tests/neural_parity.rs;
-#   2. the held-out paths at 1080p, 30 frames against 1024 samples (as runs/v50);
+#   2. the held-out paths at 1080p, 30 frames against 1024 samples (as runs/v50), also with two
+#      weights judged before only against the truncated history: the running means capped at 8
+#      frames (runs/v48) and runs/v44's `control` fine-tuning blended half and half (runs/v45);
 #   3. SVGF's time on `classroom` at 1080p, the binary before the rounding (.gpu/lucid_before.xz,
 #      runs/v50's) and after, two rounds back to back.
 #   source .gpu/env.sh && training/job_gpu.sh start training/runs/v51-rounded-svgf/job.sh
-# About 440 s (runs/v50: 507 s with two parity binaries and four denoiser benches).
+# About 480 s (runs/v50: 507 s with two parity binaries and four denoiser benches).
 set -u
 rm -rf /tmp/out /tmp/heldout-* && mkdir -p /tmp/bin /tmp/out /tmp/b
 xz -dc .gpu/lucid.xz > /tmp/bin/lucid && chmod +x /tmp/bin/lucid
@@ -21,13 +23,17 @@ for x in half_rounding neural_parity; do xz -dc ".gpu/$x.xz" > "/tmp/b/$x" && ch
 tar -xJf .gpu/layers.tar.xz -C /tmp/b
 # The tests read their fixtures from the tree they were built in.
 [ -e /work/main ] || { mkdir -p /work; ln -s "$PWD" /work/main; }
+COMMITTED=passes/src/denoise/neural/lucid-rae-v3.safetensors
+(cd training && python3 set_metadata.py ../$COMMITTED history_frames=8 --out /tmp/w-h8.safetensors &&
+  python3 blend.py ../$COMMITTED runs/v44-motion-inputs/out/w-control.safetensors --t 0.5 \
+    --out /tmp/w-control-blend-5.safetensors)
 echo "START $(date +%s)"
 for x in half_rounding neural_parity; do
   VK_LAYER_PATH=/tmp/b/layers LUCID_VALIDATION=1 "/tmp/b/$x" --test-threads 1 > "/tmp/out/test_$x.log" 2>&1
   echo "TEST $x $?"
 done
 FRAMES=30 FIRST=16 BENCH=0 MAPS=1 OIDN=0 SCENES="caustics classroom" LUCID=/tmp/bin/lucid \
-  training/evaluate_gpu.sh /tmp/out
+  ALSO="/tmp/w-h8.safetensors /tmp/w-control-blend-5.safetensors" training/evaluate_gpu.sh /tmp/out
 echo "EVAL-END $? $(date +%s)"
 for round in 1 2; do
   for b in lucid_before lucid; do
