@@ -1,6 +1,6 @@
 //! Passes for looking inside a frame and for testing the engine: debug views of intermediate
-//! images, a test pattern with a known output, batch ray queries and the learned denoiser's
-//! half-precision packing.
+//! images, a test pattern with a known output, batch ray queries and the shaders' ways of rounding
+//! to half precision.
 
 pub mod debug_view;
 pub mod half_rounding;
