@@ -410,6 +410,31 @@ fn records(fixture: &Fixture, (cw, ch): (usize, usize)) -> Vec<Vec<f32>> {
         .collect()
 }
 
+/// The worst relative difference of the denoised radiance of `frame` (frame `t`, on `path`) from
+/// the fixture's; panics past [`TOLERANCE`].
+fn check_radiance(fixture: &Fixture, path: InferencePath, t: usize, frame: &Frame) -> f32 {
+    let (w, h) = fixture.size;
+    let mut worst = 0.0f32;
+    for y in 0..h {
+        for x in 0..w {
+            for (c, &got) in frame.radiance[y * w + x][..3].iter().enumerate() {
+                let want = fixture.expected[((t * 3 + c) * h + y) * w + x];
+                let err = (got - want).abs() / (want.abs() + 0.05);
+                assert!(
+                    err <= TOLERANCE,
+                    "{} ({:?} decoder), {} path, frame {t} pixel ({x}, {y}) channel {c}: Vulkan \
+                     {got}, PyTorch {want}",
+                    fixture.name,
+                    fixture.weights.decoder(),
+                    path.short_name()
+                );
+                worst = worst.max(err);
+            }
+        }
+    }
+    worst
+}
+
 /// The worst relative difference of the running means and moments of `frame` (frame `t`) from
 /// the fixture's; panics past [`ACCUM_TOLERANCE`].
 fn check_accumulation(fixture: &Fixture, t: usize, frame: &Frame) -> f32 {
@@ -455,25 +480,7 @@ fn vulkan_inference_matches_pytorch_over_two_frames() {
             let mut worst_accum_per_frame = Vec::new();
             for (t, frame) in images.iter().enumerate() {
                 worst_accum_per_frame.push(check_accumulation(&fixture, t, frame));
-                let mut worst = 0.0f32;
-                for y in 0..h {
-                    for x in 0..w {
-                        for (c, &got) in frame.radiance[y * w + x][..3].iter().enumerate() {
-                            let want = fixture.expected[((t * 3 + c) * h + y) * w + x];
-                            let err = (got - want).abs() / (want.abs() + 0.05);
-                            assert!(
-                                err <= TOLERANCE,
-                                "{} ({:?} decoder), {} path, frame {t} pixel ({x}, {y}) channel \
-                                 {c}: Vulkan {got}, PyTorch {want}",
-                                fixture.name,
-                                fixture.weights.decoder(),
-                                path.short_name()
-                            );
-                            worst = worst.max(err);
-                        }
-                    }
-                }
-                worst_per_frame.push(worst);
+                worst_per_frame.push(check_radiance(&fixture, path, t, frame));
             }
             eprintln!(
                 "{} ({:?} decoder), {} path: worst relative difference per frame: \
@@ -694,17 +701,7 @@ fn vulkan_inference_keeps_pytorch_light_over_thirty_frames() {
                 path.short_name(),
                 light_per_frame.join(" ")
             );
-            for (i, pixel) in frame.radiance.iter().enumerate() {
-                for (c, &got) in pixel[..3].iter().enumerate() {
-                    let err = (got - want(i, c)).abs() / (want(i, c).abs() + 0.05);
-                    assert!(
-                        err <= TOLERANCE,
-                        "{} path, frame {t} pixel {i} channel {c}: Vulkan {got}, PyTorch {}",
-                        path.short_name(),
-                        want(i, c)
-                    );
-                }
-            }
+            check_radiance(&fixture, path, t, frame);
             check_accumulation(&fixture, t, frame);
         }
         eprintln!(
