@@ -96,6 +96,51 @@ fn memory_report_tracks_categories() {
     assert_no_validation_messages(&ctx);
 }
 
+/// `Buffer::read` copies a GPU-only buffer through a readback buffer even where lavapipe maps it, as
+/// a discrete GPU must (the H200 ran this file's tests into a validation error before buffers made
+/// by `Buffer::with_data` were transfer sources), and a GPU-only buffer that is no transfer source
+/// is a clear error naming it rather than a copy the driver may not make.
+#[test]
+fn gpu_only_buffers_are_read_back_by_copy_or_refused_clearly() {
+    use ash::vk;
+    use lucid_engine::memory::{Buffer, BufferDesc, MemoryLocation};
+    let ctx = context(false);
+    let gpu_only = |name: &str, usage| {
+        Buffer::new(
+            &ctx,
+            &BufferDesc {
+                name: name.to_string(),
+                size: 64,
+                usage,
+                location: MemoryLocation::GpuOnly,
+                category: "scene",
+            },
+        )
+        .unwrap()
+    };
+    let source = gpu_only(
+        "readable",
+        vk::BufferUsageFlags::STORAGE_BUFFER
+            | vk::BufferUsageFlags::TRANSFER_SRC
+            | vk::BufferUsageFlags::TRANSFER_DST,
+    );
+    source.upload(&ctx, &[7u8; 64]).unwrap();
+    assert_eq!(source.read(&ctx).unwrap(), [7u8; 64]);
+    let storage_only = gpu_only("storage only", vk::BufferUsageFlags::STORAGE_BUFFER);
+    let err = storage_only.read(&ctx).unwrap_err().to_string();
+    assert!(
+        err.contains("storage only") && err.contains("TRANSFER_SRC"),
+        "{err}"
+    );
+    assert_eq!(
+        ctx.memory_report().bytes("readback"),
+        0,
+        "readback buffers are freed after the copy"
+    );
+    drop((source, storage_only));
+    assert_no_validation_messages(&ctx);
+}
+
 #[test]
 fn zero_sized_resources_are_errors_not_panics() {
     use ash::vk;

@@ -28,6 +28,8 @@ pub struct Buffer {
     raw: vk::Buffer,
     allocation: Option<Allocation>,
     size: u64,
+    usage: vk::BufferUsageFlags,
+    location: MemoryLocation,
     category: &'static str,
     name: String,
     state: Mutex<ResourceState>,
@@ -82,6 +84,8 @@ impl Buffer {
             raw,
             allocation: Some(allocation),
             size: desc.size,
+            usage: desc.usage,
+            location: desc.location,
             category: desc.category,
             name: desc.name.clone(),
             state: Mutex::default(),
@@ -112,6 +116,8 @@ impl Buffer {
                 raw,
                 allocation: None,
                 size: desc.size,
+                usage: desc.usage,
+                location: desc.location,
                 category: desc.category,
                 name: desc.name.clone(),
                 state: Mutex::default(),
@@ -141,7 +147,8 @@ impl Buffer {
         *self.state.lock().unwrap_or_else(|p| p.into_inner()) = state;
     }
 
-    /// Creates a device-local buffer holding `data`, copied through a staging buffer.
+    /// Creates a device-local buffer holding `data`, copied through a staging buffer (a transfer
+    /// source as well, so that [`Buffer::read`] can read it back).
     pub fn with_data(
         ctx: &Context,
         name: &str,
@@ -154,7 +161,9 @@ impl Buffer {
             &BufferDesc {
                 name: name.to_string(),
                 size: data.len().max(4) as u64,
-                usage: usage | vk::BufferUsageFlags::TRANSFER_DST,
+                usage: usage
+                    | vk::BufferUsageFlags::TRANSFER_DST
+                    | vk::BufferUsageFlags::TRANSFER_SRC,
                 location: MemoryLocation::GpuOnly,
                 category,
             },
@@ -241,10 +250,22 @@ impl Buffer {
         EngineError::InvalidArgument(format!("buffer {} is not host-visible", self.name))
     }
 
-    /// Copies the whole buffer to the CPU (through a readback buffer when it is device-local), and waits.
+    /// Copies the whole buffer to the CPU, and waits: a host-visible one (`CpuToGpu`, `GpuToCpu`)
+    /// from its mapping, any other through a readback buffer, which needs `TRANSFER_SRC` in its
+    /// usage. A GPU-only buffer is copied even where the driver maps it (lavapipe maps every
+    /// allocation), so that reading one behaves as on a discrete GPU, where it is not mapped.
     pub fn read(&self, ctx: &Context) -> Result<Vec<u8>> {
-        if let Ok(mapped) = self.mapped() {
-            return Ok(mapped.to_vec());
+        if matches!(
+            self.location,
+            MemoryLocation::CpuToGpu | MemoryLocation::GpuToCpu
+        ) {
+            return Ok(self.mapped()?.to_vec());
+        }
+        if !self.usage.contains(vk::BufferUsageFlags::TRANSFER_SRC) {
+            return Err(EngineError::InvalidArgument(format!(
+                "buffer {} is GPU-only and not a transfer source (TRANSFER_SRC): it cannot be read back",
+                self.name
+            )));
         }
         let readback = Self::new(
             ctx,
