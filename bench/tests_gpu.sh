@@ -1,0 +1,43 @@
+#!/usr/bin/env bash
+# On the NVIDIA machine, from the project root: every test binary bench/pack_tests.sh packed
+# (.gpu/tests.tar.xz, .gpu/layers.tar.xz), under the Khronos validation layer, JOBS (6) binaries at
+# a time, each for at most TIMEOUT_S (300) seconds:
+#   source .gpu/env.sh && bench/tests_gpu.sh OUT_DIR
+# The machine has neither Xvfb nor glslc, so the binaries of SKIP (window sandbox_xvfb
+# hot_reload) are not run and the tests whose names hold a word of SKIP_TESTS (windowed, the game
+# loop's window) are skipped. Writes OUT_DIR/summary.txt (a line a binary: its exit status, its
+# time, libtest's result line) and OUT_DIR/logs.tgz (each binary's output); exits 1 when a binary
+# failed.
+set -euo pipefail
+out=$(realpath "${1:?usage: bench/tests_gpu.sh OUT_DIR}")
+mkdir -p "$out"
+work=/tmp/lucid-gpu-tests
+rm -rf "$work" && mkdir -p "$work/logs"
+tar -xJf .gpu/tests.tar.xz -C "$work"
+tar -xJf .gpu/layers.tar.xz -C "$work"
+# The tests read their fixtures, and run `lucid`, from the tree they were built in.
+built_in=$(cat "$work/built_in")
+[ -e "$built_in" ] || { mkdir -p "$(dirname "$built_in")"; ln -s "$PWD" "$built_in"; }
+mkdir -p "$built_in/target/release"
+cp "$work/lucid" "$built_in/target/release/lucid"
+skip=" ${SKIP:-window sandbox_xvfb hot_reload} "
+skip_tests=()
+for word in ${SKIP_TESTS:-windowed}; do skip_tests+=(--skip "$word"); done
+run_one() {
+  local name=$1 start status
+  start=$(date +%s)
+  status=0
+  VK_LAYER_PATH="$work/layers" LUCID_VALIDATION=1 timeout "${TIMEOUT_S:-300}" \
+    "$work/tests/$name" "${skip_tests[@]}" > "$work/logs/$name.log" 2>&1 || status=$?
+  echo "$name rc=$status $(($(date +%s) - start))s $(grep -h '^test result' "$work/logs/$name.log" | tr '\n' ' ')"
+}
+export -f run_one
+export work
+export TIMEOUT_S
+for name in $(ls "$work/tests"); do
+  [[ "$skip" == *" $name "* ]] || echo "$name"
+done | SKIP_ARGS="${skip_tests[*]}" xargs -P "${JOBS:-6}" -I{} bash -c 'skip_tests=($SKIP_ARGS); run_one {}' |
+  sort > "$out/summary.txt"
+tar -czf "$out/logs.tgz" -C "$work" logs
+grep -v ' rc=0 ' "$out/summary.txt" && exit 1
+echo "all $(wc -l < "$out/summary.txt") test binaries passed"
