@@ -42,9 +42,10 @@ runs = {p.stem: json.loads(p.read_text()) for p in sorted(pathlib.Path(sys.argv[
 (out / "results.json").write_text(json.dumps(runs, indent=1))
 for name, r in runs.items():
     if "frame_ms" in r:
-        print(f"{name:34s} {r['frame_ms']['mean']:8.3f} ms +- {r['frame_ms']['std']:.3f}  "
+        # Medians, as the targets are read; the maximum shows a start-up transient.
+        print(f"{name:34s} {r['frame_ms']['median']:8.3f} ms (max {r['frame_ms']['max']:.3f})  "
               f"{r['paths_per_second']/1e9:6.3f} Gpaths/s  {r['rays_per_second']/1e9:6.3f} Grays/s  "
-              f"(HDR image {r['image_ms']['mean']:.3f} ms: {r['image_paths_per_second']/1e9:.3f} Gpaths/s)")
+              f"(HDR image {r['image_ms']['median']:.3f} ms: {r['image_paths_per_second']/1e9:.3f} Gpaths/s)")
     elif "paths_per_s" in r or "paths_per_second" in r:
         print(name, {k: v for k, v in r.items() if "time" in k or "paths" in k})
 PY
