@@ -21,23 +21,19 @@ built_in=$(cat "$work/built_in")
 mkdir -p "$built_in/target/release"
 cp "$work/lucid" "$built_in/target/release/lucid"
 skip=" ${SKIP:-window sandbox_xvfb hot_reload} "
-skip_tests=()
-for word in ${SKIP_TESTS:-windowed}; do skip_tests+=(--skip "$word"); done
+export SKIP_TESTS=${SKIP_TESTS:-windowed} TIMEOUT_S=${TIMEOUT_S:-300} work
 run_one() {
-  local name=$1 start status
+  local name=$1 start status=0 word skips=()
+  for word in $SKIP_TESTS; do skips+=(--skip "$word"); done
   start=$(date +%s)
-  status=0
-  VK_LAYER_PATH="$work/layers" LUCID_VALIDATION=1 timeout "${TIMEOUT_S:-300}" \
-    "$work/tests/$name" "${skip_tests[@]}" > "$work/logs/$name.log" 2>&1 || status=$?
+  VK_LAYER_PATH="$work/layers" LUCID_VALIDATION=1 timeout "$TIMEOUT_S" \
+    "$work/tests/$name" "${skips[@]}" > "$work/logs/$name.log" 2>&1 || status=$?
   echo "$name rc=$status $(($(date +%s) - start))s $(grep -h '^test result' "$work/logs/$name.log" | tr '\n' ' ')"
 }
 export -f run_one
-export work
-export TIMEOUT_S
 for name in $(ls "$work/tests"); do
   [[ "$skip" == *" $name "* ]] || echo "$name"
-done | SKIP_ARGS="${skip_tests[*]}" xargs -P "${JOBS:-6}" -I{} bash -c 'skip_tests=($SKIP_ARGS); run_one {}' |
-  sort > "$out/summary.txt"
+done | xargs -P "${JOBS:-6}" -I{} bash -c 'run_one {}' | sort > "$out/summary.txt"
 tar -czf "$out/logs.tgz" -C "$work" logs
 grep -v ' rc=0 ' "$out/summary.txt" && exit 1
 echo "all $(wc -l < "$out/summary.txt") test binaries passed"
