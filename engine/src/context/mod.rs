@@ -8,6 +8,7 @@ mod cooperative_matrix;
 mod debug;
 mod device;
 mod device_loss;
+mod driver_residency;
 mod instance;
 mod loader_lock;
 mod memory_budget;
@@ -120,6 +121,7 @@ impl Context {
         }
         let validation = ValidationLog::default();
         let _loader = loader_lock::exclusive();
+        driver_residency::pin_drivers();
         let created = instance::create_instance(desc, &validation)?;
         let destroy_instance = |c: &instance::CreatedInstance| {
             // SAFETY: nothing else was created from the instance that is still alive.
