@@ -11,8 +11,8 @@ filter's gate) comes from B whole rather than blended: A may hold the mix only a
 (`widen_scales.py --linear-mix`) that B trained, and a blend would move B's trained mix back
 toward that start.
 
-When B reads the reprojection's motion (`train.py --motion-inputs`) and A does not, A is taken as
-the network that started B: its `enc0` reads the motion inputs with weights at zero.
+When B reads extra inputs (`train.py --motion-inputs`, `--noise-inputs`) that A does not, A is
+taken as the network that started B: its `enc0` reads them with weights at zero.
 
 The output keeps A's metadata but its validation figures (measured on A alone), and adds `blend`:
 both files' names, `t`, and B's training options that differ from A's.
@@ -27,8 +27,8 @@ from safetensors import safe_open
 from safetensors.torch import load_file, save_file
 
 from kernel_model import LINEAR_MIX_CHANNEL
-from model import FEATURES, MOTION_INPUTS
-from train import file_linear_mix, file_motion, file_recurrent
+from model import EXTRA_INPUTS, FEATURES
+from train import file_extras, file_linear_mix, file_recurrent
 
 # Metadata measured on one file, which a blend does not inherit.
 MEASURED = (
@@ -63,12 +63,19 @@ def blend(a, b, t):
     return {k: ((1.0 - t) * a[k] + t * b[k]).contiguous() for k in a}
 
 
-def with_motion_inputs(tensors):
-    """`tensors` of a network without motion inputs as one that reads them at zero weight: `enc0`'s
-    weights gain their columns after the input features."""
+def with_extra_inputs(tensors, have, want):
+    """`tensors` of a network reading the extra inputs `have` as one reading `want` (which holds
+    them), the others at zero weight: `enc0`'s columns after the input features, in `want`'s order."""
     w = tensors["enc0.weight"]
-    zeros = w.new_zeros(w.shape[0], MOTION_INPUTS, *w.shape[2:])
-    return {**tensors, "enc0.weight": torch.cat([w[:, :FEATURES], zeros, w[:, FEATURES:]], 1)}
+    columns, at = [w[:, :FEATURES]], FEATURES
+    for name in want:
+        n = EXTRA_INPUTS[name]
+        if name in have:
+            columns.append(w[:, at : at + n])
+            at += n
+        else:
+            columns.append(w.new_zeros(w.shape[0], n, *w.shape[2:]))
+    return {**tensors, "enc0.weight": torch.cat(columns + [w[:, at:]], 1)}
 
 
 def take_mix(tensors, b):
@@ -90,12 +97,15 @@ def main():
         raise SystemExit(f"--t {args.t} is not between 0 and 1")
     meta_a, meta_b = metadata(args.a), metadata(args.b)
     a, b = load_file(args.a), load_file(args.b)
-    if file_motion(args.b) and not file_motion(args.a):
+    extras_a, extras_b = file_extras(args.a), file_extras(args.b)
+    if extras_a != extras_b and set(extras_a) <= set(extras_b):
         if file_recurrent(args.a) or file_recurrent(args.b):
-            raise SystemExit(f"{args.a}, {args.b}: motion inputs beside recurrent state are not blended")
-        a = with_motion_inputs(a)
-        meta_a = {**meta_a, "layers": meta_b.get("layers"), "motion_inputs": meta_b["motion_inputs"]}
-    differing = [k for k in SHARED + ("motion_inputs",) if meta_a.get(k) != meta_b.get(k)]
+            raise SystemExit(f"{args.a}, {args.b}: extra inputs beside recurrent state are not blended")
+        a = with_extra_inputs(a, extras_a, extras_b)
+        inputs_b = {f"{name}_inputs": meta_b[f"{name}_inputs"] for name in extras_b}
+        meta_a = {**meta_a, "layers": meta_b.get("layers"), **inputs_b}
+    inputs = tuple(f"{name}_inputs" for name in EXTRA_INPUTS)
+    differing = [k for k in SHARED + inputs if meta_a.get(k) != meta_b.get(k)]
     if differing:
         raise SystemExit(f"{args.a} and {args.b} differ in {differing}: not one network")
     try:

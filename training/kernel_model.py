@@ -49,7 +49,7 @@ import torch
 import torch.nn as nn
 import torch.nn.functional as F
 
-from model import MOTION_INPUTS, WIDTHS, RecurrentDenoiser, half, pool, unet_layers
+from model import WIDTHS, RecurrentDenoiser, extra_channels, half, pool, unet_layers
 
 KERNEL = 5
 TAPS = KERNEL * KERNEL
@@ -166,8 +166,8 @@ class KernelOutput(nn.Module):
 class KernelDenoiser(RecurrentDenoiser):
     """`RecurrentDenoiser` with the kernel-predicting output layer; same `step`, `forward`, state."""
 
-    def __init__(self, widths=WIDTHS, scales=SCALES, linear_mix=False, atrous_steps=(), recurrent=0, motion=False):
-        super().__init__(widths, atrous_steps, recurrent, motion)
+    def __init__(self, widths=WIDTHS, scales=SCALES, linear_mix=False, atrous_steps=(), recurrent=0, extras=()):
+        super().__init__(widths, atrous_steps, recurrent, extras)
         self.convs["out"] = KernelOutput(self.widths[-1], scales, linear_mix, self.gate)
 
     @property
@@ -198,11 +198,11 @@ class KernelDenoiser(RecurrentDenoiser):
         return kernels + super().EXTRA_MACS_PER_PIXEL
 
 
-def kernel_layers(widths=WIDTHS, scales=SCALES, linear_mix=False, gate=False, recurrent=0, motion=False):
+def kernel_layers(widths=WIDTHS, scales=SCALES, linear_mix=False, gate=False, recurrent=0, extras=()):
     """(name, input channels, output channels) of every exported layer of a network of `widths`,
-    `scales`, `linear_mix`, `gate`, `recurrent` channels of recurrent state and, with `motion`,
-    `motion_inputs`, in execution order."""
-    unet = unet_layers(widths, recurrent=recurrent, motion=MOTION_INPUTS * motion)
+    `scales`, `linear_mix`, `gate`, `recurrent` channels of recurrent state and the extra inputs
+    `extras` (`model.EXTRA_INPUTS`), in execution order."""
+    unet = unet_layers(widths, recurrent=recurrent, extra=extra_channels(extras))
     layers = [(n, cin, cout) for n, cin, cout in unet if n != "out"]
     return layers + [(n, cin, cout) for n, cin, cout, _ in heads(widths[-1], scales, linear_mix, gate)]
 

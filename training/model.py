@@ -66,21 +66,40 @@ def sources(layer):
     return SOURCES.get(layer, ("dec0",))
 
 
-def unet_layers(widths=WIDTHS, outputs=OUTPUTS, recurrent=0, motion=0):
+def unet_layers(widths=WIDTHS, outputs=OUTPUTS, recurrent=0, extra=0):
     """(name, input channels, output channels) of the convolutions, in execution order, for the
-    hidden layers' `widths` and `outputs` channels of the output layer; with `motion` channels of
-    the reprojection's motion (`motion_inputs`), `enc0` reads them after the input features; with
-    `recurrent` channels of recurrent state, `enc0` reads them after those and the layer
-    `recurrent` (on `dec0`'s features, before `out`) writes them."""
+    hidden layers' `widths` and `outputs` channels of the output layer; with `extra` channels of
+    extra inputs (`EXTRA_INPUTS`), `enc0` reads them after the input features; with `recurrent`
+    channels of recurrent state, `enc0` reads them after those and the layer `recurrent` (on
+    `dec0`'s features, before `out`) writes them."""
     width = dict(zip(HIDDEN, widths))
-    first = FEATURES + motion + recurrent  # what `enc0` reads
+    first = FEATURES + extra + recurrent  # what `enc0` reads
     inputs = lambda layer: sum(first if s is None else width[s] for s in sources(layer))  # noqa: E731
     state_layer = [("recurrent", inputs("recurrent"), recurrent)] if recurrent else []
     return [(name, inputs(name), width[name]) for name in HIDDEN] + state_layer + [("out", inputs("out"), outputs)]
 
 
-# Channels of `motion_inputs`.
+# Channels of `motion_inputs` and of `noise_inputs`.
 MOTION_INPUTS = 2
+NOISE_INPUTS = 2
+# The inputs `enc0` may read after the input features, in this order, and their channels: the
+# reprojection's motion (`motion_inputs`, forty-fifth session) and the running means' own noise
+# (`noise_inputs`, forty-ninth). A weights file names each it reads in its `<name>_inputs`
+# metadata, the channels' count; none is in the committed weights.
+EXTRA_INPUTS = {"motion": MOTION_INPUTS, "noise": NOISE_INPUTS}
+
+
+def extras_of(names):
+    """The extra inputs `names` (of `EXTRA_INPUTS`) in `enc0`'s order; an unknown name is an error."""
+    unknown = sorted(set(names) - EXTRA_INPUTS.keys())
+    if unknown:
+        raise ValueError(f"unknown extra inputs {unknown}: known are {list(EXTRA_INPUTS)}")
+    return tuple(name for name in EXTRA_INPUTS if name in names)
+
+
+def extra_channels(extras):
+    """The channels of the extra inputs `extras`."""
+    return sum(EXTRA_INPUTS[name] for name in extras)
 
 
 def motion_inputs(motion):
@@ -309,6 +328,36 @@ def neighbourhood_variance(x):
     return (square - mean * mean).clamp_min(0.0)
 
 
+def variances(current, accum, moment, robust, spatial_variance_frames):
+    """The variance of the luminance over the running mean's history, and that of the compressed
+    luminance over the robust mean's, [B,1,H,W] each, for `features`: 0 from one sample; where the
+    history length is below `spatial_variance_frames` those of this frame's samples `current`
+    over the pixel's 3x3 neighbourhood (`neighbourhood_variance`)."""
+    mean, n = accum[:, 0:3], accum[:, 3:4]
+    mean_lum = luminance(mean)
+    zero = torch.zeros_like(n)
+    variance = torch.where(n > 1.0, (moment - mean_lum * mean_lum).clamp_min(0.0), zero)
+    robust_lum = luminance(robust[:, 0:3])
+    robust_variance = torch.where(n > 1.0, (robust[:, 3:4] - robust_lum * robust_lum).clamp_min(0.0), zero)
+    if spatial_variance_frames > 0:
+        spatial = n < float(spatial_variance_frames)
+        variance = torch.where(spatial, neighbourhood_variance(luminance(current)), variance)
+        squeezed = luminance(compress(current))
+        robust_variance = torch.where(spatial, neighbourhood_variance(squeezed), robust_variance)
+    return variance, robust_variance
+
+
+def noise_inputs(rec, accum, moment, robust, spatial_variance_frames=SPATIAL_VARIANCE_FRAMES):
+    """How far each running mean may still be from the truth: the standard deviations of `features`
+    divided by sqrt(n), n the history length: log(1 + that of the luminance) and that of the
+    compressed luminance. The network sees the deviations and n / N_MAX apart, and the deviation
+    of the samples does not fall as the history grows, while the mean's noise does."""
+    current = rec["demodulated"].clamp_min(0.0)
+    variance, robust_variance = variances(current, accum, moment, robust, spatial_variance_frames)
+    n = accum[:, 3:4].clamp_min(1.0)
+    return torch.cat([torch.log1p(torch.sqrt(variance / n)), torch.sqrt(robust_variance / n)], 1)
+
+
 def features(rec, warped, mask, accum, moment, robust, spatial_variance_frames=SPATIAL_VARIANCE_FRAMES):
     """The network's 24 input channels for one frame: 15 as in `lucid-rae-v1` (log radiance,
     albedo, normal, roughness, log depth, warped output, mask), then log(1 + running mean) (3),
@@ -319,17 +368,7 @@ def features(rec, warped, mask, accum, moment, robust, spatial_variance_frames=S
     neighbourhood (`neighbourhood_variance`)."""
     current = rec["demodulated"].clamp_min(0.0)
     mean, n = accum[:, 0:3], accum[:, 3:4]
-    mean_lum = luminance(mean)
-    zero = torch.zeros_like(n)
-    variance = torch.where(n > 1.0, (moment - mean_lum * mean_lum).clamp_min(0.0), zero)
-    robust_mean = robust[:, 0:3]
-    robust_lum = luminance(robust_mean)
-    robust_variance = torch.where(n > 1.0, (robust[:, 3:4] - robust_lum * robust_lum).clamp_min(0.0), zero)
-    if spatial_variance_frames > 0:
-        spatial = n < float(spatial_variance_frames)
-        variance = torch.where(spatial, neighbourhood_variance(luminance(current)), variance)
-        squeezed = luminance(compress(current))
-        robust_variance = torch.where(spatial, neighbourhood_variance(squeezed), robust_variance)
+    variance, robust_variance = variances(current, accum, moment, robust, spatial_variance_frames)
     return torch.cat(
         [
             torch.log1p(current),
@@ -342,7 +381,7 @@ def features(rec, warped, mask, accum, moment, robust, spatial_variance_frames=S
             torch.log1p(mean),
             n / N_MAX,
             torch.log1p(torch.sqrt(variance)),
-            torch.log1p(expand(robust_mean)),
+            torch.log1p(expand(robust[:, 0:3])),
             torch.sqrt(robust_variance),
         ],
         dim=1,
@@ -430,17 +469,17 @@ class RecurrentDenoiser(nn.Module):
     (non-empty) the output layer has one more channel, the last, the logit of the gate of the
     `atrous` filter over the output; with `recurrent` > 0, that many channels of recurrent state
     (tanh of the layer `recurrent` on `dec0`'s features), warped with the output's history and
-    read by `enc0` beside the input features in the next frame (zero in the first); with `motion`,
-    `enc0` also reads `motion_inputs`."""
+    read by `enc0` beside the input features in the next frame (zero in the first); `enc0` also
+    reads the `extras` of `EXTRA_INPUTS` after the input features."""
 
-    def __init__(self, widths=WIDTHS, atrous_steps=(), recurrent=0, motion=False):
+    def __init__(self, widths=WIDTHS, atrous_steps=(), recurrent=0, extras=()):
         super().__init__()
         self.widths = tuple(widths)
         self.gate = bool(atrous_steps)
         self.recurrent = recurrent
-        # Whether `enc0` reads `motion_inputs` after the input features.
-        self.motion = motion
-        self.layers = unet_layers(self.widths, OUTPUTS + self.gate, recurrent, MOTION_INPUTS * motion)
+        # The extra inputs `enc0` reads after the input features, in its order.
+        self.extras = extras_of(extras)
+        self.layers = unet_layers(self.widths, OUTPUTS + self.gate, recurrent, extra_channels(self.extras))
         self.convs = nn.ModuleDict({name: nn.Conv2d(cin, cout, 3, padding=1) for name, cin, cout in self.layers})
         # `antialias_surface`'s weight of this frame's emission per pixel of motion (the weights
         # file's `emission_motion` metadata).
@@ -505,8 +544,12 @@ class RecurrentDenoiser(nn.Module):
         )
         x = half(features(rec, warped, mask, accum, moment, robust, self.spatial_variance_frames), fp16_storage)
         warped, mask = x[:, 11:14], x[:, 14:15]  # as the output pass reads them: stored
-        if self.motion:
-            x = torch.cat([x, half(motion_inputs(rec["motion"]), fp16_storage)], 1)
+        for name in self.extras:
+            if name == "motion":
+                extra = motion_inputs(rec["motion"])
+            else:
+                extra = noise_inputs(rec, accum, moment, robust, self.spatial_variance_frames)
+            x = torch.cat([x, half(extra, fp16_storage)], 1)
         x = torch.cat([x, half(warped_recurrent, fp16_storage)], 1)
         c = self.convs
         r = lambda t: half(F.relu(t), fp16_storage)  # noqa: E731

@@ -81,13 +81,14 @@ from model import (
     DECODERS,
     FORMAT,
     HIDDEN,
-    MOTION_INPUTS,
+    EXTRA_INPUTS,
     N_MAX,
     RECORD_SIZE,
     WIDTHS,
     RecurrentDenoiser,
     atrous_steps_of,
     export_tensors,
+    extras_of,
     sources,
     widths_of,
 )
@@ -101,18 +102,18 @@ NEW_SCALE_BIAS = -3.0
 PROCESS_SEED_STRIDE = 7919
 
 
-def build_model(name, widths=WIDTHS, scales=SCALES, linear_mix=False, atrous_steps=(), recurrent=0, motion=False):
+def build_model(name, widths=WIDTHS, scales=SCALES, linear_mix=False, atrous_steps=(), recurrent=0, extras=()):
     """The `name`d decoder's model of `widths` (`scales` and `linear_mix` for the kernel decoder),
     with the gated a-trous filter of `atrous_steps` when there are any, `recurrent` channels of
-    recurrent state and, with `motion`, the reprojection's motion among its inputs."""
+    recurrent state and the extra inputs `extras` (`model.EXTRA_INPUTS`)."""
     if name == "kernel":
-        return KernelDenoiser(widths, scales, linear_mix, atrous_steps, recurrent, motion)
-    return RecurrentDenoiser(widths, atrous_steps, recurrent, motion)
+        return KernelDenoiser(widths, scales, linear_mix, atrous_steps, recurrent, extras)
+    return RecurrentDenoiser(widths, atrous_steps, recurrent, extras)
 
 
 def build_model_for(decoder, path):
     """The `decoder`'s model shaped as the weights file `path` is: its widths, kernel scales,
-    linear mix, a-trous filter's steps, recurrent state and motion inputs (its weights not loaded:
+    linear mix, a-trous filter's steps, recurrent state and extra inputs (its weights not loaded:
     `load_weights`)."""
     return build_model(
         decoder,
@@ -121,7 +122,7 @@ def build_model_for(decoder, path):
         file_linear_mix(path),
         file_atrous_steps(path),
         file_recurrent(path),
-        file_motion(path),
+        file_extras(path),
     )
 
 
@@ -151,11 +152,12 @@ def file_recurrent(path):
         return int(f.get_slice("recurrent.weight").get_shape()[0]) if "recurrent.weight" in f.keys() else 0
 
 
-def file_motion(path):
-    """Whether a weights file train.py wrote reads the reprojection's motion (its `motion_inputs`
-    metadata)."""
+def file_extras(path):
+    """The extra inputs (`model.EXTRA_INPUTS`) a weights file train.py wrote reads: those its
+    `<name>_inputs` metadata names with their channels."""
     with safe_open(path, "pt") as f:
-        return (f.metadata() or {}).get("motion_inputs", "") == str(MOTION_INPUTS)
+        meta = f.metadata() or {}
+    return tuple(name for name, n in EXTRA_INPUTS.items() if meta.get(f"{name}_inputs", "") == str(n))
 
 
 def file_linear_mix(path):
@@ -267,10 +269,12 @@ def load_weights(model, path):
     recurrent = file_recurrent(path)
     if recurrent and recurrent != model.recurrent:
         raise ValueError(f"{path} has {recurrent} channels of recurrent state: the model has {model.recurrent}")
-    if file_motion(path) and not model.motion:
-        raise ValueError(f"{path} reads the reprojection's motion: the model needs --motion-inputs")
-    if recurrent and model.motion and not file_motion(path):
-        raise ValueError(f"{path} has recurrent state where the model reads motion inputs: start from a file without")
+    extras = file_extras(path)
+    # `enc0`'s columns of inputs the file lacks are appended at zero: they must follow its own.
+    if model.extras[: len(extras)] != extras:
+        raise ValueError(f"{path} reads the extra inputs {list(extras)}: the model reads {list(model.extras)}")
+    if recurrent and model.extras != extras:
+        raise ValueError(f"{path} has recurrent state where the model reads more extra inputs: start from a file without")
     had = (file_linear_mix(path), bool(steps))
     has = (getattr(model, "linear_mix", False), model.gate)
     loaded, skipped = [], []
@@ -538,6 +542,12 @@ def main():
         "bilinear taps blur); default: --init's; weights without it start with enc0's weights for it at zero",
     )
     ap.add_argument(
+        "--noise-inputs",
+        action="store_true",
+        help="enc0 also reads the running means' own noise (model.noise_inputs: their deviations over "
+        "sqrt(history length)); default: --init's; weights without it start with enc0's weights for it at zero",
+    )
+    ap.add_argument(
         "--gate-only",
         action="store_true",
         help="train only the gate of the a-trous filter (out's last channel), every other weight kept as --init's",
@@ -603,8 +613,9 @@ def main():
     if args.recurrent is not None and (args.recurrent < 0 or init_recurrent not in (0, args.recurrent)):
         raise SystemExit(f"--recurrent {args.recurrent}: --init {args.init} has {init_recurrent} channels of it")
     recurrent = init_recurrent if args.recurrent is None else args.recurrent
-    motion = args.motion_inputs or bool(args.init and file_motion(args.init))
-    model = build_model(args.model, widths, args.scales, args.linear_mix, atrous_steps, recurrent, motion).to(dev)
+    wanted = [name for name, on in (("motion", args.motion_inputs), ("noise", args.noise_inputs)) if on]
+    extras = extras_of(set(wanted) | set(file_extras(args.init) if args.init else ()))
+    model = build_model(args.model, widths, args.scales, args.linear_mix, atrous_steps, recurrent, extras).to(dev)
     if args.init:
         load_weights(model, args.init)
     if args.history_frames is not None:
@@ -703,7 +714,7 @@ def main():
         return
     final = validation(model, val, watch)
     if isinstance(model, KernelDenoiser):
-        layers = kernel_layers(model.widths, model.scales, model.linear_mix, model.gate, model.recurrent, model.motion)
+        layers = kernel_layers(model.widths, model.scales, model.linear_mix, model.gate, model.recurrent, model.extras)
         tensors = kernel_export_tensors(model)
     else:
         layers, tensors = model.layers, export_tensors(model)
@@ -743,8 +754,8 @@ def main():
     }
     if model.atrous_steps:
         meta["atrous_steps"] = ",".join(str(s) for s in model.atrous_steps)
-    if model.motion:
-        meta["motion_inputs"] = str(MOTION_INPUTS)
+    for name in model.extras:
+        meta[f"{name}_inputs"] = str(EXTRA_INPUTS[name])
     save_file(tensors, args.out, metadata=meta)
     summary = {
         "final": final,
