@@ -441,6 +441,14 @@ def main():
     ap = argparse.ArgumentParser()
     ap.add_argument("--data", required=True)
     ap.add_argument("--minutes", type=float, default=6.0)
+    ap.add_argument(
+        "--steps",
+        type=int,
+        default=0,
+        help="train this many steps, the learning rate's schedule over them rather than over --minutes "
+        "(which still stops a run that takes longer), so that two runs of one recipe take the same steps "
+        "(by time they took 657 and 684 on one H200, forty-ninth session); 0 (default): by time",
+    )
     ap.add_argument("--batch", type=int, default=8)
     ap.add_argument("--frames", type=int, default=8, help="frames per window with a loss")
     ap.add_argument("--burn-in", type=int, default=0, help="frames before them, no gradients, no loss")
@@ -659,12 +667,15 @@ def main():
     # Its own generator, so that the same seed draws the same windows with or without fireflies; on
     # the training device (drawn on the CPU, they took half the steps).
     firefly_gen = torch.Generator(dev).manual_seed(seed + 1)
+    if args.steps < 0:
+        raise SystemExit(f"--steps {args.steps} is negative")
     budget = args.minutes * 60.0
     start = time.time()
     history, step, skipped = [], 0, 0
     while True:
-        frac = group.progress((time.time() - start) / budget)
-        if frac >= 1.0:
+        elapsed = group.progress((time.time() - start) / budget)
+        frac = step / args.steps if args.steps > 0 else elapsed
+        if frac >= 1.0 or elapsed >= 1.0:
             break
         for param_group in opt.param_groups:
             param_group["lr"] = args.lr * 0.5 * (1.0 + math.cos(math.pi * frac))
