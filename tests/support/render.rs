@@ -23,7 +23,9 @@ pub fn render_accumulated(
 }
 
 /// [`render_accumulated`] on `ctx` (a validated context): tests that render many images share
-/// one (NVIDIA's driver refuses new instances after a few dozen in one process).
+/// one (an H100's driver refused new instances after a few dozen in one process; that was before
+/// the engine kept the drivers loaded between contexts, `engine/src/context/driver_residency.rs`,
+/// and has not been tried since).
 pub fn render_accumulated_on(
     ctx: &Context,
     scene: Scene,

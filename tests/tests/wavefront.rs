@@ -93,7 +93,7 @@ fn same_random_numbers_same_image(name: &str, denoiser: Denoiser) {
 }
 
 /// [`same_random_numbers_same_image`] with paths at most `max_depth` segments long, on `ctx`
-/// (one context a test: NVIDIA's driver refuses new instances after a few dozen in one process).
+/// (one context a test, as `render_accumulated_on` explains).
 fn same_image_with(ctx: &Context, name: &str, denoiser: Denoiser, max_depth: u32) {
     let settings = |algorithm| Settings {
         algorithm,
