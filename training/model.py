@@ -139,7 +139,7 @@ SURFACE_ALPHA = 0.1
 EMISSION_MOTION = 0.0
 # The history lengths below which the variance inputs are taken over the pixel's 3x3 neighbourhood
 # of this frame's samples rather than over its history, as SVGF estimates them for its first four
-# frames (`features`; a weights file's `spatial_variance_frames` metadata, 0 where it has none:
+# frames (`variances`; a weights file's `spatial_variance_frames` metadata, 0 where it has none:
 # always over the history, 0 from one sample).
 SPATIAL_VARIANCE_FRAMES = 0
 # The bits of an object id the emission's history keeps in the shaders (exact in a float32).
@@ -328,11 +328,11 @@ def neighbourhood_variance(x):
     return (square - mean * mean).clamp_min(0.0)
 
 
-def variances(current, accum, moment, robust, spatial_variance_frames):
+def variances(current, accum, moment, robust, spatial_variance_frames=SPATIAL_VARIANCE_FRAMES):
     """The variance of the luminance over the running mean's history, and that of the compressed
-    luminance over the robust mean's, [B,1,H,W] each, for `features`: 0 from one sample; where the
-    history length is below `spatial_variance_frames` those of this frame's samples `current`
-    over the pixel's 3x3 neighbourhood (`neighbourhood_variance`)."""
+    luminance over the robust mean's, [B,1,H,W] each, for `features` and `noise_inputs`: 0 from one
+    sample; where the history length is below `spatial_variance_frames` those of this frame's
+    samples `current` over the pixel's 3x3 neighbourhood (`neighbourhood_variance`)."""
     mean, n = accum[:, 0:3], accum[:, 3:4]
     mean_lum = luminance(mean)
     zero = torch.zeros_like(n)
@@ -347,28 +347,24 @@ def variances(current, accum, moment, robust, spatial_variance_frames):
     return variance, robust_variance
 
 
-def noise_inputs(rec, accum, moment, robust, spatial_variance_frames=SPATIAL_VARIANCE_FRAMES):
+def noise_inputs(accum, variance, robust_variance):
     """How far each running mean may still be from the truth: the standard deviations of `features`
-    divided by sqrt(n), n the history length: log(1 + that of the luminance) and that of the
-    compressed luminance. The network sees the deviations and n / N_MAX apart, and the deviation
-    of the samples does not fall as the history grows, while the mean's noise does."""
-    current = rec["demodulated"].clamp_min(0.0)
-    variance, robust_variance = variances(current, accum, moment, robust, spatial_variance_frames)
+    (from `variances`) divided by sqrt(n), n the history length (`accum`'s last channel): log(1 +
+    that of the luminance) and that of the compressed luminance. The network sees the deviations
+    and n / N_MAX apart, and the deviation of the samples does not fall as the history grows,
+    while the mean's noise does."""
     n = accum[:, 3:4].clamp_min(1.0)
     return torch.cat([torch.log1p(torch.sqrt(variance / n)), torch.sqrt(robust_variance / n)], 1)
 
 
-def features(rec, warped, mask, accum, moment, robust, spatial_variance_frames=SPATIAL_VARIANCE_FRAMES):
+def features(rec, warped, mask, accum, robust, variance, robust_variance):
     """The network's 24 input channels for one frame: 15 as in `lucid-rae-v1` (log radiance,
     albedo, normal, roughness, log depth, warped output, mask), then log(1 + running mean) (3),
     its history length / N_MAX and log(1 + the standard deviation of luminance over it) as in v2,
     then log(1 + the robust mean expanded back) (3) and the standard deviation of the compressed
-    luminance. Both deviations are 0 from one sample; where the history length is below
-    `spatial_variance_frames` they are instead those of this frame's samples over the pixel's 3x3
-    neighbourhood (`neighbourhood_variance`)."""
+    luminance; the variances are `variances`'."""
     current = rec["demodulated"].clamp_min(0.0)
     mean, n = accum[:, 0:3], accum[:, 3:4]
-    variance, robust_variance = variances(current, accum, moment, robust, spatial_variance_frames)
     return torch.cat(
         [
             torch.log1p(current),
@@ -542,14 +538,16 @@ class RecurrentDenoiser(nn.Module):
         albedo, emission = antialias_surface(
             rec, warped_albedo.detach(), warped_emission.detach(), accum[:, 3:4], surface_mask, self.emission_motion
         )
-        x = half(features(rec, warped, mask, accum, moment, robust, self.spatial_variance_frames), fp16_storage)
+        current = rec["demodulated"].clamp_min(0.0)
+        variance, robust_variance = variances(current, accum, moment, robust, self.spatial_variance_frames)
+        x = half(features(rec, warped, mask, accum, robust, variance, robust_variance), fp16_storage)
         warped, mask = x[:, 11:14], x[:, 14:15]  # as the output pass reads them: stored
+        extra_inputs = {
+            "motion": lambda: motion_inputs(rec["motion"]),
+            "noise": lambda: noise_inputs(accum, variance, robust_variance),
+        }
         for name in self.extras:
-            if name == "motion":
-                extra = motion_inputs(rec["motion"])
-            else:
-                extra = noise_inputs(rec, accum, moment, robust, self.spatial_variance_frames)
-            x = torch.cat([x, half(extra, fp16_storage)], 1)
+            x = torch.cat([x, half(extra_inputs[name](), fp16_storage)], 1)
         x = torch.cat([x, half(warped_recurrent, fp16_storage)], 1)
         c = self.convs
         r = lambda t: half(F.relu(t), fp16_storage)  # noqa: E731

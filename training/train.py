@@ -584,6 +584,8 @@ def main():
     ap.add_argument("--out", required=True)
     ap.add_argument("--log", required=True)
     args = ap.parse_args()
+    if args.steps < 0:
+        raise SystemExit(f"--steps {args.steps} is negative")
     group = Group()
     torch.manual_seed(args.seed)
     dev = group.device
@@ -667,8 +669,6 @@ def main():
     # Its own generator, so that the same seed draws the same windows with or without fireflies; on
     # the training device (drawn on the CPU, they took half the steps).
     firefly_gen = torch.Generator(dev).manual_seed(seed + 1)
-    if args.steps < 0:
-        raise SystemExit(f"--steps {args.steps} is negative")
     budget = args.minutes * 60.0
     start = time.time()
     history, step, skipped = [], 0, 0

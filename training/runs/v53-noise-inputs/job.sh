@@ -59,9 +59,11 @@ with torch.no_grad():
     a, b2 = base(rec), noisy(rec)
     _, state = noisy.step(rec[:, 0], None)
     _, state = noisy.step(rec[:, 1], state)
-from model import noise_inputs
+from model import noise_inputs, variances
 with torch.no_grad():
-    extra = noise_inputs(split_record(rec[:, 1]), state["accum"], state["moment"], state["robust"])
+    current = split_record(rec[:, 1])["demodulated"].clamp_min(0.0)
+    variance, robust_variance = variances(current, state["accum"], state["moment"], state["robust"])
+    extra = noise_inputs(state["accum"], variance, robust_variance)
 out = {
     "layers": [list(l) for l in noisy.layers][:1],
     "max_abs_difference": float((a - b2).abs().max()),
