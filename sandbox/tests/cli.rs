@@ -557,7 +557,7 @@ fn dataset_writes_records_and_references_with_an_index() {
 }
 
 #[test]
-fn sequence_evaluates_other_learned_weights_and_a_second_reference() {
+fn sequence_evaluates_other_learned_weights_and_second_and_converged_references() {
     let dir = temp("sequence-weights");
     let alternative = concat!(
         env!("CARGO_MANIFEST_DIR"),
@@ -576,6 +576,8 @@ fn sequence_evaluates_other_learned_weights_and_a_second_reference() {
         "--also-neural-weights",
         alternative,
         "--second-reference",
+        "--converged-reference-spp",
+        "64",
         "--out",
         dir.to_str().unwrap(),
     ]);
@@ -600,13 +602,24 @@ fn sequence_evaluates_other_learned_weights_and_a_second_reference() {
             "{expected}: {times:?}"
         );
     }
+    // A method's mean of one metric (columns: method, frame, rel_mse, ssim, dssim, flip,
+    // temporal_instability).
+    let mean = |method: &str, column: usize| -> f64 {
+        csv.lines()
+            .find(|line| line.starts_with(&format!("{method},mean,")))
+            .and_then(|line| line.split(',').nth(column)?.parse().ok())
+            .unwrap_or_else(|| panic!("{method}'s mean in metrics.csv"))
+    };
     // The reference again with another seed: evaluated, and its own noise, so not 0.
-    let second_rel_mse: f64 = csv
-        .lines()
-        .find(|line| line.starts_with("second-reference,mean,"))
-        .and_then(|line| line.split(',').nth(2)?.parse().ok())
-        .expect("second-reference's mean in metrics.csv");
-    assert!(second_rel_mse > 0.0, "{second_rel_mse}");
+    assert!(mean("second-reference", 2) > 0.0);
+    // With 16 times the samples, a frame-to-frame change holds the reference's noise about once
+    // rather than twice over.
+    let second = mean("second-reference", 6);
+    let converged = mean("converged-reference", 6);
+    assert!(
+        converged > 0.0 && converged < 0.7 * second,
+        "temporal instability: converged {converged}, second {second}"
+    );
     let chart = std::fs::read_to_string(dir.join("stability.svg")).unwrap();
     for expected in ["none", "svgf", "neural", method, "temporal instability"] {
         assert!(
@@ -630,6 +643,24 @@ fn sequence_evaluates_other_learned_weights_and_a_second_reference() {
         stderr(&bad)
     );
     std::fs::remove_dir_all(&dir).unwrap();
+}
+
+#[test]
+fn a_converged_reference_needs_more_samples_than_the_reference() {
+    assert_fails_at_once(
+        &[
+            "sequence",
+            "--size",
+            "8x8",
+            "--reference-spp",
+            "64",
+            "--converged-reference-spp",
+            "64",
+            "--out",
+            temp("sequence-converged-spp").to_str().unwrap(),
+        ],
+        "--converged-reference-spp 64 must exceed --reference-spp 64",
+    );
 }
 
 /// Fails before any rendering (no device is even opened), with one line naming the problem.
@@ -741,7 +772,7 @@ fn evaluate_without_method_folders_names_the_expected_ones() {
     assert_fails_at_once(
         &["evaluate", dir.to_str().unwrap()],
         "no method folders to evaluate against reference/ (expected one or more of none/, \
-         spatial/, svgf/, neural/, oidn/, second-reference/)",
+         spatial/, svgf/, neural/, oidn/, second-reference/, converged-reference/)",
     );
     assert!(!dir.join("metrics.csv").exists());
     std::fs::remove_dir_all(&dir).unwrap();

@@ -3,7 +3,7 @@
 
 use super::maps;
 use super::render_options::exposure;
-use super::sequence::{frame_path, Method, SECOND_REFERENCE};
+use super::sequence::{frame_path, Method, CONVERGED_REFERENCE, SECOND_REFERENCE};
 use super::stability;
 use anyhow::Context as _;
 use clap::Args;
@@ -159,7 +159,8 @@ pub fn evaluate_folder(
 }
 
 /// The method folders of `dir` (the sequence's methods, then the learned denoiser's other weights'
-/// `neural-*` in name order, then [`EXTERNAL_METHODS`], then [`SECOND_REFERENCE`]) that exist; an
+/// `neural-*` in name order, then [`EXTERNAL_METHODS`], then [`SECOND_REFERENCE`] and
+/// [`CONVERGED_REFERENCE`]) that exist; an
 /// error naming the expected folders when there is none.
 fn method_folders(dir: &Path) -> anyhow::Result<Vec<String>> {
     anyhow::ensure!(dir.is_dir(), "{}: no such folder", dir.display());
@@ -175,7 +176,7 @@ fn method_folders(dir: &Path) -> anyhow::Result<Vec<String>> {
         .into_iter()
         .chain(other_weights)
         .chain(EXTERNAL_METHODS.map(str::to_owned))
-        .chain([SECOND_REFERENCE.to_owned()])
+        .chain([SECOND_REFERENCE, CONVERGED_REFERENCE].map(str::to_owned))
         .collect();
     let present: Vec<String> = expected
         .iter()

@@ -54,11 +54,22 @@ pub struct SequenceArgs {
     /// what any method can measure against it.
     #[arg(long)]
     second_reference: bool,
+    /// Also render the reference with this many samples per pixel (more than
+    /// `--reference-spp`) and yet another seed, into `converged-reference/`, evaluated as one more
+    /// method: what an exact method would measure against `reference/`. Where the reference has
+    /// not converged (rare bright paths, such as caustics), no method can measure better than
+    /// this without being wrong as the reference is.
+    #[arg(long, value_name = "SPP", value_parser = samples_per_pixel(u32::MAX.into()))]
+    converged_reference_spp: Option<SamplesPerPixel>,
 }
 
 /// The folder and method name of the reference rendered again with another seed
 /// (`--second-reference`).
 pub const SECOND_REFERENCE: &str = "second-reference";
+
+/// The folder and method name of the reference rendered with more samples and another seed
+/// (`--converged-reference-spp`).
+pub const CONVERGED_REFERENCE: &str = "converged-reference";
 
 /// The method name of learned-denoiser weights given with `--also-neural-weights`.
 pub fn extra_neural_method(weights: &Path) -> String {
@@ -124,6 +135,13 @@ impl Method {
 
 /// Renders every sequence and writes the evaluation.
 pub fn run(args: &SequenceArgs) -> anyhow::Result<()> {
+    if let Some(spp) = args.converged_reference_spp {
+        anyhow::ensure!(
+            spp > args.reference_spp,
+            "--converged-reference-spp {spp} must exceed --reference-spp {}",
+            args.reference_spp
+        );
+    }
     output_path::create_folder("--out", &args.out)?;
     let scene = scene_source::load(&args.options.scene, args.options.env.as_deref())?;
     let path = scene
@@ -167,6 +185,23 @@ pub fn run(args: &SequenceArgs) -> anyhow::Result<()> {
             SECOND_REFERENCE,
             settings,
             reference_frames,
+        )?;
+    }
+    if let Some(spp) = args.converged_reference_spp {
+        let settings = Settings {
+            seed: reference_settings.seed.wrapping_add(2),
+            samples_per_pixel: spp.min(REFERENCE_SPP_PER_FRAME),
+            ..reference_settings
+        };
+        let frames = spp.get().div_ceil(REFERENCE_SPP_PER_FRAME.get());
+        render(
+            &ctx,
+            &scene,
+            args,
+            &cameras,
+            CONVERGED_REFERENCE,
+            settings,
+            frames,
         )?;
     }
     let extra: Vec<(String, NetworkWeights)> = args
