@@ -9,6 +9,8 @@
 # a weights file to use instead of the committed ones; ALSO, more weights files (space-separated),
 # each evaluated as one more method `neural-<file stem>` on the same frames; SECOND_REFERENCE set, the
 # reference rendered again with another seed as one more method (the reference's own noise);
+# CONVERGED_SPP, the reference rendered with that many samples and a third seed as one more method
+# (what an exact image measures); REFERENCE_SPP, the reference's samples (1024, the issue's);
 # OPTIONS, more options of `lucid sequence` (e.g. --edge-emission); OIDN=0 skips OIDN; MAPS=1 adds
 # `lucid evaluate --maps` (OUT_DIR/summary_<scene>.txt and by_brightness_<scene>.csv, the light
 # kept by brightness); SCENES, the held-out scenes (classroom caustics); FIRST, shorter lengths
@@ -31,8 +33,9 @@ fi
 evaluate_scene() {
   local scene=$1 dir=/tmp/heldout-$1
   # shellcheck disable=SC2046 # gpu_env's and ALSO's words are separate arguments
-  env $(gpu_env "$2") "$lucid" sequence --scene "$scene" --size 1920x1080 --frames "$frames" --reference-spp 1024 \
-    --out "$dir" --no-evaluate ${SECOND_REFERENCE:+--second-reference} ${OPTIONS:-} ${WEIGHTS:+--neural-weights "$(realpath "$WEIGHTS")"} \
+  env $(gpu_env "$2") "$lucid" sequence --scene "$scene" --size 1920x1080 --frames "$frames" \
+    --reference-spp "${REFERENCE_SPP:-1024}" --out "$dir" --no-evaluate ${SECOND_REFERENCE:+--second-reference} \
+    ${CONVERGED_SPP:+--converged-reference-spp "$CONVERGED_SPP"} ${OPTIONS:-} ${WEIGHTS:+--neural-weights "$(realpath "$WEIGHTS")"} \
     $(for w in ${ALSO:-}; do echo "--also-neural-weights $(realpath "$w")"; done)
   if [ "${OIDN:-1}" != 0 ] && python3 -c "import pyoidn" 2>/dev/null; then
     # shellcheck disable=SC2046
