@@ -56,9 +56,8 @@ pub struct SequenceArgs {
     second_reference: bool,
     /// Also render the reference with this many samples per pixel (more than
     /// `--reference-spp`) and yet another seed, into `converged-reference/`, evaluated as one more
-    /// method: what an exact method would measure against `reference/`. Where the reference has
-    /// not converged (rare bright paths, such as caustics), no method can measure better than
-    /// this without being wrong as the reference is.
+    /// method: what an exact method would measure against `reference/`. Where a method measures
+    /// better than this, its figures no longer rank closeness to the truth.
     #[arg(long, value_name = "SPP", value_parser = samples_per_pixel(u32::MAX.into()))]
     converged_reference_spp: Option<SamplesPerPixel>,
 }
