@@ -160,8 +160,7 @@ pub fn evaluate_folder(
 
 /// The method folders of `dir` (the sequence's methods, then the learned denoiser's other weights'
 /// `neural-*` in name order, then [`EXTERNAL_METHODS`], then [`SECOND_REFERENCE`] and
-/// [`CONVERGED_REFERENCE`]) that exist; an
-/// error naming the expected folders when there is none.
+/// [`CONVERGED_REFERENCE`]) that exist; an error naming the expected folders when there is none.
 fn method_folders(dir: &Path) -> anyhow::Result<Vec<String>> {
     anyhow::ensure!(dir.is_dir(), "{}: no such folder", dir.display());
     let extra_neural = format!("{}-", Method::Neural.name());

@@ -152,56 +152,25 @@ pub fn run(args: &SequenceArgs) -> anyhow::Result<()> {
         .collect();
     let ctx = Context::new(&ContextDesc::from_env())?;
     let base = sequence_settings(&ctx, &scene, args, cameras[0])?;
-    let reference_settings = Settings {
-        samples_per_pixel: args.reference_spp.min(REFERENCE_SPP_PER_FRAME),
-        accumulate: true,
-        denoiser: Denoiser::None,
-        ..base
-    };
-    let reference_frames = args
-        .reference_spp
-        .get()
-        .div_ceil(REFERENCE_SPP_PER_FRAME.get());
-    render(
-        &ctx,
-        &scene,
-        args,
-        &cameras,
-        "reference",
-        reference_settings,
-        reference_frames,
-    )?;
-    if args.second_reference {
+    // The references: `spp` samples a pixel as frames of at most REFERENCE_SPP_PER_FRAME
+    // accumulated per camera, with `seed_offset` added to the path's seed.
+    let reference = |name: &str, spp: SamplesPerPixel, seed_offset: u32| {
         let settings = Settings {
-            seed: reference_settings.seed.wrapping_add(1),
-            ..reference_settings
-        };
-        render(
-            &ctx,
-            &scene,
-            args,
-            &cameras,
-            SECOND_REFERENCE,
-            settings,
-            reference_frames,
-        )?;
-    }
-    if let Some(spp) = args.converged_reference_spp {
-        let settings = Settings {
-            seed: reference_settings.seed.wrapping_add(2),
             samples_per_pixel: spp.min(REFERENCE_SPP_PER_FRAME),
-            ..reference_settings
+            accumulate: true,
+            denoiser: Denoiser::None,
+            seed: base.seed.wrapping_add(seed_offset),
+            ..base
         };
         let frames = spp.get().div_ceil(REFERENCE_SPP_PER_FRAME.get());
-        render(
-            &ctx,
-            &scene,
-            args,
-            &cameras,
-            CONVERGED_REFERENCE,
-            settings,
-            frames,
-        )?;
+        render(&ctx, &scene, args, &cameras, name, settings, frames)
+    };
+    reference("reference", args.reference_spp, 0)?;
+    if args.second_reference {
+        reference(SECOND_REFERENCE, args.reference_spp, 1)?;
+    }
+    if let Some(spp) = args.converged_reference_spp {
+        reference(CONVERGED_REFERENCE, spp, 2)?;
     }
     let extra: Vec<(String, NetworkWeights)> = args
         .also_neural_weights
