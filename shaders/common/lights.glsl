@@ -16,6 +16,10 @@ layout(constant_id = 113) const bool HAS_EMISSIVE_TEXTURES = true;
 // Candidates resampled per next-event light sample (sample_light) when the table has more than
 // one light; 1 turns resampling off.
 const uint LIGHT_CANDIDATES = 4u;
+// Off where the table's lights are the triangles of one flat emitter, which reach every point
+// alike but for their distance (lucid_engine::scene::gpu::GpuScene::lights_form_one_flat_emitter):
+// sample_light then draws one light from the table without resampling.
+layout(constant_id = 121) const bool RESAMPLE_LIGHTS = true;
 
 // LightSample::light of the sun and of the environment map.
 const uint SUN_LIGHT = 0xffffffffu;
@@ -317,7 +321,7 @@ const vec3 CANDIDATE_STEP = vec3(0.8191725134, 0.6710436067, 0.5497004779);
 // does not reach p (a spot aimed elsewhere, a triangle facing away) is not kept while another
 // does. `ls.weight` is then the unbiased contribution weight sum(w) / (M * target) in place of
 // 1 / pdf, and `ls.pdf` stays the table's pdf, which MIS weighs on every side (the weights of
-// all strategies still sum to one).
+// all strategies still sum to one). Without RESAMPLE_LIGHTS one light is drawn from the table.
 bool sample_light(vec3 p, vec4 u, out LightSample ls) {
     ls.delta = false;
     ls.dist = T_INFINITY;
@@ -348,7 +352,7 @@ bool sample_light(vec3 p, vec4 u, out LightSample ls) {
     }
     float table = table_selection();
     float u_pick = table < 1.0 ? (u.x - p_environment - p_sun) / table : u.x;
-    if (count == 1u || LIGHT_CANDIDATES <= 1u) {
+    if (count == 1u || !RESAMPLE_LIGHTS || LIGHT_CANDIDATES <= 1u) {
         uint index = pick_light(min(u_pick, 0.99999994), count);
         bool ok = sample_table_light(p, index, b_light_table.e[index].pdf * table, u.yz, ls);
         ls.weight = ls.pdf > 0.0 ? 1.0 / ls.pdf : 0.0;

@@ -172,8 +172,9 @@ impl SceneHandles {
     }
 }
 
-/// The specialization constants that compile out what a scene lacks: its features, and the
-/// traversal's constants ([`traversal_specialization`]).
+/// The specialization constants that compile out what a scene lacks: its features, the
+/// traversal's constants ([`traversal_specialization`]), and `RESAMPLE_LIGHTS`, off where the
+/// lights are one flat emitter ([`GpuScene::lights_form_one_flat_emitter`]).
 pub fn specialization(gpu: &GpuScene) -> Specialization {
     let used = |name: &str| {
         gpu.features
@@ -202,6 +203,7 @@ pub fn specialization(gpu: &GpuScene) -> Specialization {
     .fold(traversal_specialization(gpu), |spec, name| {
         spec.set(name, used(name))
     })
+    .set("RESAMPLE_LIGHTS", !gpu.lights_form_one_flat_emitter())
 }
 
 /// The most instances rays walk one after the other instead of through the top level

@@ -347,6 +347,7 @@ impl Renderer {
                     .map_err(|e| EngineError::InvalidArgument(e.to_string()))?;
                 apply_flattening(&mut self.gpu, &self.flat, &self.scene, &self.bvh);
                 check_depths(&self.scene, &self.gpu)?;
+                self.spec = specialization(&self.gpu);
                 self.buffers.update_top_level(&self.ctx, &self.gpu)
             }
             None => {

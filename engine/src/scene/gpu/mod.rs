@@ -24,6 +24,7 @@
 pub mod bvh_pack;
 mod encode;
 mod flat;
+mod flat_emitter;
 mod geometry;
 mod layout;
 #[cfg(feature = "clap")]
