@@ -54,7 +54,7 @@ bool sample_emission(vec3 u, vec2 v, out EmitSample e) {
     if (selection <= 0.0) {
         return false;
     }
-    if (light.kind == LIGHT_TRIANGLE || light.kind == LIGHT_SPHERE) {
+    if (light.kind == LIGHT_TRIANGLE || (HAS_SPHERES && light.kind == LIGHT_SPHERE)) {
         float area;
         vec3 emission = light.emission.rgb;
         if (light.kind == LIGHT_TRIANGLE) {
@@ -117,13 +117,13 @@ float emission_nee_pdf(EmitSample e, vec3 receiver) {
     if (e.kind == LIGHT_TRIANGLE) {
         return table * emitter_selection(light.emission.rgb, light.p0.w) / light.p0.w;
     }
-    if (e.kind == LIGHT_SPHERE) {
+    if (HAS_SPHERES && e.kind == LIGHT_SPHERE) {
         vec3 d = receiver - e.p;
         float dist2 = dot(d, d);
         float cos_l = abs(dot(e.n, d)) * inversesqrt(dist2);
         return sphere_light_pdf(receiver, light.p0, light.emission.rgb) * cos_l / dist2;
     }
-    return table * b_light_table.e[e.index].pdf;
+    return HAS_DELTA_LIGHTS ? table * b_light_table.e[e.index].pdf : 0.0;
 }
 
 // Emission pdf (area x solid angle, for MIS) of an emitting surface point `s` towards a direction
@@ -152,12 +152,12 @@ bool light_sample_emission(vec3 p, LightSample ls, out float pdf_dir, out float 
         vec3 front = triangle_front_normal(light);
         cos_light = max(0.0, -dot(front, ls.wi));
         pdf_dir = emitter_selection(light.emission.rgb, light.p0.w) / light.p0.w * cos_light * INV_PI;
-    } else if (light.kind == LIGHT_SPHERE) {
+    } else if (HAS_SPHERES && light.kind == LIGHT_SPHERE) {
         vec3 n = normalize(p + ls.wi * ls.dist - light.p0.xyz);
         float area = sphere_area(light.p0.w);
         cos_light = max(0.0, -dot(n, ls.wi));
         pdf_dir = emitter_selection(light.emission.rgb, area) / area * cos_light * INV_PI;
-    } else {
+    } else if (HAS_DELTA_LIGHTS) {
         pdf_dir = delta_emit_pdf(index, light);
     }
     return true;

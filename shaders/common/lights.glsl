@@ -265,7 +265,7 @@ bool sample_table_light(vec3 p, uint index, float selection, vec2 u, out LightSa
         ls.pdf = selection * dist2 / (cos_l * area);
         return true;
     }
-    if (light.kind == LIGHT_SPHERE) {
+    if (HAS_SPHERES && light.kind == LIGHT_SPHERE) {
         vec3 c = light.p0.xyz;
         float r = light.p0.w;
         vec3 to_c = c - p;
