@@ -247,4 +247,18 @@ mod tests {
             assert_eq!(NAMES[slot], name);
         }
     }
+
+    #[test]
+    fn light_resampling_is_off_only_for_one_flat_emitter() {
+        use lucid_engine::scene::{builtin, Bvh};
+        let resample = |name: &str| {
+            let options = builtin::BuildOptions { detail: 0.01 };
+            let scene = builtin::build_with(name, &options).unwrap();
+            let gpu = GpuScene::new(&scene, &Bvh::build(&scene));
+            specialization(&gpu).get("RESAMPLE_LIGHTS")
+        };
+        assert_eq!(resample("cornell-box"), Some(false.into()));
+        assert_eq!(resample("caustics"), Some(false.into()));
+        assert_eq!(resample("classroom"), Some(true.into()));
+    }
 }
