@@ -139,18 +139,20 @@ void path_vertex_numbers(inout uint rng, out vec4 u_light, out vec3 u_bsdf) {
 // shader that defines neither has no trace_path.
 #ifdef PATH_KEEP_FIRST_ALBEDO
 
-// The radiance of the path starting with the camera ray (o, d), whose cone widens by `spread`
-// radians per unit distance (textures at the first hit are filtered for it); adds the rays it
-// traces to `rays`.
-vec3 trace_path(vec3 o, vec3 d, inout uint rng, uint max_depth, uint rr_depth, float spread, inout uint rays) {
+// The radiance the path brings from its segment `first_depth` on, whose next ray is (o, d) and
+// whose throughput and MIS state are beta, prev_pdf, prev_delta and prev_p (a camera ray's at
+// segment 0, whose cone widens by `spread` radians per unit distance: textures at the first hit are
+// filtered for it); adds the rays it traces to `rays`. Where the including shader defines
+// PATH_PARK (path_trace/long_paths.glsl), a path still alive after PARK_DEPTH segments is handed
+// to it and ends here.
+vec3 trace_path_from(uint first_depth, vec3 o, vec3 d, vec3 beta, float prev_pdf, bool prev_delta, vec3 prev_p,
+                     inout uint rng, uint max_depth, uint rr_depth, float spread, inout uint rays) {
     vec3 radiance = vec3(0.0);
-    PATH_KEEP_FIRST_ALBEDO(vec3(1.0));
-    PATH_KEEP_FIRST_EMISSION(vec3(0.0));
-    vec3 beta = vec3(1.0);
-    float prev_pdf = 0.0;
-    bool prev_delta = true;
-    vec3 prev_p = o;
-    for (uint depth = 0u; depth < max_depth; ++depth) {
+    if (first_depth == 0u) {
+        PATH_KEEP_FIRST_ALBEDO(vec3(1.0));
+        PATH_KEEP_FIRST_EMISSION(vec3(0.0));
+    }
+    for (uint depth = first_depth; depth < max_depth; ++depth) {
         Hit hit;
         rays += 1u;
         if (!trace_closest(o, d, T_INFINITY, hit)) {
@@ -222,8 +224,19 @@ vec3 trace_path(vec3 o, vec3 d, inout uint rng, uint max_depth, uint rr_depth, f
             }
             beta /= q;
         }
+#ifdef PATH_PARK
+        if (depth + 1u == PARK_DEPTH) {
+            PATH_PARK(o, d, beta, prev_pdf, prev_delta, prev_p, rng);
+            break;
+        }
+#endif
     }
     return radiance;
+}
+
+// The radiance of the path starting with the camera ray (o, d); see trace_path_from.
+vec3 trace_path(vec3 o, vec3 d, inout uint rng, uint max_depth, uint rr_depth, float spread, inout uint rays) {
+    return trace_path_from(0u, o, d, vec3(1.0), 0.0, true, o, rng, max_depth, rr_depth, spread, rays);
 }
 
 #endif

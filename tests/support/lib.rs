@@ -48,4 +48,5 @@ pub fn assert_no_validation_messages(ctx: &Context) {
 pub mod bdpt_stats;
 pub mod gltf;
 pub mod render;
+pub mod same_paths;
 pub mod svgf;

@@ -20,71 +20,17 @@
 //! independent seeds on `cornell-box` and `caustics`. Every one of them fails these tests.
 
 use lucid_engine::capture::ImageData;
-use lucid_engine::graph::RenderGraph;
 use lucid_engine::Context;
 use lucid_passes::renderer::{Algorithm, Denoiser, Renderer, SamplesPerPixel, Settings};
 use lucid_tests::bdpt_stats::Comparison;
 use lucid_tests::render::{frame_images, render_accumulated_on, scene};
+use lucid_tests::same_paths::{difference, one_frame};
 use lucid_tests::svgf::{
     light_switched_off, renderer as svgf_renderer, settings as svgf_settings, Method,
 };
 use std::time::Instant;
 
 const SIZE: u32 = 32;
-
-/// How two renders with the same random numbers differ.
-#[derive(Debug)]
-struct Difference {
-    /// Share of pixel channels whose relative difference is above 1e-3.
-    differing: f64,
-    /// The largest difference of the image's channel means relative to the channel's mean
-    /// magnitude (its mean absolute value: gradient images are signed and their means near 0).
-    mean: f64,
-}
-
-fn difference(a: &ImageData, b: &ImageData) -> Difference {
-    let mut differing = 0usize;
-    let mut sums = [[0.0f64; 3]; 2];
-    let mut magnitudes = [0.0f64; 3];
-    for (p, q) in a.pixels.iter().zip(&b.pixels) {
-        for c in 0..3 {
-            let (x, y) = (f64::from(p[c]), f64::from(q[c]));
-            if (x - y).abs() > 1e-3 * (x.abs() + y.abs()).max(1e-6) {
-                differing += 1;
-            }
-            sums[0][c] += x;
-            sums[1][c] += y;
-            magnitudes[c] += x.abs();
-        }
-    }
-    Difference {
-        differing: differing as f64 / (3 * a.pixels.len()) as f64,
-        mean: (0..3)
-            .map(|c| (sums[0][c] - sums[1][c]).abs() / magnitudes[c].max(1e-9))
-            .fold(0.0, f64::max),
-    }
-}
-
-/// One frame of `name` with `settings` (SVGF: the surface images are written) on `ctx`: its
-/// radiance and, with a denoiser, its demodulated radiance; and the rays traced.
-fn one_frame(ctx: &Context, name: &str, settings: Settings) -> (Vec<ImageData>, u32) {
-    let mut renderer = Renderer::new(ctx, scene(name), SIZE, SIZE, settings).expect("renderer");
-    let mut g = RenderGraph::new();
-    let (images, stats) = renderer.add_frame(&mut g);
-    let mut handles = vec![images.radiance];
-    handles.extend(images.demodulated);
-    let ids: Vec<_> = handles.into_iter().map(|h| g.readback(h)).collect();
-    let outputs = lucid_tests::run(renderer.executor_mut(), g);
-    let images = ids
-        .into_iter()
-        .map(|id| outputs.image(id).expect("read-back image"))
-        .collect();
-    let stats: &[u32] = bytemuck::cast_slice(outputs.bytes(stats).expect("stats"));
-    assert_eq!(stats[0], 0, "no non-finite samples");
-    drop(renderer);
-    lucid_tests::assert_no_validation_messages(ctx);
-    (images, stats[1])
-}
 
 /// The same seed: the image, demodulated image (with SVGF) and ray count of both wavefronts (with
 /// and without material bins) are the megakernel's but for a few paths.
@@ -103,12 +49,12 @@ fn same_image_with(ctx: &Context, name: &str, denoiser: Denoiser, max_depth: u32
         seed: 7,
         ..Settings::default()
     };
-    let (mega, mega_rays) = one_frame(ctx, name, settings(Algorithm::PathTracing));
+    let (mega, mega_rays) = one_frame(ctx, name, SIZE, settings(Algorithm::PathTracing));
     for algorithm in [
         Algorithm::PathTracingWavefront,
         Algorithm::PathTracingWavefrontBinned,
     ] {
-        let (wave, wave_rays) = one_frame(ctx, name, settings(algorithm));
+        let (wave, wave_rays) = one_frame(ctx, name, SIZE, settings(algorithm));
         let algo = algorithm.short_name();
         for (which, (a, b)) in ["radiance", "demodulated"]
             .iter()

@@ -626,7 +626,14 @@ impl Renderer {
         });
         match self.settings.algorithm {
             Algorithm::PathTracing => {
-                path_trace::add_path_trace(g, scene, frame, &self.spec, replay.as_ref(), sampling)
+                let config = path_trace::Config {
+                    park_depth: self
+                        .settings
+                        .park_long_paths
+                        .then_some(self.settings.rr_depth),
+                };
+                let inputs = (scene, frame, &self.spec);
+                path_trace::add_path_trace(g, inputs, replay.as_ref(), sampling, &config)
             }
             Algorithm::PathTracingWavefront | Algorithm::PathTracingWavefrontBinned => {
                 let config = wavefront::Config {

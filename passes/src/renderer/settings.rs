@@ -217,6 +217,11 @@ pub struct Settings {
     pub max_depth: u32,
     /// Depth from which Russian roulette may end paths.
     pub rr_depth: u32,
+    /// Path tracing with one sample a pixel and no denoiser: the paths still alive after
+    /// `rr_depth` segments are continued by a second kernel over a compacted list rather than
+    /// holding the path tracer's subgroups (`lucid_passes::light_transport::path_trace::Config`);
+    /// the same paths and random numbers either way.
+    pub park_long_paths: bool,
     /// Seed of the per-pixel random numbers.
     pub seed: u32,
     /// Average frames while camera and scene are still.
@@ -240,6 +245,7 @@ impl Default for Settings {
             samples_per_pixel: SamplesPerPixel::ONE,
             max_depth: 8,
             rr_depth: 5,
+            park_long_paths: true,
             seed: 0,
             accumulate: true,
             display: PngEncoding {

@@ -2,13 +2,18 @@
 //! N samples per pixel (`shaders/path_trace/path_trace.comp`, `path_trace_surfaces.comp` where the
 //! denoiser's images are written, `shaders/common/path.glsl`); replays
 //! last frame's paths where asked ([`Replay`]); one dispatch per batch of samples
-//! ([`sample_batches`]).
+//! ([`sample_batches`]). With one sample a pixel and no denoiser's images, the paths Russian
+//! roulette keeps past its first segments are parked and continued over a compacted list
+//! ([`long_paths`], [`Config::park_depth`]).
+
+mod long_paths;
 
 use crate::light_transport::{
     sample_batches, Frame, Images, Outputs, Replay, ReplayParams, SampleBatch,
 };
 use crate::plumbing::placeholder::add_zero_image;
 use crate::plumbing::scene_buffers::SceneHandles;
+use crate::samples_per_pixel::SamplesPerPixel;
 use crate::shaders::path_trace::{PATH_TRACE, PATH_TRACE_SURFACES};
 use lucid_engine::graph::{BufferHandle, RenderGraph};
 use lucid_engine::memory::ImageDesc;
@@ -22,19 +27,32 @@ struct Push {
     batch: SampleBatch,
 }
 
+/// How the path tracer runs.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct Config {
+    /// With one sample a pixel and no denoiser's images, paths still alive after this many
+    /// segments are parked and continued by a second kernel over a compacted list
+    /// ([`long_paths`]); `None`, or otherwise, one kernel traces every path to its end.
+    pub park_depth: Option<u32>,
+}
+
 /// Adds the path tracer at `sampling`'s size and samples per pixel, reading the scene and the
 /// frame constants; the pixels `replay` picks replay last frame's paths (without it the pass does
 /// not depend on the G-buffer); the denoiser's images are written when `sampling.surface`.
 pub fn add_path_trace(
     g: &mut RenderGraph,
-    scene: &SceneHandles,
-    frame: BufferHandle,
-    spec: &Specialization,
+    (scene, frame, spec): (&SceneHandles, BufferHandle, &Specialization),
     replay: Option<&Replay>,
     sampling: Frame,
+    config: &Config,
 ) -> Outputs {
     let (width, height, surface) = (sampling.width, sampling.height, sampling.surface);
     let stats = crate::plumbing::stats::add_counter(g, "path_trace.stats");
+    let park_depth = match config.park_depth {
+        Some(depth) if sampling.samples_per_pixel == SamplesPerPixel::ONE && !surface => depth,
+        _ => 0,
+    };
+    let parking = long_paths::Parking::clear(g, park_depth, width * height);
     let motion = match replay {
         Some(r) => r.motion,
         // Bound, never read: nothing is replayed, and the pass does not wait for the G-buffer.
@@ -57,10 +75,26 @@ pub fn add_path_trace(
         "path_trace.rng_state",
         u64::from(width * height) * 4,
     );
+    let parked = long_paths::bind(&mut pass, parking);
     let pushes = sample_batches(sampling.samples_per_pixel)
         .into_iter()
         .map(|batch| Push { replay, batch })
         .collect();
     pass.dispatch_each([width, height, 1], pushes);
+    let mut images = images;
+    let stats = match parked {
+        Some(parked) => {
+            let (radiance, stats) = long_paths::add_continuation(
+                g,
+                (scene, frame, spec),
+                parked,
+                images.radiance,
+                stats,
+            );
+            images.radiance = radiance;
+            stats
+        }
+        None => stats,
+    };
     images.with_stats(stats)
 }

@@ -1,0 +1,111 @@
+//! Long paths (`shaders/path_trace/long_paths.glsl`): with one sample a pixel, the path tracer
+//! parks every path still alive after the Russian roulette's first segments, and two passes
+//! continue them over a compacted list: `path_trace.long_list` lists the pixels that parked one,
+//! `path_trace.long` traces them on, one invocation each, and adds what they bring to the pixels'
+//! radiance. A subgroup of the path tracer then waits for its longest path up to that depth only,
+//! not for the few paths the roulette keeps to the maximum depth (bench/README.md: 10% off the
+//! Cornell box's image on an H200, 5% off `classroom`'s). The same paths and random numbers as one
+//! kernel: only the order in which a path's contributions are summed changes.
+
+use crate::plumbing::scene_buffers::SceneHandles;
+use crate::plumbing::stats::add_zeroed;
+use crate::shaders::path_trace::{LONG_PATHS, LONG_PATHS_LIST};
+use lucid_engine::graph::{BufferHandle, ComputePass, ImageHandle, RenderGraph};
+use lucid_engine::shader::Specialization;
+
+/// Bytes of a parked path (`ParkedPath`).
+const PARKED_PATH_BYTES: u64 = 64;
+
+/// The zeroed buffers of one frame's parking, made before the path tracer's pass.
+pub struct Parking {
+    depth: u32,
+    pixels: u32,
+    flags: BufferHandle,
+    count: BufferHandle,
+    args: BufferHandle,
+}
+
+/// What the path tracer's pass parked, for [`add_continuation`].
+pub struct Parked {
+    parking: Parking,
+    records: BufferHandle,
+    flags: BufferHandle,
+}
+
+impl Parking {
+    /// The parking of paths alive after `depth` segments over `pixels` pixels, its flags, list
+    /// length and indirect arguments cleared; `None` when `depth` is 0 (off).
+    pub fn clear(g: &mut RenderGraph, depth: u32, pixels: u32) -> Option<Self> {
+        (depth > 0).then(|| Self {
+            depth,
+            pixels,
+            flags: add_zeroed(g, "path_trace.parked_flags", u64::from(pixels) * 4),
+            count: add_zeroed(g, "path_trace.parked_count", 16),
+            args: add_zeroed(g, "path_trace.parked_args", 16),
+        })
+    }
+}
+
+/// Binds the parking buffers to the path tracer's `pass` and sets `PARK_DEPTH` (placeholders and
+/// 0 without `parking`, since the shader declares them either way).
+pub fn bind(pass: &mut ComputePass<'_>, parking: Option<Parking>) -> Option<Parked> {
+    match parking {
+        Some(parking) => {
+            let bytes = u64::from(parking.pixels) * PARKED_PATH_BYTES;
+            let records = pass.create_buffer("b_parked", "path_trace.parked", bytes);
+            let flags = pass.read_write("b_parked_flags", parking.flags);
+            pass.specialize("PARK_DEPTH", parking.depth);
+            Some(Parked {
+                parking,
+                records,
+                flags,
+            })
+        }
+        None => {
+            pass.create_buffer("b_parked", "path_trace.parked", PARKED_PATH_BYTES);
+            pass.create_buffer("b_parked_flags", "path_trace.parked_flags", 16);
+            pass.specialize("PARK_DEPTH", 0u32);
+            None
+        }
+    }
+}
+
+/// Adds the passes that list the parked paths and continue them, adding to `radiance` and counting
+/// in `stats`; returns both written.
+pub fn add_continuation(
+    g: &mut RenderGraph,
+    (scene, frame, spec): (&SceneHandles, BufferHandle, &Specialization),
+    parked: Parked,
+    radiance: ImageHandle,
+    stats: BufferHandle,
+) -> (ImageHandle, BufferHandle) {
+    let Parked {
+        parking,
+        records,
+        flags,
+    } = parked;
+    let mut list = g.compute_pass("path_trace.long_list", &LONG_PATHS_LIST);
+    list.read("b_parked_flags", flags);
+    let pixels = list.create_buffer(
+        "b_parked_list",
+        "path_trace.parked_list",
+        u64::from(parking.pixels) * 4,
+    );
+    let count = list.read_write("b_parked_count", parking.count);
+    let args = list.read_write("b_parked_args", parking.args);
+    list.push(&parking.pixels);
+    list.dispatch([parking.pixels, 1, 1]);
+
+    let mut pass = g.compute_pass("path_trace.long", &LONG_PATHS);
+    scene.read(&mut pass);
+    pass.specialization(spec)
+        .specialize("PARK_DEPTH", parking.depth)
+        .read("b_frame", frame)
+        .read("b_parked", records)
+        .read("b_parked_list", pixels)
+        .read("b_parked_count", count);
+    let stats = pass.read_write("b_stats", stats);
+    let radiance = pass.read_write("u_radiance", radiance);
+    pass.dispatch_indirect(args, 0);
+    (radiance, stats)
+}
