@@ -1,5 +1,5 @@
 //! Long paths parked and continued over a compacted list (`Settings::park_long_paths`, one sample
-//! a pixel without the denoiser's images) compute the one kernel's image.
+//! a pixel) compute the one kernel's image, and with SVGF its demodulated image.
 //!
 //! The parked paths keep their random numbers, so with the same seed both give the same image but
 //! for the order in which a path's contributions are summed: measured on lavapipe, 48x48 at one
@@ -22,51 +22,70 @@ fn settings(park_long_paths: bool) -> Settings {
     }
 }
 
-fn parked_paths_same_image(name: &str) {
+fn parked_paths_same_image(name: &str, denoiser: Denoiser) {
     let ctx = lucid_tests::context(false);
-    let (one, one_rays) = one_frame(&ctx, name, SIZE, settings(false));
-    let (parked, parked_rays) = one_frame(&ctx, name, SIZE, settings(true));
-    let d = difference(&one[0], &parked[0]);
-    eprintln!("{name}: {d:?}, rays {one_rays} and {parked_rays}");
+    let with = |park| Settings {
+        denoiser,
+        ..settings(park)
+    };
+    let (one, one_rays) = one_frame(&ctx, name, SIZE, with(false));
+    let (parked, parked_rays) = one_frame(&ctx, name, SIZE, with(true));
     assert_eq!(one_rays, parked_rays, "{name}: the same rays");
-    assert!(
-        d.differing < 1e-3 && d.mean < 1e-5,
-        "{name}: not the one kernel's image: {d:?}"
-    );
+    assert_eq!(one.len(), parked.len());
+    for (which, (a, b)) in ["radiance", "demodulated"]
+        .iter()
+        .zip(one.iter().zip(&parked))
+    {
+        let d = difference(a, b);
+        eprintln!("{name} {which} ({denoiser:?}): {d:?}, rays {one_rays} and {parked_rays}");
+        assert!(
+            d.differing < 1e-3 && d.mean < 1e-5,
+            "{name} {which}: not the one kernel's image: {d:?}"
+        );
+    }
 }
 
 #[test]
 fn cornell_box_parked_paths_same_image() {
-    parked_paths_same_image("cornell-box");
+    parked_paths_same_image("cornell-box", Denoiser::None);
+}
+
+#[test]
+fn cornell_box_parked_paths_same_surface_images() {
+    parked_paths_same_image("cornell-box", Denoiser::Svgf);
 }
 
 #[test]
 fn caustics_parked_paths_same_image() {
-    parked_paths_same_image("caustics");
+    parked_paths_same_image("caustics", Denoiser::None);
 }
 
 #[test]
 fn blinds_room_parked_paths_same_image() {
-    parked_paths_same_image("blinds-room");
+    parked_paths_same_image("blinds-room", Denoiser::None);
 }
 
-/// The frame parks long paths only where it can: one sample a pixel, no denoiser's images, and
-/// the setting on.
+/// The frame parks long paths only where it can: one sample a pixel, at most 1920x1080 pixels (128
+/// MiB of records) and the setting on.
 #[test]
-fn parking_runs_only_with_one_sample_and_no_denoiser() {
+fn parking_runs_only_with_one_sample_a_pixel() {
     let ctx = lucid_tests::context(false);
-    let runs = |settings: Settings| {
-        let mut renderer = Renderer::new(&ctx, scene("cornell-box"), 16, 16, settings).unwrap();
+    let runs_at = |(width, height), settings: Settings| {
+        let mut renderer =
+            Renderer::new(&ctx, scene("cornell-box"), width, height, settings).unwrap();
         let plan = renderer.frame_plan().unwrap();
         plan.passes.iter().any(|p| p.name == "path_trace.long")
     };
+    let runs = |settings| runs_at((16, 16), settings);
     assert!(runs(settings(true)));
+    assert!(runs_at((1920, 1080), settings(true)));
+    assert!(!runs_at((1920, 1200), settings(true)));
     assert!(!runs(settings(false)));
     assert!(!runs(Settings {
         samples_per_pixel: SamplesPerPixel::new(2).unwrap(),
         ..settings(true)
     }));
-    assert!(!runs(Settings {
+    assert!(runs(Settings {
         denoiser: Denoiser::Svgf,
         ..settings(true)
     }));

@@ -217,7 +217,7 @@ pub struct Settings {
     pub max_depth: u32,
     /// Depth from which Russian roulette may end paths.
     pub rr_depth: u32,
-    /// Path tracing with one sample a pixel and no denoiser: the paths still alive after
+    /// Path tracing with one sample a pixel, up to 1920x1080 pixels: the paths still alive after
     /// `rr_depth` segments are continued by a second kernel over a compacted list rather than
     /// holding the path tracer's subgroups (`lucid_passes::light_transport::path_trace::Config`);
     /// the same paths and random numbers either way.

@@ -7,14 +7,24 @@
 //! Cornell box's image on an H200, 5% off `classroom`'s). The same paths and random numbers as one
 //! kernel: only the order in which a path's contributions are summed changes.
 
+use crate::light_transport::Images;
 use crate::plumbing::scene_buffers::SceneHandles;
 use crate::plumbing::stats::add_zeroed;
 use crate::shaders::path_trace::{LONG_PATHS, LONG_PATHS_LIST};
-use lucid_engine::graph::{BufferHandle, ComputePass, ImageHandle, RenderGraph};
+use lucid_engine::graph::{BufferHandle, ComputePass, RenderGraph};
 use lucid_engine::shader::Specialization;
 
 /// Bytes of a parked path (`ParkedPath`).
 const PARKED_PATH_BYTES: u64 = 64;
+
+/// The most bytes of parked paths: the storage-buffer range every Vulkan device supports (128 MiB,
+/// a 1920x1080 frame's records). Larger frames trace every path in one kernel.
+const MAX_PARKED_BYTES: u64 = 128 << 20;
+
+/// Whether a frame of `pixels` can park its paths (one record a pixel within [`MAX_PARKED_BYTES`]).
+pub fn fits(pixels: u32) -> bool {
+    u64::from(pixels) * PARKED_PATH_BYTES <= MAX_PARKED_BYTES
+}
 
 /// The zeroed buffers of one frame's parking, made before the path tracer's pass.
 pub struct Parking {
@@ -70,15 +80,16 @@ pub fn bind(pass: &mut ComputePass<'_>, parking: Option<Parking>) -> Option<Park
     }
 }
 
-/// Adds the passes that list the parked paths and continue them, adding to `radiance` and counting
-/// in `stats`; returns both written.
+/// Adds the passes that list the parked paths and continue them, adding to `images`' radiance
+/// (and demodulated radiance where the denoiser's images are written) and counting in `stats`;
+/// returns both written.
 pub fn add_continuation(
     g: &mut RenderGraph,
     (scene, frame, spec): (&SceneHandles, BufferHandle, &Specialization),
     parked: Parked,
-    radiance: ImageHandle,
+    mut images: Images,
     stats: BufferHandle,
-) -> (ImageHandle, BufferHandle) {
+) -> (Images, BufferHandle) {
     let Parked {
         parking,
         records,
@@ -105,7 +116,11 @@ pub fn add_continuation(
         .read("b_parked_list", pixels)
         .read("b_parked_count", count);
     let stats = pass.read_write("b_stats", stats);
-    let radiance = pass.read_write("u_radiance", radiance);
+    pass.specialize("SURFACE_OUTPUTS", images.surface_written)
+        .read("u_albedo", images.surface.albedo)
+        .read("u_emission", images.surface.emission);
+    images.radiance = pass.read_write("u_radiance", images.radiance);
+    images.surface.demodulated = pass.read_write("u_demodulated", images.surface.demodulated);
     pass.dispatch_indirect(args, 0);
-    (radiance, stats)
+    (images, stats)
 }

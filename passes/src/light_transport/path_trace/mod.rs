@@ -2,9 +2,9 @@
 //! N samples per pixel (`shaders/path_trace/path_trace.comp`, `path_trace_surfaces.comp` where the
 //! denoiser's images are written, `shaders/common/path.glsl`); replays
 //! last frame's paths where asked ([`Replay`]); one dispatch per batch of samples
-//! ([`sample_batches`]). With one sample a pixel and no denoiser's images, the paths Russian
-//! roulette keeps past its first segments are parked and continued over a compacted list
-//! ([`long_paths`], [`Config::park_depth`]).
+//! ([`sample_batches`]). With one sample a pixel, the paths Russian roulette keeps past its first
+//! segments are parked and continued over a compacted list ([`long_paths`],
+//! [`Config::park_depth`]).
 
 mod long_paths;
 
@@ -30,9 +30,10 @@ struct Push {
 /// How the path tracer runs.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct Config {
-    /// With one sample a pixel and no denoiser's images, paths still alive after this many
-    /// segments are parked and continued by a second kernel over a compacted list
-    /// ([`long_paths`]); `None`, or otherwise, one kernel traces every path to its end.
+    /// With one sample a pixel, paths still alive after this many segments are parked and
+    /// continued by a second kernel over a compacted list ([`long_paths`]); `None`, or with more
+    /// samples a pixel or more pixels than 1920x1080 (128 MiB of parked paths), one kernel traces
+    /// every path to its end.
     pub park_depth: Option<u32>,
 }
 
@@ -49,7 +50,12 @@ pub fn add_path_trace(
     let (width, height, surface) = (sampling.width, sampling.height, sampling.surface);
     let stats = crate::plumbing::stats::add_counter(g, "path_trace.stats");
     let park_depth = match config.park_depth {
-        Some(depth) if sampling.samples_per_pixel == SamplesPerPixel::ONE && !surface => depth,
+        Some(depth)
+            if sampling.samples_per_pixel == SamplesPerPixel::ONE
+                && long_paths::fits(width * height) =>
+        {
+            depth
+        }
         _ => 0,
     };
     let parking = long_paths::Parking::clear(g, park_depth, width * height);
@@ -81,20 +87,11 @@ pub fn add_path_trace(
         .map(|batch| Push { replay, batch })
         .collect();
     pass.dispatch_each([width, height, 1], pushes);
-    let mut images = images;
-    let stats = match parked {
+    let (images, stats) = match parked {
         Some(parked) => {
-            let (radiance, stats) = long_paths::add_continuation(
-                g,
-                (scene, frame, spec),
-                parked,
-                images.radiance,
-                stats,
-            );
-            images.radiance = radiance;
-            stats
+            long_paths::add_continuation(g, (scene, frame, spec), parked, images, stats)
         }
-        None => stats,
+        None => (images, stats),
     };
     images.with_stats(stats)
 }
