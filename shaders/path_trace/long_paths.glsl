@@ -3,7 +3,9 @@
 // flag in b_parked_flags is set. long_paths_list.comp then lists the flagged pixels and
 // long_paths.comp continues their paths, one invocation each, over that compacted list, so that
 // the few paths the roulette keeps no longer hold whole subgroups of the path tracer
-// (bench/README.md). One sample a pixel: a pixel parks at most one path a frame. 0: off.
+// (bench/README.md). One sample a pixel: a pixel parks at most one path a frame. 0: off. Each
+// part's non-finite radiance is dropped and counted on its own: where the first part was dropped,
+// the pixel keeps what the continuation adds (one kernel drops the whole path).
 #ifndef LUCID_LONG_PATHS_GLSL
 #define LUCID_LONG_PATHS_GLSL
 
