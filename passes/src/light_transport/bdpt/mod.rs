@@ -26,7 +26,7 @@ pub use params::{Params, LIGHT_VERTEX_BYTES};
 use crate::light_transport::{sample_batches, Frame, Images, Outputs};
 use crate::plumbing::scene_buffers::SceneHandles;
 use crate::shaders::bdpt::{CAMERA, LIGHT};
-use lucid_engine::graph::{Access, BufferHandle, PassContext, RenderGraph};
+use lucid_engine::graph::{BufferHandle, PassContext, RenderGraph};
 use lucid_engine::shader::{SpecValue, Specialization};
 use lucid_engine::EngineError;
 
@@ -86,7 +86,11 @@ pub fn add_bdpt(
         .clone()
         .set("MIS_POWER", config.heuristic == MisHeuristic::Power);
     let stats = crate::plumbing::stats::add_counter(g, "bdpt.stats");
-    let splat = add_splat_clear(g, u64::from(width * height) * SPLAT_BYTES_PER_PIXEL);
+    let splat = crate::plumbing::stats::add_zeroed(
+        g,
+        "bdpt.splat",
+        u64::from(width * height) * SPLAT_BYTES_PER_PIXEL,
+    );
 
     let mut pass = g.compute_pass("bdpt.light", &LIGHT);
     scene.read(&mut pass);
@@ -150,12 +154,3 @@ fn require_int64_atomics(ctx: &PassContext<'_>) -> lucid_engine::Result<()> {
 /// Bytes of the light-tracing splats per pixel: RGB in 64-bit fixed point (`splat_fixed` in
 /// `shaders/bdpt/bdpt.glsl`).
 const SPLAT_BYTES_PER_PIXEL: u64 = 3 * 8;
-
-/// Adds a pass creating the zeroed light-tracing splat buffer.
-fn add_splat_clear(g: &mut RenderGraph, bytes: u64) -> BufferHandle {
-    let mut p = g.add_pass("bdpt.splat.clear");
-    let splat = p.create_buffer("bdpt.splat", bytes);
-    let splat = p.write(splat, Access::TransferWrite);
-    p.execute(move |ctx| ctx.fill_buffer(splat, 0));
-    splat
-}

@@ -7,9 +7,10 @@
 //! Cornell box's image on an H200, 5% off `classroom`'s). The same paths and random numbers as one
 //! kernel: only the order in which a path's contributions are summed changes.
 
-use crate::light_transport::Images;
+use crate::light_transport::{Frame, Images};
 use crate::plumbing::scene_buffers::SceneHandles;
 use crate::plumbing::stats::add_zeroed;
+use crate::samples_per_pixel::SamplesPerPixel;
 use crate::shaders::path_trace::{LONG_PATHS, LONG_PATHS_LIST};
 use lucid_engine::graph::{BufferHandle, ComputePass, RenderGraph};
 use lucid_engine::shader::Specialization;
@@ -20,11 +21,6 @@ const PARKED_PATH_BYTES: u64 = 64;
 /// The most bytes of parked paths: the storage-buffer range every Vulkan device supports (128 MiB,
 /// a 1920x1080 frame's records). Larger frames trace every path in one kernel.
 const MAX_PARKED_BYTES: u64 = 128 << 20;
-
-/// Whether a frame of `pixels` can park its paths (one record a pixel within [`MAX_PARKED_BYTES`]).
-pub fn fits(pixels: u32) -> bool {
-    u64::from(pixels) * PARKED_PATH_BYTES <= MAX_PARKED_BYTES
-}
 
 /// The zeroed buffers of one frame's parking, made before the path tracer's pass.
 pub struct Parking {
@@ -43,10 +39,15 @@ pub struct Parked {
 }
 
 impl Parking {
-    /// The parking of paths alive after `depth` segments over `pixels` pixels, its flags, list
-    /// length and indirect arguments cleared; `None` when `depth` is 0 (off).
-    pub fn clear(g: &mut RenderGraph, depth: u32, pixels: u32) -> Option<Self> {
-        (depth > 0).then(|| Self {
+    /// The parking of the frame `sampling` describes, after `depth` segments, its flags, list
+    /// length and indirect arguments cleared; `None` without a depth, with more than one sample a
+    /// pixel, or when one record a pixel would pass [`MAX_PARKED_BYTES`].
+    pub fn clear(g: &mut RenderGraph, depth: Option<u32>, sampling: &Frame) -> Option<Self> {
+        let pixels = sampling.width * sampling.height;
+        let fits = u64::from(pixels) * PARKED_PATH_BYTES <= MAX_PARKED_BYTES;
+        let depth = depth
+            .filter(|&d| d > 0 && fits && sampling.samples_per_pixel == SamplesPerPixel::ONE)?;
+        Some(Self {
             depth,
             pixels,
             flags: add_zeroed(g, "path_trace.parked_flags", u64::from(pixels) * 4),

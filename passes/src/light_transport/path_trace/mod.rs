@@ -13,7 +13,6 @@ use crate::light_transport::{
 };
 use crate::plumbing::placeholder::add_zero_image;
 use crate::plumbing::scene_buffers::SceneHandles;
-use crate::samples_per_pixel::SamplesPerPixel;
 use crate::shaders::path_trace::{PATH_TRACE, PATH_TRACE_SURFACES};
 use lucid_engine::graph::{BufferHandle, RenderGraph};
 use lucid_engine::memory::ImageDesc;
@@ -49,16 +48,7 @@ pub fn add_path_trace(
 ) -> Outputs {
     let (width, height, surface) = (sampling.width, sampling.height, sampling.surface);
     let stats = crate::plumbing::stats::add_counter(g, "path_trace.stats");
-    let park_depth = match config.park_depth {
-        Some(depth)
-            if sampling.samples_per_pixel == SamplesPerPixel::ONE
-                && long_paths::fits(width * height) =>
-        {
-            depth
-        }
-        _ => 0,
-    };
-    let parking = long_paths::Parking::clear(g, park_depth, width * height);
+    let parking = long_paths::Parking::clear(g, config.park_depth, &sampling);
     let motion = match replay {
         Some(r) => r.motion,
         // Bound, never read: nothing is replayed, and the pass does not wait for the G-buffer.
