@@ -25,6 +25,7 @@
 
 layout(local_size_x = 8, local_size_y = 8) in;
 
+#include "parking/parking.glsl"
 #include "path_trace/long_paths.glsl"
 #include "common/path.glsl"
 #include "common/replay.glsl"

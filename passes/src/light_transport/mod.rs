@@ -12,6 +12,7 @@
 pub mod bdpt;
 mod frame;
 mod outputs;
+mod parking;
 pub mod path_trace;
 mod sample_batches;
 pub mod wavefront;

@@ -627,10 +627,7 @@ impl Renderer {
         match self.settings.algorithm {
             Algorithm::PathTracing => {
                 let config = path_trace::Config {
-                    park_depth: self
-                        .settings
-                        .park_long_paths
-                        .then_some(self.settings.rr_depth),
+                    park_depth: self.park_depth(),
                 };
                 let inputs = (scene, frame, &self.spec);
                 path_trace::add_path_trace(g, inputs, replay.as_ref(), sampling, &config)
@@ -649,9 +646,20 @@ impl Renderer {
                 frame,
                 &self.spec,
                 sampling,
-                &bdpt::Config::default(),
+                &bdpt::Config {
+                    park_depth: self.park_depth(),
+                    ..bdpt::Config::default()
+                },
             ),
         }
+    }
+
+    /// After how many segments the path tracers park their long paths: Russian roulette's start,
+    /// when the settings ask for parking.
+    fn park_depth(&self) -> Option<u32> {
+        self.settings
+            .park_long_paths
+            .then_some(self.settings.rr_depth)
     }
 
     /// The compiled plan of the next frame (passes, barriers, lifetimes, aliasing), without rendering

@@ -217,10 +217,11 @@ pub struct Settings {
     pub max_depth: u32,
     /// Depth from which Russian roulette may end paths.
     pub rr_depth: u32,
-    /// Path tracing with one sample a pixel, up to 1920x1080 pixels: the paths still alive after
-    /// `rr_depth` segments are continued by a second kernel over a compacted list rather than
-    /// holding the path tracer's subgroups (`lucid_passes::light_transport::path_trace::Config`);
-    /// the same paths and random numbers either way.
+    /// Path tracing and BDPT's camera subpaths with one sample a pixel, up to 1920x1080 pixels:
+    /// the paths still alive after `rr_depth` segments are continued by a second kernel over a
+    /// compacted list rather than holding the first kernel's subgroups
+    /// (`lucid_passes::light_transport::path_trace::Config`, `bdpt::Config`); the same paths and
+    /// random numbers either way.
     pub park_long_paths: bool,
     /// Seed of the per-pixel random numbers.
     pub seed: u32,

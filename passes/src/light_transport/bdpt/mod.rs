@@ -10,7 +10,9 @@
 //!   estimation and connections to cached light vertices (a light subpath drawn uniformly, then
 //!   one of its vertices), all combined with SmallVCM's recursive MIS weights; adds the splats and
 //!   writes the frame's radiance; one dispatch per batch of camera samples
-//!   ([`crate::light_transport::sample_batches`]).
+//!   ([`crate::light_transport::sample_batches`]). With one sample a pixel, the camera subpaths
+//!   Russian roulette keeps past their first segments are parked and continued over a compacted
+//!   list (`shaders/bdpt/camera_long.comp`, [`Config::park_depth`]), as the path tracer's.
 //!
 //! Neither the cache's layout nor the splat sums depend on thread timing, so a frame repeats bit
 //! for bit, as the path tracer's does.
@@ -23,10 +25,10 @@ mod params;
 
 pub use params::{Params, LIGHT_VERTEX_BYTES};
 
-use crate::light_transport::{sample_batches, Frame, Images, Outputs};
+use crate::light_transport::{parking, sample_batches, Frame, Images, Outputs};
 use crate::plumbing::scene_buffers::SceneHandles;
-use crate::shaders::bdpt::{CAMERA, LIGHT};
-use lucid_engine::graph::{BufferHandle, PassContext, RenderGraph};
+use crate::shaders::bdpt::{CAMERA, CAMERA_LONG, LIGHT};
+use lucid_engine::graph::{BufferHandle, ComputePass, PassContext, RenderGraph};
 use lucid_engine::shader::{SpecValue, Specialization};
 use lucid_engine::EngineError;
 
@@ -52,6 +54,11 @@ pub struct Config {
     /// Most bytes the light vertex cache may take; 128 MiB is the storage-buffer range every
     /// Vulkan device supports.
     pub cache_bytes: u64,
+    /// With one sample a pixel, camera subpaths still alive after this many segments are parked
+    /// and continued by a second kernel over a compacted list; `None`, or with more samples a
+    /// pixel or more pixels than 1920x1080 (128 MiB of parked subpaths), one kernel traces every
+    /// camera subpath to its end.
+    pub park_depth: Option<u32>,
 }
 
 impl Default for Config {
@@ -61,6 +68,7 @@ impl Default for Config {
             connections: 1,
             heuristic: MisHeuristic::Power,
             cache_bytes: 128 << 20,
+            park_depth: None,
         }
     }
 }
@@ -114,6 +122,7 @@ pub fn add_bdpt(
         .require(require_int64_atomics);
     pass.dispatch(params.light_threads());
 
+    let parking = parking::Parking::clear(g, "bdpt.camera", config.park_depth, &frame);
     let mut pass = g.compute_pass("bdpt.camera", &CAMERA);
     scene.read(&mut pass);
     pass.read("b_frame", frame_constants)
@@ -129,11 +138,27 @@ pub fn add_bdpt(
         u64::from(width * height) * 4,
     );
     pass.specialization(&spec);
+    let parked = parking::bind(&mut pass, "bdpt.camera", parking);
     let pushes = sample_batches(frame.samples_per_pixel)
         .into_iter()
         .map(|batch| Params { batch, ..params })
         .collect();
     pass.dispatch_each([width, height, 1], pushes);
+    let (images, stats) = match parked {
+        Some(parked) => {
+            let inputs = |pass: &mut ComputePass<'_>| {
+                scene.read(pass);
+                pass.specialization(&spec)
+                    .read("b_frame", frame_constants)
+                    .read("b_lvc", cache)
+                    .read("b_lvc_lengths", lengths)
+                    .read("b_lvc_colors", colors)
+                    .push(&params);
+            };
+            parking::add_continuation(g, &CAMERA_LONG, inputs, parked, (images, stats))
+        }
+        None => (images, stats),
+    };
     images.with_stats(stats)
 }
 

@@ -3,18 +3,16 @@
 //! denoiser's images are written, `shaders/common/path.glsl`); replays
 //! last frame's paths where asked ([`Replay`]); one dispatch per batch of samples
 //! ([`sample_batches`]). With one sample a pixel, the paths Russian roulette keeps past its first
-//! segments are parked and continued over a compacted list ([`long_paths`],
-//! [`Config::park_depth`]).
-
-mod long_paths;
+//! segments are parked and continued over a compacted list ([`parking`],
+//! [`Config::park_depth`]; `shaders/path_trace/long_paths.comp`).
 
 use crate::light_transport::{
-    sample_batches, Frame, Images, Outputs, Replay, ReplayParams, SampleBatch,
+    parking, sample_batches, Frame, Images, Outputs, Replay, ReplayParams, SampleBatch,
 };
 use crate::plumbing::placeholder::add_zero_image;
 use crate::plumbing::scene_buffers::SceneHandles;
-use crate::shaders::path_trace::{PATH_TRACE, PATH_TRACE_SURFACES};
-use lucid_engine::graph::{BufferHandle, RenderGraph};
+use crate::shaders::path_trace::{LONG_PATHS, PATH_TRACE, PATH_TRACE_SURFACES};
+use lucid_engine::graph::{BufferHandle, ComputePass, RenderGraph};
 use lucid_engine::memory::ImageDesc;
 use lucid_engine::shader::Specialization;
 
@@ -30,7 +28,7 @@ struct Push {
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct Config {
     /// With one sample a pixel, paths still alive after this many segments are parked and
-    /// continued by a second kernel over a compacted list ([`long_paths`]); `None`, or with more
+    /// continued by a second kernel over a compacted list ([`parking`]); `None`, or with more
     /// samples a pixel or more pixels than 1920x1080 (128 MiB of parked paths), one kernel traces
     /// every path to its end.
     pub park_depth: Option<u32>,
@@ -48,7 +46,7 @@ pub fn add_path_trace(
 ) -> Outputs {
     let (width, height, surface) = (sampling.width, sampling.height, sampling.surface);
     let stats = crate::plumbing::stats::add_counter(g, "path_trace.stats");
-    let parking = long_paths::Parking::clear(g, config.park_depth, &sampling);
+    let parking = parking::Parking::clear(g, "path_trace", config.park_depth, &sampling);
     let motion = match replay {
         Some(r) => r.motion,
         // Bound, never read: nothing is replayed, and the pass does not wait for the G-buffer.
@@ -71,7 +69,7 @@ pub fn add_path_trace(
         "path_trace.rng_state",
         u64::from(width * height) * 4,
     );
-    let parked = long_paths::bind(&mut pass, parking);
+    let parked = parking::bind(&mut pass, "path_trace", parking);
     let pushes = sample_batches(sampling.samples_per_pixel)
         .into_iter()
         .map(|batch| Push { replay, batch })
@@ -79,7 +77,11 @@ pub fn add_path_trace(
     pass.dispatch_each([width, height, 1], pushes);
     let (images, stats) = match parked {
         Some(parked) => {
-            long_paths::add_continuation(g, (scene, frame, spec), parked, images, stats)
+            let inputs = |pass: &mut ComputePass<'_>| {
+                scene.read(pass);
+                pass.specialization(spec).read("b_frame", frame);
+            };
+            parking::add_continuation(g, &LONG_PATHS, inputs, parked, (images, stats))
         }
         None => (images, stats),
     };

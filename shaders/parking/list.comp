@@ -1,9 +1,9 @@
 #version 460
 #extension GL_KHR_shader_subgroup_basic : require
 #extension GL_KHR_shader_subgroup_ballot : require
-// Lists the pixels whose paths the path tracer parked (path_trace/long_paths.glsl) in b_parked_list,
-// with one atomic a workgroup on its length, and keeps long_paths.comp's indirect arguments at
-// workgroups of 64 covering it.
+// Lists the pixels whose paths a light transport kernel parked (parking/parking.glsl) in
+// b_parked_list, with one atomic a workgroup on its length, and keeps the continuation kernel's
+// indirect arguments at workgroups of 64 covering it.
 layout(local_size_x = 1024) in;
 
 layout(set = 0, binding = 0, std430) readonly buffer ParkedFlags { uint f[]; } b_parked_flags;

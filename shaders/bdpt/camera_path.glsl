@@ -1,0 +1,259 @@
+// BDPT's camera subpaths (camera.comp; camera_long.comp goes on with the ones it parked): emission
+// hits (s = 0), NEE (s = 1) and connections to the light vertex cache (s > 1) at every vertex,
+// each with its recursive MIS weight (bdpt.glsl). Where the including shader defines CAMERA_PARK
+// (bdpt/long_paths.glsl), a subpath still alive after PARK_DEPTH segments is handed to it and ends
+// here. Requires bdpt.glsl, light_emit.glsl, camera.glsl and surface.glsl.
+#ifndef LUCID_CAMERA_PATH_GLSL
+#define LUCID_CAMERA_PATH_GLSL
+
+layout(set = 0, binding = 21, std430) readonly buffer Lvc { LightVertex v[]; } b_lvc;
+layout(set = 0, binding = 22, std430) readonly buffer LvcLengths { uint n[]; } b_lvc_lengths;
+layout(set = 0, binding = 23, std430) readonly buffer LvcColors { uvec2 c[]; } b_lvc_colors;
+
+// A camera subpath vertex: position, normals, frame, BSDF, direction towards the previous vertex
+// (local), throughput and MIS quantities.
+struct CameraVertex {
+    Surface s;
+    BsdfParams m;
+    vec3 t;
+    vec3 b;
+    vec3 wo;
+    vec3 beta;
+    float dvcm;
+    float dvc;
+};
+
+// Next-event estimation (s = 1) from camera vertex c.
+vec3 connect_to_light(CameraVertex c, inout uint rng) {
+    vec4 u = vec4(rng_next(rng), rng_next2(rng), rng_side(rng));
+    LightSample ls;
+    if (!sample_light(c.s.p, u, ls) || ls.pdf <= 0.0) {
+        return vec3(0.0);
+    }
+    vec3 wi = to_local(ls.wi, c.t, c.b, c.s.ns);
+    float bsdf_pdf;
+    float rev_pdf;
+    vec3 f = bsdf_eval_both(c.m, c.wo, wi, bsdf_pdf, rev_pdf);
+    if (max3(f) <= 0.0) {
+        return vec3(0.0);
+    }
+    float w;
+    float emit_pdf;
+    float cos_light;
+    if (light_sample_emission(c.s.p, ls, emit_pdf, cos_light)) {
+        float cos_here = abs(dot(c.s.ng, ls.wi));
+        // Area pdfs at the light: NEE's (a probability for delta lights) and, at this vertex, the
+        // emitted subpath's.
+        float nee_area = ls.delta ? ls.pdf : ls.pdf * cos_light / (ls.dist * ls.dist);
+        float emit_area = emit_pdf * cos_here / (ls.dist * ls.dist);
+        float w_light = ls.delta ? 0.0 : mis(bsdf_pdf / ls.pdf);
+        float w_camera = mis(emit_area / nee_area) * (c.dvcm + c.dvc * mis(rev_pdf));
+        w = 1.0 / (1.0 + w_light + w_camera);
+    } else {
+        w = mis_pair(ls.pdf, bsdf_pdf);
+    }
+    vec3 origin;
+    vec3 dir;
+    float t_max;
+    light_shadow_ray(c.s.p, c.s.ng, ls, origin, dir, t_max);
+    if (w <= 0.0 || counted_occluded(origin, dir, t_max)) {
+        return vec3(0.0);
+    }
+    return f * ls.radiance * (w * ls.weight);
+}
+
+// Connection (s > 1, t > 1) of camera vertex c to the cached light vertex v.
+vec3 connect_vertices(CameraVertex c, LightVertex v, uint slot) {
+    vec3 to_light = v.p - c.s.p;
+    float dist2 = dot(to_light, to_light);
+    if (dist2 < 1e-12) {
+        return vec3(0.0);
+    }
+    float dist = sqrt(dist2);
+    vec3 dir = to_light / dist;
+    vec3 wi = to_local(dir, c.t, c.b, c.s.ns);
+    float camera_pdf;
+    float camera_rev_pdf;
+    vec3 fc = bsdf_eval_both(c.m, c.wo, wi, camera_pdf, camera_rev_pdf);
+    if (max3(fc) <= 0.0) {
+        return vec3(0.0);
+    }
+    vec3 ns = decode_normal(v.ns);
+    vec3 ng = decode_normal(v.ng);
+    vec3 t;
+    vec3 b;
+    make_frame(ns, t, b);
+    vec3 color = HAS_VERTEX_COLORS ? decode_lvc_color(b_lvc_colors.c[slot]) : vec3(1.0);
+    BsdfParams ml = material_params(v.material, unpackHalf2x16(v.uv), color);
+    vec3 to_camera = to_local(-dir, t, b, ns);
+    vec3 wl = to_local(v.wi, t, b, ns);
+    float light_rev_pdf;
+    float light_pdf;
+    vec3 fl = bsdf_eval_both(ml, to_camera, wl, light_rev_pdf, light_pdf);
+    float cos_light_in = abs(dot(ng, v.wi));
+    if (max3(fl) <= 0.0 || cos_light_in < 1e-6) {
+        return vec3(0.0);
+    }
+    float cos_light = abs(dot(ng, dir));
+    float cos_camera = abs(dot(c.s.ng, dir));
+    float w_light = mis(camera_pdf * cos_light / dist2) * (v.dvcm + v.dvc * mis(light_rev_pdf));
+    float w_camera = mis(light_pdf * cos_camera / dist2) * (c.dvcm + c.dvc * mis(camera_rev_pdf));
+    // The light side carries the adjoint BSDF's shading-normal correction.
+    vec3 value = fc * fl * v.throughput * (cos_light / (cos_light_in * dist2 * (1.0 + w_light + w_camera)));
+    // Traced from the light vertex's end: an occluder near the light, where light subpaths start,
+    // ends the walk at once.
+    vec3 origin = offset_origin(c.s.p, c.s.ng, dir);
+    float reach = dist * (1.0 - 1e-3);
+    reverse_segment(origin, dir, reach);
+    if (max3(value) <= 0.0 || counted_occluded(origin, dir, reach)) {
+        return vec3(0.0);
+    }
+    return value;
+}
+
+// Connections from camera vertex c (at `segments` from the camera) to cached light vertices: each
+// of the `connections` draws picks a light subpath uniformly, then one of its n stored vertices
+// uniformly, and is weighted n / draws (its probability is 1 / (subpaths * n), and the cache's
+// connections estimate the sum over all light vertices divided by the subpaths).
+vec3 connect_to_cache(CameraVertex c, uint segments, uint max_depth, inout uint rng) {
+    if (pc.light_paths == 0u || pc.connections == 0u) {
+        return vec3(0.0);
+    }
+    vec3 sum = vec3(0.0);
+    for (uint k = 0u; k < pc.connections; ++k) {
+        uint path = min(uint(rng_next(rng) * float(pc.light_paths)), pc.light_paths - 1u);
+        float u_vertex = rng_next(rng);
+        uint n = b_lvc_lengths.n[path];
+        if (n == 0u) {
+            continue;
+        }
+        uint slot = path * pc.path_vertices + min(uint(u_vertex * float(n)), n - 1u);
+        LightVertex v = b_lvc.v[slot];
+        if (v.segments + segments + 1u <= max_depth) {
+            sum += connect_vertices(c, v, slot) * float(n);
+        }
+    }
+    return sum / float(pc.connections);
+}
+
+// The emission hit at s seen along d from prev_p, weighted against NEE and the connections.
+vec3 emission_hit(Surface s, vec3 d, vec3 prev_p, uint depth, float dvcm, float dvc, float cos_in, float dist2) {
+    vec3 emitted = surface_emission(s, d);
+    if (max3(emitted) <= 0.0 || depth == 0u) {
+        return emitted;
+    }
+    float nee_area = surface_light_pdf(s, prev_p) * cos_in / dist2;
+    float w_camera = mis(nee_area) * dvcm + mis(surface_emission_pdf(s, cos_in)) * dvc;
+    return emitted / (1.0 + w_camera);
+}
+
+// The radiance the camera subpath brings from its segment `first_depth` on, whose next ray is
+// (o, d) and whose throughput and MIS state are beta, dvcm, dvc, prev_pdf, prev_delta and prev_p
+// (the camera ray's at segment 0, camera_subpath); its first hit's albedo and emission go to
+// first_albedo and first_emission (left at 1 and 0 from a later segment).
+vec3 trace_camera_from(uint first_depth, vec3 o, vec3 d, vec3 beta, float dvcm, float dvc, float prev_pdf,
+                       bool prev_delta, vec3 prev_p, inout uint rng, uint max_depth, uint rr_depth,
+                       out vec3 first_albedo, out vec3 first_emission) {
+    Camera cam = b_frame.f.camera;
+    uvec2 size = uvec2(b_frame.f.width, b_frame.f.height);
+    vec3 radiance = vec3(0.0);
+    CameraVertex c;
+    c.beta = beta;
+    c.dvcm = dvcm;
+    c.dvc = dvc;
+    first_albedo = vec3(1.0);
+    first_emission = vec3(0.0);
+    for (uint depth = first_depth; depth < max_depth; ++depth) {
+        Hit hit;
+        if (!counted_closest(o, d, hit)) {
+            float w_sun = prev_delta ? 1.0 : mis_pair(prev_pdf, sun_pdf());
+            float w_env = prev_delta || !environment_sampled() ? 1.0 : mis_pair(prev_pdf, environment_pdf(d));
+            radiance += c.beta * (environment_radiance(d) * w_env + sun_radiance(d) * w_sun);
+            if (depth == 0u) {
+                first_emission = radiance;
+            }
+            break;
+        }
+        c.s = surface_at(hit, o, d);
+        vec3 seg = c.s.p - prev_p;
+        float dist2 = dot(seg, seg);
+        float cos_in = abs(dot(c.s.ng, d));
+        if (cos_in < 1e-6) {
+            break;
+        }
+        c.dvcm *= mis(dist2) / mis(cos_in);
+        c.dvc /= mis(cos_in);
+        radiance += c.beta * emission_hit(c.s, d, prev_p, depth, c.dvcm, c.dvc, cos_in, dist2);
+        if (depth == 0u) {
+            first_emission = radiance;
+        }
+        if (depth + 1u >= max_depth) {
+            break;
+        }
+        // Textures at the first hit are filtered for the pixel's ray cone; light subpaths and later
+        // hits read level 0.
+        float footprint = depth == 0u ? cone_lod(c.s, d, sqrt(dist2) * pixel_spread(cam, float(size.y))) : NO_FOOTPRINT;
+        c.m = material_params_lod(c.s.material, c.s.uv, c.s.color, footprint);
+        if (depth == 0u) {
+            first_albedo = demodulation_albedo(c.m);
+        }
+        make_frame(c.s.ns, c.t, c.b);
+        c.wo = to_local(-d, c.t, c.b, c.s.ns);
+        if (!bsdf_is_delta(c.m)) {
+            radiance += c.beta * connect_to_light(c, rng);
+            radiance += c.beta * connect_to_cache(c, depth + 1u, max_depth, rng);
+        }
+        vec3 u_bsdf = vec3(rng_next2(rng), rng_next(rng));
+        BsdfSample bs;
+        if (!bsdf_sample(c.m, c.wo, u_bsdf, bs)) {
+            break;
+        }
+        vec3 wi = to_world(bs.wi, c.t, c.b, c.s.ns);
+        float cos_out = abs(dot(c.s.ng, wi));
+        c.beta *= bs.weight;
+        if (bs.delta) {
+            c.dvcm = 0.0;
+            c.dvc *= mis(cos_out);
+        } else {
+            float rev_pdf;
+            bsdf_eval(c.m, bs.wi, c.wo, rev_pdf);
+            c.dvc = mis(cos_out / bs.pdf) * (c.dvc * mis(rev_pdf) + c.dvcm);
+            c.dvcm = mis(1.0 / bs.pdf);
+        }
+        prev_pdf = bs.pdf;
+        prev_delta = bs.delta;
+        prev_p = c.s.p;
+        o = offset_origin(c.s.p, c.s.ng, wi);
+        d = wi;
+        if (depth + 1u >= rr_depth) {
+            float q = min(max3(c.beta), 0.95);
+            if (rng_next(rng) >= q) {
+                break;
+            }
+            c.beta /= q;
+        }
+#ifdef CAMERA_PARK
+        if (depth + 1u == PARK_DEPTH) {
+            CAMERA_PARK(o, d, c.beta, c.dvcm, c.dvc, prev_pdf, prev_delta, prev_p, rng);
+            break;
+        }
+#endif
+    }
+    return radiance;
+}
+
+// The radiance of the camera subpath starting with the camera ray (o, d); see trace_camera_from.
+vec3 trace_camera(vec3 o, vec3 d, inout uint rng, uint max_depth, uint rr_depth, out vec3 first_albedo,
+                  out vec3 first_emission) {
+    Camera cam = b_frame.f.camera;
+    float aspect = float(b_frame.f.width) / float(b_frame.f.height);
+    // Light tracing's share: its sample count and the camera's film density (zero with a lens,
+    // which light tracing does not handle).
+    float cos_camera = dot(d, cam.forward.xyz);
+    float light_tracing = cam.position_aperture.w > 0.0 ? 0.0 : pc.light_ratio * film_area(cam, aspect);
+    float dvcm = mis(light_tracing * cos_camera * cos_camera * cos_camera);
+    return trace_camera_from(0u, o, d, vec3(1.0), dvcm, 0.0, 0.0, true, o, rng, max_depth, rr_depth, first_albedo,
+                             first_emission);
+}
+
+#endif
