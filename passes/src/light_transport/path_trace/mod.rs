@@ -11,6 +11,7 @@ use crate::light_transport::{
 };
 use crate::plumbing::placeholder::add_zero_image;
 use crate::plumbing::scene_buffers::SceneHandles;
+use crate::samples_per_pixel::SamplesPerPixel;
 use crate::shaders::path_trace::{LONG_PATHS, PATH_TRACE, PATH_TRACE_SURFACES};
 use lucid_engine::graph::{BufferHandle, ComputePass, RenderGraph};
 use lucid_engine::memory::ImageDesc;
@@ -59,7 +60,10 @@ pub fn add_path_trace(
     };
     let mut pass = g.compute_pass("path_trace", shader);
     scene.read(&mut pass);
-    pass.specialization(spec).read("b_frame", frame);
+    let one_sample = sampling.samples_per_pixel == SamplesPerPixel::ONE;
+    pass.specialization(spec)
+        .read("b_frame", frame)
+        .specialize("ONE_SAMPLE", one_sample);
     let stats = pass.read_write("b_stats", stats);
     pass.read("u_motion", motion);
     let replay = replay.map_or(ReplayParams::default(), |r| r.params);
