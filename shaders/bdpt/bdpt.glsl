@@ -15,10 +15,13 @@
 // Power heuristic (exponent 2) when true, balance heuristic otherwise.
 layout(constant_id = 120) const bool MIS_POWER = true;
 
+// Cached light vertices each camera vertex connects to (a constant, so that one connection is no
+// loop: BDPT's camera pass 2-5% faster on an H200, bench/README.md).
+layout(constant_id = 124) const uint CONNECTIONS = 1u;
+
 layout(push_constant) uniform Params {
     uint light_paths;  // light subpaths traced this frame
     uint path_vertices; // cache slots per light subpath (the most vertices one stores)
-    uint connections;  // cached light vertices each camera vertex connects to
     uint stride;       // light-pass invocations per dispatch row
     float light_ratio; // light subpaths per camera sample
     float splat_scale; // pixels / light subpaths

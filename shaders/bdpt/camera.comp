@@ -3,7 +3,7 @@
 #extension GL_KHR_shader_subgroup_basic : require
 #extension GL_EXT_shader_explicit_arithmetic_types_int64 : require
 // BDPT camera pass: `spp` camera subpaths per pixel (camera_path.glsl). At each vertex: emission
-// hit (s = 0), NEE (s = 1) and connections to `connections` light vertices drawn from the light
+// hit (s = 0), NEE (s = 1) and connections to CONNECTIONS light vertices drawn from the light
 // vertex cache (a light subpath uniformly, then one of its vertices uniformly; s > 1), each with
 // its recursive MIS weight (see bdpt.glsl). With PARK_DEPTH set, subpaths alive after PARK_DEPTH
 // segments are parked for camera_long.comp (bdpt/long_paths.glsl). Paths lit by the sun or the
@@ -74,9 +74,26 @@ void main() {
     float aspect = float(size.x) / float(size.y);
     bool last = batch_is_last(batch, spp);
     uint dropped = 0u;
-    // Each sample adds to what the images hold (zero before the frame's first sample), so that no
-    // sum is held in registers while a path is traced; the frame's last sample writes the averages.
-    for (uint i = 0u; i < batch.count; ++i) {
+    if (ONE_SAMPLE) {
+        // The frame's only sample, written as its average at once (no running sums are read).
+        vec2 ndc = film_ndc(vec2(pixel), rng_next2(rng), vec2(size));
+        vec3 origin;
+        vec3 dir;
+        camera_ray(b_frame.f.camera, ndc, aspect, rng_next2(rng), origin, dir);
+        vec3 albedo;
+        vec3 emission;
+        vec3 l = trace_camera(origin, dir, rng, max_depth, rr_depth, albedo, emission);
+        if (any(isnan(l)) || any(isinf(l))) {
+            dropped += 1u;
+            l = vec3(0.0);
+            emission = vec3(0.0);
+        }
+        store_averages(pixel, size, 1u, l, albedo, emission);
+    }
+    // Otherwise each sample adds to what the images hold (zero before the frame's first sample),
+    // so that no sum is held in registers while a path is traced; the frame's last sample writes
+    // the averages.
+    for (uint i = 0u; i < (ONE_SAMPLE ? 0u : batch.count); ++i) {
         vec2 ndc = film_ndc(vec2(pixel), rng_next2(rng), vec2(size));
         vec3 origin;
         vec3 dir;

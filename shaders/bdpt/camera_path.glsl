@@ -112,15 +112,15 @@ vec3 connect_vertices(CameraVertex c, LightVertex v, uint slot) {
 }
 
 // Connections from camera vertex c (at `segments` from the camera) to cached light vertices: each
-// of the `connections` draws picks a light subpath uniformly, then one of its n stored vertices
+// of the CONNECTIONS draws picks a light subpath uniformly, then one of its n stored vertices
 // uniformly, and is weighted n / draws (its probability is 1 / (subpaths * n), and the cache's
 // connections estimate the sum over all light vertices divided by the subpaths).
 vec3 connect_to_cache(CameraVertex c, uint segments, uint max_depth, inout uint rng) {
-    if (pc.light_paths == 0u || pc.connections == 0u) {
+    if (pc.light_paths == 0u || CONNECTIONS == 0u) {
         return vec3(0.0);
     }
     vec3 sum = vec3(0.0);
-    for (uint k = 0u; k < pc.connections; ++k) {
+    for (uint k = 0u; k < CONNECTIONS; ++k) {
         uint path = min(uint(rng_next(rng) * float(pc.light_paths)), pc.light_paths - 1u);
         float u_vertex = rng_next(rng);
         uint n = b_lvc_lengths.n[path];
@@ -133,7 +133,7 @@ vec3 connect_to_cache(CameraVertex c, uint segments, uint max_depth, inout uint 
             sum += connect_vertices(c, v, slot) * float(n);
         }
     }
-    return sum / float(pc.connections);
+    return sum / float(CONNECTIONS);
 }
 
 // The emission hit at s seen along d from prev_p, weighted against NEE and the connections.

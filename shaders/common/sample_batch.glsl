@@ -6,6 +6,10 @@
 #ifndef LUCID_SAMPLE_BATCH_GLSL
 #define LUCID_SAMPLE_BATCH_GLSL
 
+// One sample a pixel: the frame is one batch of one sample, which the shader may trace without
+// the running sums.
+layout(constant_id = 123) const bool ONE_SAMPLE = false;
+
 // This dispatch's samples: `count` of them from sample `first` of the frame's samples_per_pixel.
 struct SampleBatch {
     uint first;

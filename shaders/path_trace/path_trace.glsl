@@ -25,10 +25,6 @@
 
 layout(local_size_x = 8, local_size_y = 8) in;
 
-// One sample a pixel, so one batch of one sample: no running sums are read, and the first hit's
-// albedo and emission go straight to their images (1% off `classroom` on an H200, bench/README.md).
-layout(constant_id = 123) const bool ONE_SAMPLE = false;
-
 layout(set = 0, binding = 16, rgba32f) uniform image2D u_radiance;
 layout(set = 0, binding = 17, rgba32f) uniform image2D u_demodulated;
 layout(set = 0, binding = 18, rgba32f) uniform image2D u_albedo;
@@ -37,11 +33,11 @@ layout(set = 0, binding = 20, std430) buffer Stats { uint non_finite; uint rays;
 layout(set = 0, binding = 21, rgba16f) uniform readonly image2D u_motion;
 layout(set = 0, binding = 22, std430) buffer RngState { uint s[]; } b_rng_state;
 
+#include "common/sample_batch.glsl"
 #include "parking/parking.glsl"
 #include "path_trace/long_paths.glsl"
 #include "common/path.glsl"
 #include "common/replay.glsl"
-#include "common/sample_batch.glsl"
 
 layout(push_constant) uniform Push { ReplayParams replay; SampleBatch batch; } push;
 
@@ -79,8 +75,8 @@ void main() {
     bool last = batch_is_last(batch, spp);
     float last_scale = last ? 1.0 / float(spp) : 1.0;
     if (ONE_SAMPLE) {
-        // The frame's only sample, written as it is; the first hit's albedo and emission are in
-        // their images already (PATH_KEEP_FIRST_ALBEDO and PATH_KEEP_FIRST_EMISSION), read back
+        // The frame's only sample, written as it is (no running sums are read: 1% off `classroom`
+        // on an H200, bench/README.md); the first hit's albedo and emission are in their images already (PATH_KEEP_FIRST_ALBEDO and PATH_KEEP_FIRST_EMISSION), read back
         // to demodulate.
         Camera camera = camera_select(replayed, b_frame.f.camera, b_frame.f.prev_camera);
         vec2 ndc = film_ndc(vec2(source), rng_next2(rng), vec2(size));

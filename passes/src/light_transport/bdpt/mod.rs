@@ -27,6 +27,7 @@ pub use params::{Params, LIGHT_VERTEX_BYTES};
 
 use crate::light_transport::{parking, sample_batches, Frame, Images, Outputs};
 use crate::plumbing::scene_buffers::SceneHandles;
+use crate::samples_per_pixel::SamplesPerPixel;
 use crate::shaders::bdpt::{CAMERA, CAMERA_LONG, LIGHT};
 use lucid_engine::graph::{BufferHandle, ComputePass, PassContext, RenderGraph};
 use lucid_engine::shader::{SpecValue, Specialization};
@@ -92,7 +93,8 @@ pub fn add_bdpt(
     );
     let spec = spec
         .clone()
-        .set("MIS_POWER", config.heuristic == MisHeuristic::Power);
+        .set("MIS_POWER", config.heuristic == MisHeuristic::Power)
+        .set("CONNECTIONS", config.connections);
     let stats = crate::plumbing::stats::add_counter(g, "bdpt.stats");
     let splat = crate::plumbing::stats::add_zeroed(
         g,
@@ -137,7 +139,9 @@ pub fn add_bdpt(
         "bdpt.rng_state",
         u64::from(width * height) * 4,
     );
-    pass.specialization(&spec);
+    let one_sample = frame.samples_per_pixel == SamplesPerPixel::ONE;
+    pass.specialization(&spec)
+        .specialize("ONE_SAMPLE", one_sample);
     let parked = parking::bind(&mut pass, "bdpt.camera", parking);
     let pushes = sample_batches(frame.samples_per_pixel)
         .into_iter()

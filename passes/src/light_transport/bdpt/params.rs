@@ -12,7 +12,7 @@ pub const LIGHT_VERTEX_BYTES: u64 = 64;
 /// Light-pass invocations per dispatch row (the light pass is one-dimensional).
 pub const STRIDE: u32 = 4096;
 
-/// Mirrors `Params` in `shaders/bdpt/bdpt.glsl` (push constants, 32 bytes). Light subpath `i`
+/// Mirrors `Params` in `shaders/bdpt/bdpt.glsl` (push constants, 28 bytes). Light subpath `i`
 /// stores its vertices in cache slots `i * path_vertices ..`, and how many it stored at index `i`
 /// of the lengths buffer, so the cache's layout does not depend on thread timing.
 #[repr(C)]
@@ -22,8 +22,6 @@ pub struct Params {
     pub light_paths: u32,
     /// Cache slots per light subpath: the most vertices one stores.
     pub path_vertices: u32,
-    /// Cached light vertices each camera vertex connects to.
-    pub connections: u32,
     /// Light-pass invocations per dispatch row.
     pub stride: u32,
     /// Light subpaths per camera sample.
@@ -55,7 +53,6 @@ impl Params {
         Self {
             light_paths,
             path_vertices: per_path as u32,
-            connections: config.connections,
             stride: STRIDE,
             light_ratio: (light_paths as f64 / samples as f64) as f32,
             splat_scale: if light_paths == 0 {
