@@ -42,8 +42,12 @@ struct LightVertex {
     uint segments;   // segments from the light
 };
 
-// A cached vertex's vertex colour (only with HAS_VERTEX_COLORS, in the parallel buffer
-// b_lvc_colors, so that scenes without vertex colours keep 64-byte vertices): RGB as half floats.
+// A cached vertex's base colour, where textures or vertex colours make it vary over a material
+// (LVC_COLORS; in the parallel buffer b_lvc_colors, so that other scenes keep 64-byte vertices):
+// RGB as half floats. The camera pass's connections then evaluate the vertex's BSDF without its
+// base colour texture (BDPT's camera pass on `classroom` 18% faster on an H200, bench/README.md).
+const bool LVC_COLORS = HAS_TEXTURES || HAS_VERTEX_COLORS;
+
 uvec2 encode_lvc_color(vec3 c) {
     return uvec2(packHalf2x16(c.rg), packHalf2x16(vec2(c.b, 0.0)));
 }

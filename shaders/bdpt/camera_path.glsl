@@ -83,8 +83,9 @@ vec3 connect_vertices(CameraVertex c, LightVertex v, uint slot) {
     vec3 t;
     vec3 b;
     make_frame(ns, t, b);
-    vec3 color = HAS_VERTEX_COLORS ? decode_lvc_color(b_lvc_colors.c[slot]) : vec3(1.0);
-    BsdfParams ml = material_params(v.material, unpackHalf2x16(v.uv), color);
+    vec2 uv = unpackHalf2x16(v.uv);
+    BsdfParams ml = LVC_COLORS ? material_params_with_base(v.material, uv, decode_lvc_color(b_lvc_colors.c[slot]))
+                               : material_params(v.material, uv, vec3(1.0));
     vec3 to_camera = to_local(-dir, t, b, ns);
     vec3 wl = to_local(v.wi, t, b, ns);
     float light_rev_pdf;

@@ -119,8 +119,9 @@ void emission_numbers(uint index, inout uint rng, out vec3 u, out vec2 v) {
     v.y = fract((emit_stratum(cell, 4u) + rng_next(rng)) * scale + rng_next(frame_rng));
 }
 
-// Stores the subpath's next vertex in its slot `slot` of the cache.
-void store_vertex(uint slot, Surface s, vec3 wl, vec3 beta, float dvcm, float dvc, uint segments) {
+// Stores the subpath's next vertex in its slot `slot` of the cache, with its BSDF's base colour
+// `base_color` where LVC_COLORS.
+void store_vertex(uint slot, Surface s, vec3 base_color, vec3 wl, vec3 beta, float dvcm, float dvc, uint segments) {
     LightVertex v;
     v.p = s.p;
     v.material = s.material;
@@ -133,8 +134,8 @@ void store_vertex(uint slot, Surface s, vec3 wl, vec3 beta, float dvcm, float dv
     v.uv = packHalf2x16(s.uv);
     v.segments = segments;
     b_lvc.v[slot] = v;
-    if (HAS_VERTEX_COLORS) {
-        b_lvc_colors.c[slot] = encode_lvc_color(s.color);
+    if (LVC_COLORS) {
+        b_lvc_colors.c[slot] = encode_lvc_color(base_color);
     }
 }
 
@@ -192,7 +193,7 @@ void main() {
         bool last = segments + 2u > max_depth;
         if (connectible) {
             if (!last) {
-                store_vertex(first_slot + stored, s, wl, beta, dvcm, dvc, segments);
+                store_vertex(first_slot + stored, s, m.color, wl, beta, dvcm, dvc, segments);
                 stored += 1u;
             }
             dropped += connect_to_camera(s, m, t, b, wl, beta, dvcm, dvc);

@@ -162,19 +162,20 @@ float cone_lod(Surface s, vec3 dir, float width) {
     return isnan(lod) || s.uv_density <= NO_FOOTPRINT ? NO_FOOTPRINT : lod;
 }
 
-// The BSDF of `material` at texture coordinates `uv` with vertex colour `vertex_color` (white when
-// the scene has none), which multiplies the base colour; its textures are looked up at mip
-// footprint `footprint` (cone_lod; NO_FOOTPRINT for level 0).
-BsdfParams material_params_lod(uint material, vec2 uv, vec3 vertex_color, float footprint) {
+// The BSDF of `material` at texture coordinates `uv`, its textures looked up at mip footprint
+// `footprint` (cone_lod; NO_FOOTPRINT for level 0); with `look_up_base`, its base colour is the
+// material's times its base colour texture's times `color` (the vertex colour, white when the
+// scene has none), otherwise `color` itself.
+BsdfParams material_params_from(uint material, vec2 uv, vec3 color, float footprint, bool look_up_base) {
     Material m = b_materials.m[material];
     BsdfParams p;
     p.kind = m.kind;
-    p.color = m.base_color;
-    if (HAS_TEXTURES && m.texture != 0xffffffffu) {
+    p.color = look_up_base ? m.base_color : color;
+    if (look_up_base && HAS_TEXTURES && m.texture != 0xffffffffu) {
         p.color *= sample_texture_lod(m.texture, uv, footprint).rgb;
     }
-    if (HAS_VERTEX_COLORS) {
-        p.color *= vertex_color;
+    if (look_up_base && HAS_VERTEX_COLORS) {
+        p.color *= color;
     }
     p.alpha = max(m.alpha, 1e-4);
     p.ior = m.ior;
@@ -201,9 +202,22 @@ BsdfParams material_params_lod(uint material, vec2 uv, vec3 vertex_color, float 
     return p;
 }
 
+// The BSDF of `material` at texture coordinates `uv` with vertex colour `vertex_color` (white when
+// the scene has none), which multiplies the base colour; its textures are looked up at mip
+// footprint `footprint` (cone_lod; NO_FOOTPRINT for level 0).
+BsdfParams material_params_lod(uint material, vec2 uv, vec3 vertex_color, float footprint) {
+    return material_params_from(material, uv, vertex_color, footprint, true);
+}
+
 // material_params_lod at level 0 of every texture.
 BsdfParams material_params(uint material, vec2 uv, vec3 vertex_color) {
     return material_params_lod(material, uv, vertex_color, NO_FOOTPRINT);
+}
+
+// The BSDF of `material` at texture coordinates `uv` whose base colour, the material's with its
+// texture and vertex colour, is `base_color` already; its other textures at level 0.
+BsdfParams material_params_with_base(uint material, vec2 uv, vec3 base_color) {
+    return material_params_from(material, uv, base_color, NO_FOOTPRINT, false);
 }
 
 // The colour a denoiser divides radiance by (and multiplies back): the material's base colour for

@@ -111,7 +111,10 @@ pub fn add_bdpt(
         "bdpt.cache_lengths",
         params.lengths_bytes(),
     );
-    let colored = spec.get("HAS_VERTEX_COLORS") == Some(SpecValue::Bool(true));
+    // `LVC_COLORS` in `shaders/bdpt/bdpt.glsl`: the cached vertices' base colours.
+    let colored = ["HAS_TEXTURES", "HAS_VERTEX_COLORS"]
+        .iter()
+        .any(|&feature| spec.get(feature) == Some(SpecValue::Bool(true)));
     let colors = pass.create_buffer(
         "b_lvc_colors",
         "bdpt.cache_colors",

@@ -70,8 +70,8 @@ impl Params {
             .max(LIGHT_VERTEX_BYTES)
     }
 
-    /// Bytes of the cached vertices' vertex colours (8 per vertex, beside the cache) when the
-    /// scene has vertex colours (`colored`), else one unread element.
+    /// Bytes of the cached vertices' base colours (8 per vertex, beside the cache) when textures
+    /// or vertex colours make them vary (`colored`), else one unread element.
     pub fn color_bytes(&self, colored: bool) -> u64 {
         if colored {
             (u64::from(self.light_paths) * u64::from(self.path_vertices) * 8).max(8)
