@@ -8,8 +8,9 @@
 // (emission removed, divided by albedo) and that hit's albedo and emission. Non-finite samples are
 // dropped and counted in b_stats, as are the rays traced (for rays/s figures) and the pixels whose
 // loops the device cut short.
-// The body of path_trace.comp (without the denoiser's images) and path_trace_surfaces.comp (with
-// them), which define how trace_path hands over the first hit's albedo and emission:
+// The body of path_trace.comp (without the denoiser's images, or with them and one sample a pixel)
+// and path_trace_surfaces.comp (with them and more samples), which define how trace_path hands
+// over the first hit's albedo and emission:
 // PATH_KEEP_FIRST_ALBEDO(v) and PATH_KEEP_FIRST_EMISSION(v) keep them, PATH_FIRST_ALBEDO and
 // PATH_FIRST_EMISSION read them back after the path.
 #include "common/math.glsl"
@@ -76,8 +77,8 @@ void main() {
     float last_scale = last ? 1.0 / float(spp) : 1.0;
     if (ONE_SAMPLE) {
         // The frame's only sample, written as it is (no running sums are read: 1% off `classroom`
-        // on an H200, bench/README.md); the first hit's albedo and emission are in their images already (PATH_KEEP_FIRST_ALBEDO and PATH_KEEP_FIRST_EMISSION), read back
-        // to demodulate.
+        // on an H200, bench/README.md); the first hit's albedo and emission are in their images
+        // already (PATH_KEEP_FIRST_ALBEDO and PATH_KEEP_FIRST_EMISSION), read back to demodulate.
         Camera camera = camera_select(replayed, b_frame.f.camera, b_frame.f.prev_camera);
         vec2 ndc = film_ndc(vec2(source), rng_next2(rng), vec2(size));
         vec3 origin;

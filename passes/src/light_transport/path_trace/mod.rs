@@ -1,6 +1,7 @@
 //! Path tracing: next-event estimation with multiple importance sampling, Russian roulette,
 //! N samples per pixel (`shaders/path_trace/path_trace.comp`, `path_trace_surfaces.comp` where the
-//! denoiser's images are written, `shaders/common/path.glsl`); replays
+//! denoiser's images are written with more than one sample a pixel, `shaders/common/path.glsl`);
+//! replays
 //! last frame's paths where asked ([`Replay`]); one dispatch per batch of samples
 //! ([`sample_batches`]). With one sample a pixel, the paths Russian roulette keeps past its first
 //! segments are parked and continued over a compacted list ([`parking`],
@@ -53,14 +54,16 @@ pub fn add_path_trace(
         // Bound, never read: nothing is replayed, and the pass does not wait for the G-buffer.
         None => add_zero_image(g, "path_trace.no_motion", ImageDesc::rgba16f(1, 1)),
     };
-    let shader = if surface {
+    // With one sample a pixel the first hit's albedo and emission go straight to the denoiser's
+    // images, and the shader without the denoiser's workgroup memory writes them.
+    let one_sample = sampling.samples_per_pixel == SamplesPerPixel::ONE;
+    let shader = if surface && !one_sample {
         &PATH_TRACE_SURFACES
     } else {
         &PATH_TRACE
     };
     let mut pass = g.compute_pass("path_trace", shader);
     scene.read(&mut pass);
-    let one_sample = sampling.samples_per_pixel == SamplesPerPixel::ONE;
     pass.specialization(spec)
         .read("b_frame", frame)
         .specialize("ONE_SAMPLE", one_sample);
