@@ -42,6 +42,21 @@ layout(set = 0, binding = 22, std430) buffer RngState { uint s[]; } b_rng_state;
 
 layout(push_constant) uniform Push { ReplayParams replay; SampleBatch batch; } push;
 
+// One path of pixel `source` from a camera ray jittered over it (last frame's camera where
+// `replayed`); adds the rays it traces to `rays`.
+vec3 trace_pixel_path(ivec2 source, bool replayed, inout uint rng, inout uint rays) {
+    uvec2 size = uvec2(b_frame.f.width, b_frame.f.height);
+    // Read afresh for every path, so that the camera is not held in registers while one is traced
+    // (a select, as an `if` here costs 96 registers instead of 72 on an H100).
+    Camera camera = camera_select(replayed, b_frame.f.camera, b_frame.f.prev_camera);
+    vec2 ndc = film_ndc(vec2(source), rng_next2(rng), vec2(size));
+    vec3 origin;
+    vec3 dir;
+    camera_ray(camera, ndc, float(size.x) / float(size.y), rng_next2(rng), origin, dir);
+    return trace_path(origin, dir, rng, b_frame.f.max_depth, b_frame.f.rr_depth, pixel_spread(camera, float(size.y)),
+                      rays);
+}
+
 void main() {
     ivec2 pixel = ivec2(gl_GlobalInvocationID.xy);
     uvec2 size = uvec2(b_frame.f.width, b_frame.f.height);
@@ -66,9 +81,6 @@ void main() {
     bool first = batch_is_first(batch);
     uint rng = first ? rng_init(uvec2(source), frame, b_frame.f.seed) : b_rng_state.s[state_index];
     uint spp = b_frame.f.samples_per_pixel;
-    uint max_depth = b_frame.f.max_depth;
-    uint rr_depth = b_frame.f.rr_depth;
-    float aspect = float(size.x) / float(size.y);
     uint rays = 0u;
     uint dropped = 0u;
     // Each sample adds to what the images hold (zero before the frame's first sample); the
@@ -79,12 +91,7 @@ void main() {
         // The frame's only sample, written as it is (no running sums are read: 1% off `classroom`
         // on an H200, bench/README.md); the first hit's albedo and emission are in their images
         // already (PATH_KEEP_FIRST_ALBEDO and PATH_KEEP_FIRST_EMISSION), read back to demodulate.
-        Camera camera = camera_select(replayed, b_frame.f.camera, b_frame.f.prev_camera);
-        vec2 ndc = film_ndc(vec2(source), rng_next2(rng), vec2(size));
-        vec3 origin;
-        vec3 dir;
-        camera_ray(camera, ndc, aspect, rng_next2(rng), origin, dir);
-        vec3 path = trace_path(origin, dir, rng, max_depth, rr_depth, pixel_spread(camera, float(size.y)), rays);
+        vec3 path = trace_pixel_path(source, replayed, rng, rays);
         bool finite = !(any(isnan(path)) || any(isinf(path)));
         dropped += finite ? 0u : 1u;
         imageStore(u_radiance, pixel, vec4(finite ? path : vec3(0.0), 1.0));
@@ -100,14 +107,7 @@ void main() {
     }
     // The batch's samples, added to the running sums (none with ONE_SAMPLE, traced above).
     for (uint i = 0u; i < (ONE_SAMPLE ? 0u : batch.count); ++i) {
-        // Read afresh for every path, so that the camera is not held in registers while one is
-        // traced (a select, as an `if` here costs 96 registers instead of 72 on an H100).
-        Camera camera = camera_select(replayed, b_frame.f.camera, b_frame.f.prev_camera);
-        vec2 ndc = film_ndc(vec2(source), rng_next2(rng), vec2(size));
-        vec3 origin;
-        vec3 dir;
-        camera_ray(camera, ndc, aspect, rng_next2(rng), origin, dir);
-        vec3 path = trace_path(origin, dir, rng, max_depth, rr_depth, pixel_spread(camera, float(size.y)), rays);
+        vec3 path = trace_pixel_path(source, replayed, rng, rays);
         bool finite = !(any(isnan(path)) || any(isinf(path)));
         dropped += finite ? 0u : 1u;
         bool fresh = first && i == 0u;
