@@ -16,7 +16,7 @@
 layout(constant_id = 120) const bool MIS_POWER = true;
 
 // Cached light vertices each camera vertex connects to (a constant, so that one connection is no
-// loop: BDPT's camera pass 2-5% faster on an H200, bench/README.md).
+// loop: BDPT's camera pass up to 3.5% faster on an H200, bench/README.md).
 layout(constant_id = 124) const uint CONNECTIONS = 1u;
 
 layout(push_constant) uniform Params {
@@ -45,7 +45,8 @@ struct LightVertex {
 // A cached vertex's base colour, where textures or vertex colours make it vary over a material
 // (LVC_COLORS; in the parallel buffer b_lvc_colors, so that other scenes keep 64-byte vertices):
 // RGB as half floats. The camera pass's connections then evaluate the vertex's BSDF without its
-// base colour texture (BDPT's camera pass on `classroom` 18% faster on an H200, bench/README.md).
+// base colour texture (BDPT's camera pass on `classroom` 5% faster on an H200, 72 registers instead
+// of 96, bench/README.md).
 const bool LVC_COLORS = HAS_TEXTURES || HAS_VERTEX_COLORS;
 
 uvec2 encode_lvc_color(vec3 c) {
