@@ -57,6 +57,23 @@ void store_averages(ivec2 pixel, uvec2 size, uint spp, vec3 sum, vec3 albedo_sum
     }
 }
 
+// One camera sample of `pixel` from a ray jittered over it, with its first hit's albedo and
+// emission; a non-finite one is counted in `dropped` and comes back as zero radiance and emission.
+vec3 trace_pixel_sample(ivec2 pixel, inout uint rng, out vec3 albedo, out vec3 emission, inout uint dropped) {
+    uvec2 size = uvec2(b_frame.f.width, b_frame.f.height);
+    vec2 ndc = film_ndc(vec2(pixel), rng_next2(rng), vec2(size));
+    vec3 origin;
+    vec3 dir;
+    camera_ray(b_frame.f.camera, ndc, float(size.x) / float(size.y), rng_next2(rng), origin, dir);
+    vec3 l = trace_camera(origin, dir, rng, b_frame.f.max_depth, b_frame.f.rr_depth, albedo, emission);
+    if (any(isnan(l)) || any(isinf(l))) {
+        dropped += 1u;
+        l = vec3(0.0);
+        emission = vec3(0.0);
+    }
+    return l;
+}
+
 void main() {
     ivec2 pixel = ivec2(gl_GlobalInvocationID.xy);
     uvec2 size = uvec2(b_frame.f.width, b_frame.f.height);
@@ -69,43 +86,22 @@ void main() {
     uint rng = first ? rng_init(uvec2(pixel), b_frame.f.frame_index, b_frame.f.seed)
                      : b_rng_state.s[state_index];
     uint spp = b_frame.f.samples_per_pixel;
-    uint max_depth = b_frame.f.max_depth;
-    uint rr_depth = b_frame.f.rr_depth;
-    float aspect = float(size.x) / float(size.y);
     bool last = batch_is_last(batch, spp);
     uint dropped = 0u;
     if (ONE_SAMPLE) {
         // The frame's only sample, written as its average at once (no running sums are read).
-        vec2 ndc = film_ndc(vec2(pixel), rng_next2(rng), vec2(size));
-        vec3 origin;
-        vec3 dir;
-        camera_ray(b_frame.f.camera, ndc, aspect, rng_next2(rng), origin, dir);
         vec3 albedo;
         vec3 emission;
-        vec3 l = trace_camera(origin, dir, rng, max_depth, rr_depth, albedo, emission);
-        if (any(isnan(l)) || any(isinf(l))) {
-            dropped += 1u;
-            l = vec3(0.0);
-            emission = vec3(0.0);
-        }
+        vec3 l = trace_pixel_sample(pixel, rng, albedo, emission, dropped);
         store_averages(pixel, size, 1u, l, albedo, emission);
     }
     // Otherwise each sample adds to what the images hold (zero before the frame's first sample),
     // so that no sum is held in registers while a path is traced; the frame's last sample writes
     // the averages.
     for (uint i = 0u; i < (ONE_SAMPLE ? 0u : batch.count); ++i) {
-        vec2 ndc = film_ndc(vec2(pixel), rng_next2(rng), vec2(size));
-        vec3 origin;
-        vec3 dir;
-        camera_ray(b_frame.f.camera, ndc, aspect, rng_next2(rng), origin, dir);
         vec3 albedo;
         vec3 emission;
-        vec3 l = trace_camera(origin, dir, rng, max_depth, rr_depth, albedo, emission);
-        if (any(isnan(l)) || any(isinf(l))) {
-            dropped += 1u;
-            l = vec3(0.0);
-            emission = vec3(0.0);
-        }
+        vec3 l = trace_pixel_sample(pixel, rng, albedo, emission, dropped);
         bool fresh = first && i == 0u;
         vec3 sum = (fresh ? vec3(0.0) : imageLoad(u_radiance, pixel).rgb) + l;
         vec3 albedo_sum = vec3(0.0);
