@@ -1,5 +1,6 @@
 # A/B of several lucid binaries, back to back: pass medians (ms) at 1920x1080 (SCENES, ALGO and
-# DENOISE override), with the main pass's register count when the driver reports pipeline statistics.
+# DENOISE override) of the passes above MIN_MS (0.05 unless set), with the main pass's register
+# count when the driver reports pipeline statistics.
 # The lines also go to $OUT/ab.txt when OUT is set (the device returns only a command's last
 # 12,000 characters of output).
 set -eo pipefail
@@ -12,6 +13,6 @@ import json
 r = json.load(open('/tmp/r.json'))
 regs = {k.split('/')[-1]: v.get('Register Count') for k, v in (r.get('pipelines') or {}).items()}
 main = {k: v for k, v in regs.items() if k in ('path_trace', 'path_trace_surfaces', 'camera', 'light')}
-print('$s', '$b', ' '.join('%s=%.3f' % (k, v['median']) for k, v in r['passes_ms'].items() if v['median'] > 0.05), main)"
+print('$s', '$b', ' '.join('%s=%.3f' % (k, v['median']) for k, v in r['passes_ms'].items() if v['median'] > ${MIN_MS:-0.05}), main)"
   done
 done | if [ -n "${OUT:-}" ]; then tee -a "$OUT/ab.txt"; else cat; fi

@@ -19,6 +19,10 @@ use lucid_engine::shader::ShaderSource;
 /// `ParkedCameraPath` in `shaders/bdpt/long_paths.glsl`).
 const PARKED_PATH_BYTES: u64 = 64;
 
+/// Pixels whose flags one invocation of the list pass reads (`FLAGS_PER_INVOCATION` in
+/// `shaders/parking/list.comp`).
+const LIST_FLAGS_PER_INVOCATION: u32 = 4;
+
 /// The most bytes of parked paths: the storage-buffer range every Vulkan device supports (128 MiB,
 /// a 1920x1080 frame's records). Larger frames trace every path in one kernel.
 const MAX_PARKED_BYTES: u64 = 128 << 20;
@@ -119,7 +123,7 @@ pub fn add_continuation(
     let count = list.read_write("b_parked_count", parking.count);
     let args = list.read_write("b_parked_args", parking.args);
     list.push(&parking.pixels);
-    list.dispatch([parking.pixels, 1, 1]);
+    list.dispatch([parking.pixels.div_ceil(LIST_FLAGS_PER_INVOCATION), 1, 1]);
 
     let mut pass = g.compute_pass(&format!("{prefix}.long"), continuation);
     bind_inputs(&mut pass);
