@@ -6,6 +6,7 @@ pub use lucid_engine::capture::ToneCurve;
 pub use lucid_passes::renderer::{Algorithm, Denoiser, EdgeEmission, SamplesPerPixel};
 
 use lucid_engine::capture::PngEncoding;
+use std::num::NonZeroU32;
 
 /// What the renderer is asked to do each frame.
 ///
@@ -28,6 +29,8 @@ pub struct RenderSettings {
     pub spp: SamplesPerPixel,
     /// Maximum number of path vertices after the camera.
     pub max_depth: u32,
+    /// Cached light vertices each BDPT camera vertex connects to.
+    pub bdpt_connections: NonZeroU32,
     /// The denoiser.
     pub denoiser: Denoiser,
     /// Whether the emission the denoiser adds back is supersampled at emitters' edges.
@@ -73,6 +76,7 @@ impl Default for RenderSettings {
             algorithm: Algorithm::default(),
             spp: SamplesPerPixel::ONE,
             max_depth: 8,
+            bdpt_connections: NonZeroU32::MIN,
             denoiser: Denoiser::Svgf,
             edge_emission: EdgeEmission::ByDenoiser,
             accumulate: true,

@@ -117,7 +117,7 @@ vec3 connect_vertices(CameraVertex c, LightVertex v, uint slot) {
 // uniformly, and is weighted n / draws (its probability is 1 / (subpaths * n), and the cache's
 // connections estimate the sum over all light vertices divided by the subpaths).
 vec3 connect_to_cache(CameraVertex c, uint segments, uint max_depth, inout uint rng) {
-    if (pc.light_paths == 0u || CONNECTIONS == 0u) {
+    if (pc.light_paths == 0u) {
         return vec3(0.0);
     }
     vec3 sum = vec3(0.0);

@@ -13,6 +13,24 @@ pub fn mean(image: &ImageData) -> [f64; 3] {
     sum.map(|s| s / image.pixels.len() as f64)
 }
 
+/// The noise of an estimator from two renders with independent seeds, relative to its image: the
+/// mean squared difference of their channels over twice the squared mean of the pair's channels
+/// (the variance of one render over its squared mean, for the image as a whole).
+pub fn relative_noise(renders: [&ImageData; 2]) -> f64 {
+    let (mut squared_difference, mut sum) = (0.0f64, 0.0f64);
+    let mut count = 0.0f64;
+    for (a, b) in renders[0].pixels.iter().zip(&renders[1].pixels) {
+        for c in 0..3 {
+            let (a, b) = (f64::from(a[c]), f64::from(b[c]));
+            squared_difference += (a - b) * (a - b);
+            sum += 0.5 * (a + b);
+            count += 1.0;
+        }
+    }
+    let mean = sum / count.max(1.0);
+    squared_difference / count.max(1.0) / (2.0 * mean * mean).max(1e-30)
+}
+
 /// The pixelwise average of two images.
 fn average(a: &ImageData, b: &ImageData) -> ImageData {
     let mut out = a.clone();

@@ -648,6 +648,7 @@ impl Renderer {
                 sampling,
                 &bdpt::Config {
                     park_depth: self.park_depth(),
+                    connections: self.settings.bdpt_connections,
                     ..bdpt::Config::default()
                 },
             ),

@@ -7,6 +7,7 @@ use crate::denoise::neural::NeuralParams;
 use crate::denoise::svgf::SvgfParams;
 use crate::samples_per_pixel::SamplesPerPixel;
 use lucid_engine::capture::{PngEncoding, ToneCurve};
+use std::num::NonZeroU32;
 
 /// The light-transport algorithm, switchable per frame.
 ///
@@ -223,6 +224,9 @@ pub struct Settings {
     /// (`lucid_passes::light_transport::path_trace::Config`, `bdpt::Config`); the same paths and
     /// random numbers either way.
     pub park_long_paths: bool,
+    /// Cached light vertices each BDPT camera vertex connects to: more connections cost time and
+    /// lower the noise of the light that only connections find.
+    pub bdpt_connections: NonZeroU32,
     /// Seed of the per-pixel random numbers.
     pub seed: u32,
     /// Average frames while camera and scene are still.
@@ -247,6 +251,7 @@ impl Default for Settings {
             max_depth: 8,
             rr_depth: 5,
             park_long_paths: true,
+            bdpt_connections: NonZeroU32::MIN,
             seed: 0,
             accumulate: true,
             display: PngEncoding {

@@ -160,6 +160,7 @@ pub fn run(args: &BenchArgs) -> anyhow::Result<()> {
         "size": [w, h],
         "spp": settings.samples_per_pixel.get(),
         "max_depth": args.options.max_depth,
+        "bdpt_connections": settings.bdpt_connections.get(),
         "frames": args.frames,
         "dynamic": args.dynamic,
         "frame_ms": summary(&frame_ms),

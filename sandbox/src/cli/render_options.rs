@@ -15,6 +15,7 @@ use lucid_passes::denoise::svgf::SvgfParams;
 use lucid_passes::renderer::{
     Algorithm, Denoiser, EdgeEmission, Renderer, SamplesPerPixel, Settings,
 };
+use std::num::NonZeroU32;
 use std::path::PathBuf;
 
 /// What to render and how.
@@ -38,6 +39,11 @@ pub struct RenderOptions {
     /// Longest path (Mitsuba's convention: 1 = emitters only, 2 = direct light, ...).
     #[arg(long, default_value_t = 8, value_parser = clap::value_parser!(u32).range(1..=1024))]
     pub max_depth: u32,
+    /// Cached light vertices each BDPT camera vertex connects to (more: slower, less noise where
+    /// light arrives through connections).
+    #[arg(long, default_value_t = NonZeroU32::MIN,
+          value_parser = bdpt_connections())]
+    pub bdpt_connections: NonZeroU32,
     /// Image size.
     #[arg(long, default_value = "512x512")]
     pub size: Size,
@@ -104,6 +110,7 @@ impl RenderOptions {
             },
             samples_per_pixel: self.spp.unwrap_or(SamplesPerPixel::ONE),
             max_depth: self.max_depth,
+            bdpt_connections: self.bdpt_connections,
             seed: self.seed,
             accumulate,
             display: self.display(),
@@ -176,6 +183,13 @@ pub fn samples_per_pixel(max: i64) -> impl TypedValueParser<Value = SamplesPerPi
     clap::value_parser!(u32)
         .range(1..=max)
         .try_map(SamplesPerPixel::try_from)
+}
+
+/// Parses `--bdpt-connections`: 1 to 16 cached light vertices a camera vertex.
+pub fn bdpt_connections() -> impl TypedValueParser<Value = NonZeroU32> {
+    clap::value_parser!(u32)
+        .range(1..=16)
+        .try_map(|n| NonZeroU32::new(n).ok_or("at least 1"))
 }
 
 /// Parses `--exposure`: stops from -64 to 64.

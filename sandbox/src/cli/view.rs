@@ -1,7 +1,7 @@
 //! `lucid view` (and `lucid` without a subcommand): the interactive sandbox window.
 
 use super::auto_options::AlgoArg;
-use super::render_options::samples_per_pixel;
+use super::render_options::{bdpt_connections, samples_per_pixel};
 use super::size::Size;
 use super::split::SplitSpec;
 use anyhow::Context as _;
@@ -11,6 +11,7 @@ use lucid_sandbox::{
     Algorithm, AppOptions, Denoiser, EdgeEmission, RenderSettings, SamplesPerPixel, Screenshot,
     Startup, DEFAULT_SCENE,
 };
+use std::num::NonZeroU32;
 use std::path::PathBuf;
 
 /// Options of `lucid view` (and of `lucid` without a subcommand).
@@ -55,6 +56,10 @@ pub struct ViewArgs {
     /// Longest path.
     #[arg(long, default_value_t = 8, value_parser = clap::value_parser!(u32).range(1..=64))]
     max_depth: u32,
+    /// Cached light vertices each BDPT camera vertex connects to (also a panel choice).
+    #[arg(long, default_value_t = NonZeroU32::MIN,
+          value_parser = bdpt_connections())]
+    bdpt_connections: NonZeroU32,
     /// Start in the split view: the right half renders ALGO/DENOISER[/SPP[/DEPTH]] (e.g.
     /// `bdpt/none`), the left half the options above, both from the same camera.
     #[arg(long, value_name = "ALGO/DENOISER[/SPP[/DEPTH]]")]
@@ -91,6 +96,7 @@ pub fn run(args: &ViewArgs) -> anyhow::Result<()> {
         },
         spp: args.spp,
         max_depth: args.max_depth,
+        bdpt_connections: args.bdpt_connections,
         ..RenderSettings::default()
     };
     let options = AppOptions {

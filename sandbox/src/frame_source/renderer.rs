@@ -49,6 +49,7 @@ pub fn renderer_settings(base: &Settings, panel: &RenderSettings) -> Settings {
         algorithm: panel.algorithm,
         samples_per_pixel: panel.spp,
         max_depth: panel.max_depth.max(1),
+        bdpt_connections: panel.bdpt_connections,
         accumulate: panel.accumulate,
         denoiser: panel.denoiser,
         edge_emission: panel.edge_emission,
@@ -140,6 +141,7 @@ mod tests {
             algorithm: Algorithm::Bidirectional,
             spp: SamplesPerPixel::new(3).unwrap(),
             max_depth: 5,
+            bdpt_connections: std::num::NonZeroU32::new(3).unwrap(),
             denoiser: Denoiser::Neural,
             edge_emission: EdgeEmission::Off,
             accumulate: false,
@@ -153,6 +155,7 @@ mod tests {
         assert_eq!(settings.algorithm, Algorithm::Bidirectional);
         assert_eq!(settings.samples_per_pixel.get(), 3);
         assert_eq!(settings.max_depth, 5);
+        assert_eq!(settings.bdpt_connections.get(), 3);
         assert_eq!(settings.denoiser, Denoiser::Neural);
         assert_eq!(settings.edge_emission, EdgeEmission::Off);
         assert!(!settings.accumulate);

@@ -6,6 +6,7 @@ use crate::settings::{
 };
 use crate::state::{AppState, PathMode};
 use lucid_engine::scene::SceneFeatures;
+use std::num::NonZeroU32;
 
 /// Shows the sections.
 pub fn show(ui: &mut egui::Ui, state: &mut AppState, requests: &mut Requests) {
@@ -118,6 +119,19 @@ fn renderer(ui: &mut egui::Ui, r: &mut RenderSettings) {
             .range(1..=64)
             .prefix("max path length: "),
     );
+    if r.algorithm == Algorithm::Bidirectional {
+        let mut connections = r.bdpt_connections.get();
+        ui.add(
+            egui::DragValue::new(&mut connections)
+                .range(1..=16)
+                .prefix("connections per vertex: "),
+        )
+        .on_hover_text(
+            "Cached light vertices each camera vertex connects to: more cost time and lower the \
+             noise of the light that only connections find",
+        );
+        r.bdpt_connections = NonZeroU32::new(connections).unwrap_or(r.bdpt_connections);
+    }
     egui::ComboBox::from_label("denoiser")
         .selected_text(r.denoiser.label())
         .show_ui(ui, |ui| {

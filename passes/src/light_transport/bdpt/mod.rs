@@ -32,6 +32,7 @@ use crate::shaders::bdpt::{CAMERA, CAMERA_LONG, LIGHT};
 use lucid_engine::graph::{BufferHandle, ComputePass, PassContext, RenderGraph};
 use lucid_engine::shader::{SpecValue, Specialization};
 use lucid_engine::EngineError;
+use std::num::NonZeroU32;
 
 /// The multiple-importance-sampling heuristic combining the strategies.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
@@ -48,8 +49,8 @@ pub enum MisHeuristic {
 pub struct Config {
     /// Light subpaths per camera sample (fewer when the cache budget cannot hold them).
     pub light_paths_per_sample: u32,
-    /// Cached light vertices each camera vertex connects to.
-    pub connections: u32,
+    /// Cached light vertices each camera vertex connects to (`Settings::bdpt_connections`).
+    pub connections: NonZeroU32,
     /// The MIS heuristic.
     pub heuristic: MisHeuristic,
     /// Most bytes the light vertex cache may take; 128 MiB is the storage-buffer range every
@@ -66,7 +67,7 @@ impl Default for Config {
     fn default() -> Self {
         Self {
             light_paths_per_sample: 1,
-            connections: 1,
+            connections: NonZeroU32::MIN,
             heuristic: MisHeuristic::Power,
             cache_bytes: 128 << 20,
             park_depth: None,
@@ -94,7 +95,7 @@ pub fn add_bdpt(
     let spec = spec
         .clone()
         .set("MIS_POWER", config.heuristic == MisHeuristic::Power)
-        .set("CONNECTIONS", config.connections);
+        .set("CONNECTIONS", config.connections.get());
     let stats = crate::plumbing::stats::add_counter(g, "bdpt.stats");
     let splat = crate::plumbing::stats::add_zeroed(
         g,
