@@ -33,8 +33,9 @@ void main() {
     }
     uint count = bitCount(parked);
     uint before = subgroupExclusiveAdd(count);
-    if (gl_SubgroupInvocationID == gl_SubgroupSize - 1u) {
-        s_count[gl_SubgroupID] = before + count;
+    uint subgroup_total = subgroupAdd(count);
+    if (subgroupElect()) {
+        s_count[gl_SubgroupID] = subgroup_total;
     }
     barrier();
     if (gl_LocalInvocationIndex == 0u) {
