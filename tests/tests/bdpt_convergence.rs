@@ -13,6 +13,7 @@ use lucid_passes::renderer::{Algorithm, SamplesPerPixel, Settings};
 use lucid_tests::bdpt_stats::{relative_noise, Comparison};
 use lucid_tests::render::{render_accumulated, scene};
 use std::num::NonZeroU32;
+use std::sync::OnceLock;
 use std::time::Instant;
 
 const SIZE: u32 = 32;
@@ -52,18 +53,41 @@ fn render_with(
     image
 }
 
-/// Renders `name` twice with each algorithm (independent seeds) and compares them.
-fn compare_with_path_tracing(name: &str, frames: u32) -> Comparison {
-    let pt = [1, 2].map(|seed| render(name, Algorithm::PathTracing, frames, seed));
-    let bdpt = [3, 4].map(|seed| render(name, Algorithm::Bidirectional, frames, seed));
-    let c = Comparison::new([&pt[0], &pt[1]], [&bdpt[0], &bdpt[1]]);
-    c.report(name);
-    c
+/// Path tracing (seeds 1 and 2) and BDPT (seeds 3 and 4) renders of one scene.
+struct Renders {
+    pt: [ImageData; 2],
+    bdpt: [ImageData; 2],
+}
+
+impl Renders {
+    /// Renders `name` twice with each algorithm (independent seeds).
+    fn new(name: &str, frames: u32) -> Self {
+        Self {
+            pt: [1, 2].map(|seed| render(name, Algorithm::PathTracing, frames, seed)),
+            bdpt: [3, 4].map(|seed| render(name, Algorithm::Bidirectional, frames, seed)),
+        }
+    }
+
+    /// BDPT compared with path tracing.
+    fn compare(&self, name: &str) -> Comparison {
+        let c = Comparison::new([&self.pt[0], &self.pt[1]], [&self.bdpt[0], &self.bdpt[1]]);
+        c.report(name);
+        c
+    }
+}
+
+/// Frames of the Cornell box renders.
+const CORNELL_FRAMES: u32 = 32;
+
+/// The Cornell box's renders, made once for the tests that share them.
+fn cornell_box() -> &'static Renders {
+    static RENDERS: OnceLock<Renders> = OnceLock::new();
+    RENDERS.get_or_init(|| Renders::new("cornell-box", CORNELL_FRAMES))
 }
 
 #[test]
 fn cornell_box_matches_path_tracing() {
-    let c = compare_with_path_tracing("cornell-box", 32);
+    let c = cornell_box().compare("cornell-box");
     c.assert_converged("cornell-box", 1.3);
 }
 
@@ -71,12 +95,17 @@ fn cornell_box_matches_path_tracing() {
 /// less noise than with one at the same samples.
 #[test]
 fn cornell_box_with_three_connections_matches_path_tracing_with_less_noise() {
-    let frames = 32;
     let three = NonZeroU32::new(3).unwrap();
-    let pt = [1, 2].map(|seed| render("cornell-box", Algorithm::PathTracing, frames, seed));
-    let one = [3, 4].map(|seed| render("cornell-box", Algorithm::Bidirectional, frames, seed));
-    let more = [3, 4]
-        .map(|seed| render_with("cornell-box", Algorithm::Bidirectional, three, frames, seed));
+    let Renders { pt, bdpt: one } = cornell_box();
+    let more = [3, 4].map(|seed| {
+        render_with(
+            "cornell-box",
+            Algorithm::Bidirectional,
+            three,
+            CORNELL_FRAMES,
+            seed,
+        )
+    });
     let c = Comparison::new([&pt[0], &pt[1]], [&more[0], &more[1]]);
     c.report("cornell-box, 3 connections");
     c.assert_converged("cornell-box, 3 connections", 1.3);
@@ -93,7 +122,7 @@ fn cornell_box_with_three_connections_matches_path_tracing_with_less_noise() {
 
 #[test]
 fn cornell_teapot_matches_path_tracing() {
-    let c = compare_with_path_tracing("cornell-teapot", 12);
+    let c = Renders::new("cornell-teapot", 12).compare("cornell-teapot");
     c.assert_converged("cornell-teapot", 1.4);
 }
 
