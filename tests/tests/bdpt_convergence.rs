@@ -41,7 +41,7 @@ fn render_with(
     };
     let image = render_accumulated(scene(name), (SIZE, SIZE), settings, frames);
     let connections = match algorithm {
-        Algorithm::Bidirectional => format!(" ({connections} connections)"),
+        Algorithm::Bidirectional => format!(" (connections: {connections})"),
         _ => String::new(),
     };
     eprintln!(
