@@ -6,6 +6,7 @@ pub use lucid_engine::capture::ToneCurve;
 pub use lucid_passes::renderer::{Algorithm, Denoiser, EdgeEmission, SamplesPerPixel};
 
 use lucid_engine::capture::PngEncoding;
+use lucid_passes::light_transport::bdpt::MisHeuristic;
 use std::num::NonZeroU32;
 
 /// What the renderer is asked to do each frame.
@@ -31,6 +32,8 @@ pub struct RenderSettings {
     pub max_depth: u32,
     /// Cached light vertices each BDPT camera vertex connects to.
     pub bdpt_connections: NonZeroU32,
+    /// How BDPT's multiple importance sampling weighs its strategies.
+    pub bdpt_mis: MisHeuristic,
     /// The denoiser.
     pub denoiser: Denoiser,
     /// Whether the emission the denoiser adds back is supersampled at emitters' edges.
@@ -77,6 +80,7 @@ impl Default for RenderSettings {
             spp: SamplesPerPixel::ONE,
             max_depth: 8,
             bdpt_connections: NonZeroU32::MIN,
+            bdpt_mis: MisHeuristic::Power,
             denoiser: Denoiser::Svgf,
             edge_emission: EdgeEmission::ByDenoiser,
             accumulate: true,

@@ -5,10 +5,11 @@
 //! sphere: the caustic seen through the glass and the lamp seen in it are specular chains only the
 //! camera's BSDF sampling finds, with heavy-tailed noise in both estimators. With three
 //! connections a camera vertex instead of one, BDPT converges alike and its noise on the Cornell
-//! box halves.
+//! box halves; with the balance heuristic instead of the power heuristic it converges alike.
 
 use glam::Vec2;
 use lucid_engine::capture::ImageData;
+use lucid_passes::light_transport::bdpt::MisHeuristic;
 use lucid_passes::renderer::{Algorithm, SamplesPerPixel, Settings};
 use lucid_tests::bdpt_stats::{relative_noise, Comparison};
 use lucid_tests::render::{render_accumulated, scene};
@@ -20,34 +21,45 @@ const SIZE: u32 = 32;
 const SPP_PER_FRAME: SamplesPerPixel = SamplesPerPixel::new(4).unwrap();
 
 fn render(name: &str, algorithm: Algorithm, frames: u32, seed: u32) -> ImageData {
-    render_with(name, algorithm, NonZeroU32::MIN, frames, seed)
-}
-
-/// `render` with BDPT's camera vertices connecting to `connections` cached light vertices each.
-fn render_with(
-    name: &str,
-    algorithm: Algorithm,
-    connections: NonZeroU32,
-    frames: u32,
-    seed: u32,
-) -> ImageData {
-    let start = Instant::now();
     let settings = Settings {
         algorithm,
-        samples_per_pixel: SPP_PER_FRAME,
-        bdpt_connections: connections,
         seed,
         ..Settings::default()
     };
+    render_with(name, settings, frames)
+}
+
+/// BDPT with `tuning`'s connections and MIS heuristic (the rest of it ignored).
+fn render_bdpt(name: &str, tuning: Settings, frames: u32, seed: u32) -> ImageData {
+    let settings = Settings {
+        algorithm: Algorithm::Bidirectional,
+        seed,
+        ..tuning
+    };
+    render_with(name, settings, frames)
+}
+
+/// `frames` frames of `settings` at SPP_PER_FRAME samples each, accumulated.
+fn render_with(name: &str, settings: Settings, frames: u32) -> ImageData {
+    let start = Instant::now();
+    let settings = Settings {
+        samples_per_pixel: SPP_PER_FRAME,
+        ..settings
+    };
     let image = render_accumulated(scene(name), (SIZE, SIZE), settings, frames);
-    let connections = match algorithm {
-        Algorithm::Bidirectional => format!(" (connections: {connections})"),
+    let tuning = match settings.algorithm {
+        Algorithm::Bidirectional => format!(
+            " (connections: {}, {})",
+            settings.bdpt_connections,
+            settings.bdpt_mis.label()
+        ),
         _ => String::new(),
     };
     eprintln!(
-        "{name} {}{connections} {} spp seed {seed}: {:.1} s",
-        algorithm.short_name(),
+        "{name} {}{tuning} {} spp seed {}: {:.1} s",
+        settings.algorithm.short_name(),
         frames * SPP_PER_FRAME.get(),
+        settings.seed,
         start.elapsed().as_secs_f64()
     );
     image
@@ -95,17 +107,12 @@ fn cornell_box_matches_path_tracing() {
 /// less noise than with one at the same samples.
 #[test]
 fn cornell_box_with_three_connections_matches_path_tracing_with_less_noise() {
-    let three = NonZeroU32::new(3).unwrap();
+    let three = Settings {
+        bdpt_connections: NonZeroU32::new(3).unwrap(),
+        ..Settings::default()
+    };
     let Renders { pt, bdpt: one } = cornell_box();
-    let more = [3, 4].map(|seed| {
-        render_with(
-            "cornell-box",
-            Algorithm::Bidirectional,
-            three,
-            CORNELL_FRAMES,
-            seed,
-        )
-    });
+    let more = [3, 4].map(|seed| render_bdpt("cornell-box", three, CORNELL_FRAMES, seed));
     let c = Comparison::new([&pt[0], &pt[1]], [&more[0], &more[1]]);
     c.report("cornell-box, 3 connections");
     c.assert_converged("cornell-box, 3 connections", 1.3);
@@ -117,6 +124,25 @@ fn cornell_box_with_three_connections_matches_path_tracing_with_less_noise() {
     assert!(
         noise_more < 0.9 * noise_one,
         "{noise_more} against {noise_one}"
+    );
+}
+
+/// With the balance heuristic BDPT converges to the path tracer's image too, and differs from the
+/// power heuristic's image of the same seeds (the setting reaches the shaders).
+#[test]
+fn cornell_box_with_the_balance_heuristic_matches_path_tracing() {
+    let balance = Settings {
+        bdpt_mis: MisHeuristic::Balance,
+        ..Settings::default()
+    };
+    let Renders { pt, bdpt: power } = cornell_box();
+    let images = [3, 4].map(|seed| render_bdpt("cornell-box", balance, CORNELL_FRAMES, seed));
+    let c = Comparison::new([&pt[0], &pt[1]], [&images[0], &images[1]]);
+    c.report("cornell-box, balance heuristic");
+    c.assert_converged("cornell-box, balance heuristic", 1.3);
+    assert_ne!(
+        images[0].pixels, power[0].pixels,
+        "the same image as the power heuristic's"
     );
 }
 

@@ -649,6 +649,7 @@ impl Renderer {
                 &bdpt::Config {
                     park_depth: self.park_depth(),
                     connections: self.settings.bdpt_connections,
+                    heuristic: self.settings.bdpt_mis,
                     ..bdpt::Config::default()
                 },
             ),

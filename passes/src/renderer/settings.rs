@@ -5,6 +5,7 @@
 
 use crate::denoise::neural::NeuralParams;
 use crate::denoise::svgf::SvgfParams;
+use crate::light_transport::bdpt::MisHeuristic;
 use crate::samples_per_pixel::SamplesPerPixel;
 use lucid_engine::capture::{PngEncoding, ToneCurve};
 use std::num::NonZeroU32;
@@ -227,6 +228,9 @@ pub struct Settings {
     /// Cached light vertices each BDPT camera vertex connects to: more connections cost time and
     /// lower the noise of the light that only connections find.
     pub bdpt_connections: NonZeroU32,
+    /// How BDPT's multiple importance sampling weighs its strategies: the power heuristic, or the
+    /// balance heuristic (for comparisons).
+    pub bdpt_mis: MisHeuristic,
     /// Seed of the per-pixel random numbers.
     pub seed: u32,
     /// Average frames while camera and scene are still.
@@ -252,6 +256,7 @@ impl Default for Settings {
             rr_depth: 5,
             park_long_paths: true,
             bdpt_connections: NonZeroU32::MIN,
+            bdpt_mis: MisHeuristic::Power,
             seed: 0,
             accumulate: true,
             display: PngEncoding {

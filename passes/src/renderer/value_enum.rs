@@ -1,9 +1,10 @@
-//! `clap::ValueEnum` for [`Algorithm`], [`Denoiser`], [`EdgeEmission`], [`InferencePath`] and
-//! [`Metric`] (the `clap` feature): the command line
+//! `clap::ValueEnum` for [`Algorithm`], [`Denoiser`], [`EdgeEmission`], [`MisHeuristic`],
+//! [`InferencePath`] and [`Metric`] (the `clap` feature): the command line
 //! accepts their short names, case-insensitively where a caller asks.
 
 use super::{Algorithm, Denoiser, EdgeEmission};
 use crate::denoise::neural::InferencePath;
+use crate::light_transport::bdpt::MisHeuristic;
 use crate::tradeoff::Metric;
 use clap::builder::PossibleValue;
 use clap::ValueEnum;
@@ -38,6 +39,20 @@ impl ValueEnum for Denoiser {
             Denoiser::None => "No denoiser",
             Denoiser::Svgf => "SVGF (temporal, with A-SVGF gradients)",
             Denoiser::Neural => "The learned recurrent denoiser",
+        };
+        Some(PossibleValue::new(self.short_name()).help(help))
+    }
+}
+
+impl ValueEnum for MisHeuristic {
+    fn value_variants<'a>() -> &'a [Self] {
+        &Self::ALL
+    }
+
+    fn to_possible_value(&self) -> Option<PossibleValue> {
+        let help = match self {
+            MisHeuristic::Power => "Power heuristic, exponent 2",
+            MisHeuristic::Balance => "Balance heuristic",
         };
         Some(PossibleValue::new(self.short_name()).help(help))
     }

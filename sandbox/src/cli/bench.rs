@@ -161,6 +161,7 @@ pub fn run(args: &BenchArgs) -> anyhow::Result<()> {
         "spp": settings.samples_per_pixel.get(),
         "max_depth": args.options.max_depth,
         "bdpt_connections": settings.bdpt_connections.get(),
+        "bdpt_mis": settings.bdpt_mis.short_name(),
         "frames": args.frames,
         "dynamic": args.dynamic,
         "frame_ms": summary(&frame_ms),

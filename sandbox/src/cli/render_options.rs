@@ -12,6 +12,7 @@ use lucid_engine::scene::Scene;
 use lucid_engine::Context;
 use lucid_passes::denoise::neural::{InferencePath, NetworkWeights, NeuralParams};
 use lucid_passes::denoise::svgf::SvgfParams;
+use lucid_passes::light_transport::bdpt::MisHeuristic;
 use lucid_passes::renderer::{
     Algorithm, Denoiser, EdgeEmission, Renderer, SamplesPerPixel, Settings,
 };
@@ -44,6 +45,9 @@ pub struct RenderOptions {
     #[arg(long, default_value_t = NonZeroU32::MIN,
           value_parser = bdpt_connections())]
     pub bdpt_connections: NonZeroU32,
+    /// How BDPT's multiple importance sampling weighs its strategies.
+    #[arg(long, value_enum, default_value_t = MisHeuristic::Power)]
+    pub bdpt_mis: MisHeuristic,
     /// Image size.
     #[arg(long, default_value = "512x512")]
     pub size: Size,
@@ -111,6 +115,7 @@ impl RenderOptions {
             samples_per_pixel: self.spp.unwrap_or(SamplesPerPixel::ONE),
             max_depth: self.max_depth,
             bdpt_connections: self.bdpt_connections,
+            bdpt_mis: self.bdpt_mis,
             seed: self.seed,
             accumulate,
             display: self.display(),

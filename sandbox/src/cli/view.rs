@@ -7,6 +7,7 @@ use super::split::SplitSpec;
 use anyhow::Context as _;
 use clap::Args;
 use lucid_passes::denoise::neural::NeuralParams;
+use lucid_passes::light_transport::bdpt::MisHeuristic;
 use lucid_sandbox::{
     Algorithm, AppOptions, Denoiser, EdgeEmission, RenderSettings, SamplesPerPixel, Screenshot,
     Startup, DEFAULT_SCENE,
@@ -60,6 +61,9 @@ pub struct ViewArgs {
     #[arg(long, default_value_t = NonZeroU32::MIN,
           value_parser = bdpt_connections())]
     bdpt_connections: NonZeroU32,
+    /// How BDPT's multiple importance sampling weighs its strategies (also a panel choice).
+    #[arg(long, value_enum, default_value_t = MisHeuristic::Power)]
+    bdpt_mis: MisHeuristic,
     /// Start in the split view: the right half renders ALGO/DENOISER[/SPP[/DEPTH]] (e.g.
     /// `bdpt/none`), the left half the options above, both from the same camera.
     #[arg(long, value_name = "ALGO/DENOISER[/SPP[/DEPTH]]")]
@@ -97,6 +101,7 @@ pub fn run(args: &ViewArgs) -> anyhow::Result<()> {
         spp: args.spp,
         max_depth: args.max_depth,
         bdpt_connections: args.bdpt_connections,
+        bdpt_mis: args.bdpt_mis,
         ..RenderSettings::default()
     };
     let options = AppOptions {

@@ -50,6 +50,7 @@ pub fn renderer_settings(base: &Settings, panel: &RenderSettings) -> Settings {
         samples_per_pixel: panel.spp,
         max_depth: panel.max_depth.max(1),
         bdpt_connections: panel.bdpt_connections,
+        bdpt_mis: panel.bdpt_mis,
         accumulate: panel.accumulate,
         denoiser: panel.denoiser,
         edge_emission: panel.edge_emission,
@@ -133,6 +134,7 @@ impl FrameSource for RendererSource {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use lucid_passes::light_transport::bdpt::MisHeuristic;
     use lucid_passes::renderer::{Algorithm, Denoiser, EdgeEmission, SamplesPerPixel};
 
     #[test]
@@ -142,6 +144,7 @@ mod tests {
             spp: SamplesPerPixel::new(3).unwrap(),
             max_depth: 5,
             bdpt_connections: std::num::NonZeroU32::new(3).unwrap(),
+            bdpt_mis: MisHeuristic::Balance,
             denoiser: Denoiser::Neural,
             edge_emission: EdgeEmission::Off,
             accumulate: false,
@@ -156,6 +159,7 @@ mod tests {
         assert_eq!(settings.samples_per_pixel.get(), 3);
         assert_eq!(settings.max_depth, 5);
         assert_eq!(settings.bdpt_connections.get(), 3);
+        assert_eq!(settings.bdpt_mis, MisHeuristic::Balance);
         assert_eq!(settings.denoiser, Denoiser::Neural);
         assert_eq!(settings.edge_emission, EdgeEmission::Off);
         assert!(!settings.accumulate);

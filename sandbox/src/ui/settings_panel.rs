@@ -6,6 +6,7 @@ use crate::settings::{
 };
 use crate::state::{AppState, PathMode};
 use lucid_engine::scene::SceneFeatures;
+use lucid_passes::light_transport::bdpt::MisHeuristic;
 use std::num::NonZeroU32;
 
 /// Shows the sections.
@@ -131,6 +132,13 @@ fn renderer(ui: &mut egui::Ui, r: &mut RenderSettings) {
              noise of the light that only connections find",
         );
         r.bdpt_connections = NonZeroU32::new(connections).unwrap_or(r.bdpt_connections);
+        egui::ComboBox::from_label("MIS")
+            .selected_text(r.bdpt_mis.label())
+            .show_ui(ui, |ui| {
+                for h in MisHeuristic::ALL {
+                    ui.selectable_value(&mut r.bdpt_mis, h, h.label());
+                }
+            });
     }
     egui::ComboBox::from_label("denoiser")
         .selected_text(r.denoiser.label())

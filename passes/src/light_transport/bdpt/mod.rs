@@ -35,6 +35,12 @@ use lucid_engine::EngineError;
 use std::num::NonZeroU32;
 
 /// The multiple-importance-sampling heuristic combining the strategies.
+///
+/// ```
+/// use lucid_passes::light_transport::bdpt::MisHeuristic;
+/// assert_eq!(MisHeuristic::ALL.map(MisHeuristic::short_name), ["power", "balance"]);
+/// assert_eq!(MisHeuristic::default(), MisHeuristic::Power);
+/// ```
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub enum MisHeuristic {
     /// Balance heuristic (SmallVCM's choice).
@@ -44,6 +50,27 @@ pub enum MisHeuristic {
     Power,
 }
 
+impl MisHeuristic {
+    /// Both heuristics, in the order menus and the command line list them.
+    pub const ALL: [MisHeuristic; 2] = [MisHeuristic::Power, MisHeuristic::Balance];
+
+    /// The name on the command line (`power`, `balance`).
+    pub fn short_name(self) -> &'static str {
+        match self {
+            MisHeuristic::Power => "power",
+            MisHeuristic::Balance => "balance",
+        }
+    }
+
+    /// The name shown in user interfaces.
+    pub fn label(self) -> &'static str {
+        match self {
+            MisHeuristic::Power => "power heuristic",
+            MisHeuristic::Balance => "balance heuristic",
+        }
+    }
+}
+
 /// BDPT tuning.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Config {
@@ -51,7 +78,7 @@ pub struct Config {
     pub light_paths_per_sample: u32,
     /// Cached light vertices each camera vertex connects to (`Settings::bdpt_connections`).
     pub connections: NonZeroU32,
-    /// The MIS heuristic.
+    /// The MIS heuristic (`Settings::bdpt_mis`).
     pub heuristic: MisHeuristic,
     /// Most bytes the light vertex cache may take; 128 MiB is the storage-buffer range every
     /// Vulkan device supports.
