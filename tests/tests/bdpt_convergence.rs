@@ -103,6 +103,17 @@ fn cornell_box_matches_path_tracing() {
     c.assert_converged("cornell-box", 1.3);
 }
 
+/// BDPT renders of the Cornell box with `tuning`'s connections and MIS heuristic (seeds 3 and 4),
+/// once checked to converge to the path tracer's image (`label` names them).
+fn cornell_box_bdpt_converging(tuning: Settings, label: &str) -> [ImageData; 2] {
+    let images = [3, 4].map(|seed| render_bdpt("cornell-box", tuning, CORNELL_FRAMES, seed));
+    let pt = &cornell_box().pt;
+    let c = Comparison::new([&pt[0], &pt[1]], [&images[0], &images[1]]);
+    c.report(label);
+    c.assert_converged(label, 1.3);
+    images
+}
+
 /// With three connections a camera vertex BDPT still converges to the path tracer's image, with
 /// less noise than with one at the same samples.
 #[test]
@@ -111,11 +122,8 @@ fn cornell_box_with_three_connections_matches_path_tracing_with_less_noise() {
         bdpt_connections: NonZeroU32::new(3).unwrap(),
         ..Settings::default()
     };
-    let Renders { pt, bdpt: one } = cornell_box();
-    let more = [3, 4].map(|seed| render_bdpt("cornell-box", three, CORNELL_FRAMES, seed));
-    let c = Comparison::new([&pt[0], &pt[1]], [&more[0], &more[1]]);
-    c.report("cornell-box, 3 connections");
-    c.assert_converged("cornell-box, 3 connections", 1.3);
+    let more = cornell_box_bdpt_converging(three, "cornell-box, 3 connections");
+    let one = &cornell_box().bdpt;
     let (noise_one, noise_more) = (
         relative_noise([&one[0], &one[1]]),
         relative_noise([&more[0], &more[1]]),
@@ -135,11 +143,8 @@ fn cornell_box_with_the_balance_heuristic_matches_path_tracing() {
         bdpt_mis: MisHeuristic::Balance,
         ..Settings::default()
     };
-    let Renders { pt, bdpt: power } = cornell_box();
-    let images = [3, 4].map(|seed| render_bdpt("cornell-box", balance, CORNELL_FRAMES, seed));
-    let c = Comparison::new([&pt[0], &pt[1]], [&images[0], &images[1]]);
-    c.report("cornell-box, balance heuristic");
-    c.assert_converged("cornell-box, balance heuristic", 1.3);
+    let images = cornell_box_bdpt_converging(balance, "cornell-box, balance heuristic");
+    let power = &cornell_box().bdpt;
     assert_ne!(
         images[0].pixels, power[0].pixels,
         "the same image as the power heuristic's"
