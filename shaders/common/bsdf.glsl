@@ -54,20 +54,18 @@ float ggx_g2(vec3 wo, vec3 wi, float alpha) {
     return 1.0 / (1.0 + ggx_lambda(wo, alpha) + ggx_lambda(wi, alpha));
 }
 
-// Visible-normal sampling (Heitz 2018) for wo in the upper hemisphere.
+// Visible-normal sampling for wo in the upper hemisphere, by spherical caps (Dupuy and Benyoub
+// 2023): in the configuration where the roughness is 1, the visible normals of wo are the
+// directions from -wo to a uniform point of the unit sphere's cap above the plane z = -wo.z, so the
+// sample needs no frame around wo (Heitz 2018's method, which this replaced, samples the same
+// distribution with more arithmetic).
 vec3 ggx_sample_visible(vec3 wo, float alpha, vec2 u) {
-    vec3 vh = normalize(vec3(alpha * wo.x, alpha * wo.y, wo.z));
-    float len2 = vh.x * vh.x + vh.y * vh.y;
-    vec3 t1 = len2 > 0.0 ? vec3(-vh.y, vh.x, 0.0) * inversesqrt(len2) : vec3(1.0, 0.0, 0.0);
-    vec3 t2 = cross(vh, t1);
-    float r = sqrt(u.x);
-    float phi = 2.0 * PI * u.y;
-    float p1 = r * cos(phi);
-    float p2 = r * sin(phi);
-    float s = 0.5 * (1.0 + vh.z);
-    p2 = (1.0 - s) * sqrt(max(0.0, 1.0 - p1 * p1)) + s * p2;
-    vec3 nh = p1 * t1 + p2 * t2 + sqrt(max(0.0, 1.0 - p1 * p1 - p2 * p2)) * vh;
-    return normalize(vec3(alpha * nh.x, alpha * nh.y, max(1e-6, nh.z)));
+    vec3 v = normalize(vec3(alpha * wo.xy, wo.z));
+    float phi = 2.0 * PI * u.x;
+    float z = (1.0 - u.y) * (1.0 + v.z) - v.z;
+    float sin_theta = sqrt(clamp(1.0 - z * z, 0.0, 1.0));
+    vec3 h = vec3(sin_theta * cos(phi), sin_theta * sin(phi), z) + v;
+    return normalize(vec3(alpha * h.xy, max(1e-6, h.z)));
 }
 
 // pdf of the visible normal h for wo (upper hemisphere).
