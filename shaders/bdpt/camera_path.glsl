@@ -216,9 +216,7 @@ vec3 trace_camera_from(uint first_depth, vec3 o, vec3 d, vec3 beta, float dvcm, 
             c.dvcm = 0.0;
             c.dvc *= mis(cos_out);
         } else {
-            float rev_pdf;
-            bsdf_eval(c.m, bs.wi, c.wo, rev_pdf);
-            c.dvc = mis(cos_out / bs.pdf) * (c.dvc * mis(rev_pdf) + c.dvcm);
+            c.dvc = mis(cos_out / bs.pdf) * (c.dvc * mis(bs.rev_pdf) + c.dvcm);
             c.dvcm = mis(1.0 / bs.pdf);
         }
         prev_pdf = bs.pdf;

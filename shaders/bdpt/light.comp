@@ -215,9 +215,7 @@ void main() {
             dvcm = 0.0;
             dvc *= mis(cos_out);
         } else {
-            float rev_pdf;
-            bsdf_eval(m, bs.wi, wo, rev_pdf);
-            dvc = mis(cos_out / bs.pdf) * (dvc * mis(rev_pdf) + dvcm);
+            dvc = mis(cos_out / bs.pdf) * (dvc * mis(bs.rev_pdf) + dvcm);
             dvcm = mis(1.0 / bs.pdf);
         }
         prev_p = s.p;

@@ -6,6 +6,8 @@
 #ifndef LUCID_BSDF_GLSL
 #define LUCID_BSDF_GLSL
 
+#include "common/material_kinds.glsl"
+
 layout(constant_id = 101) const bool HAS_CONDUCTOR = true;
 layout(constant_id = 102) const bool HAS_DIELECTRIC = true;
 layout(constant_id = 103) const bool HAS_DIELECTRIC_ROUGH = true;
@@ -27,6 +29,7 @@ struct BsdfSample {
     vec3 wi;
     vec3 weight; // f * |cos| / pdf
     float pdf;   // solid-angle pdf (0 for delta lobes)
+    float rev_pdf; // the pdf of sampling wo from wi, as bidirectional MIS weighs it (0 for delta lobes)
     bool delta;
 };
 
@@ -44,6 +47,16 @@ float ggx_lambda(vec3 w, float alpha) {
     float c2 = w.z * w.z;
     float t2 = max(0.0, 1.0 - c2) / max(c2, 1e-12);
     return 0.5 * (sqrt(1.0 + alpha * alpha * t2) - 1.0);
+}
+
+// sqrt(alpha^2 + (1 - alpha^2) cos^2) for a direction of cosine `cos_theta` (> 0): |cos| (1 + 2
+// Lambda), the root Smith's masking term shares with the rough conductor's forms below, which
+// need no division by the cosine (G1 = 2 cos / (cos + root); the height-correlated G2 =
+// 2 cos_o cos_i / (root_o cos_i + root_i cos_o); the visible normals' reflection pdf =
+// D / (2 (cos_o + root_o))).
+float ggx_smith_root(float cos_theta, float alpha) {
+    float a2 = alpha * alpha;
+    return sqrt(a2 + (1.0 - a2) * cos_theta * cos_theta);
 }
 
 float ggx_g1(vec3 w, float alpha) {
@@ -119,6 +132,7 @@ bool diffuse_sample(BsdfParams m, vec3 wo, vec2 u, out BsdfSample s) {
     vec3 wi = sample_cosine_hemisphere(u);
     s.wi = wo.z < 0.0 ? -wi : wi;
     s.pdf = wi.z * INV_PI;
+    s.rev_pdf = abs(wo.z) * INV_PI;
     s.weight = m.color;
     s.delta = false;
     return s.pdf > 0.0;
@@ -137,11 +151,12 @@ vec3 conductor_eval_both(BsdfParams m, vec3 wo, vec3 wi, out float pdf, out floa
     wo.z *= flip;
     wi.z *= flip;
     vec3 h = normalize(wo + wi);
-    float d = ggx_d(h, m.alpha);
-    pdf = ggx_reflection_pdf(wo, h, m.alpha);
-    rev_pdf = ggx_reflection_pdf(wi, h, m.alpha);
-    vec3 f = fresnel_schlick(m.color, dot(wi, h));
-    return f * d * ggx_g2(wo, wi, m.alpha) / (4.0 * wo.z);
+    float d = 0.5 * ggx_d(h, m.alpha);
+    float root_o = ggx_smith_root(wo.z, m.alpha);
+    float root_i = ggx_smith_root(wi.z, m.alpha);
+    pdf = d / (wo.z + root_o);
+    rev_pdf = d / (wi.z + root_i);
+    return fresnel_schlick(m.color, dot(wi, h)) * (d * wi.z / (root_o * wi.z + root_i * wo.z));
 }
 
 bool conductor_sample(BsdfParams m, vec3 wo, vec2 u, out BsdfSample s) {
@@ -151,6 +166,7 @@ bool conductor_sample(BsdfParams m, vec3 wo, vec2 u, out BsdfSample s) {
         s.wi = vec3(-wo.x, -wo.y, wo.z * flip);
         s.weight = fresnel_schlick(m.color, wo.z);
         s.pdf = 0.0;
+        s.rev_pdf = 0.0;
         s.delta = true;
         return true;
     }
@@ -160,8 +176,12 @@ bool conductor_sample(BsdfParams m, vec3 wo, vec2 u, out BsdfSample s) {
     if (wi.z <= 0.0) {
         return false;
     }
-    s.pdf = ggx_reflection_pdf(wo, h, m.alpha);
-    s.weight = fresnel_schlick(m.color, dot(wi, h)) * ggx_g2(wo, wi, m.alpha) / ggx_g1(wo, m.alpha);
+    float root_o = ggx_smith_root(wo.z, m.alpha);
+    float root_i = ggx_smith_root(wi.z, m.alpha);
+    float d = 0.5 * ggx_d(h, m.alpha);
+    s.pdf = d / (wo.z + root_o);
+    s.rev_pdf = d / (wi.z + root_i);
+    s.weight = fresnel_schlick(m.color, dot(wi, h)) * (wi.z * (wo.z + root_o) / (root_o * wi.z + root_i * wo.z));
     s.wi = vec3(wi.xy, wi.z * flip);
     return s.pdf > 0.0;
 }
@@ -364,20 +384,28 @@ vec3 bsdf_eval(BsdfParams m, vec3 wo, vec3 wi, out float pdf) {
     return bsdf_eval_both(m, wo, wi, pdf, rev_pdf);
 }
 
+// Samples wi for wo. Diffuse and conductors compute the reverse pdf from what their sample holds;
+// the others evaluate it (a path tracer, which never reads it, drops that work).
 bool bsdf_sample(BsdfParams m, vec3 wo, vec3 u, out BsdfSample s) {
     if (HAS_CONDUCTOR && m.kind == MATERIAL_CONDUCTOR) {
         return conductor_sample(m, wo, u.xy, s);
     }
+    bool sampled;
     if (HAS_DIELECTRIC && m.kind == MATERIAL_DIELECTRIC) {
         if (!HAS_DIELECTRIC_ROUGH) {
             m.smooth_lobe = true;
         }
-        return dielectric_sample(m, wo, u, s);
+        sampled = dielectric_sample(m, wo, u, s);
+    } else if (HAS_METAL_ROUGH && m.kind == MATERIAL_METAL_ROUGH) {
+        sampled = metal_rough_sample(m, wo, u, s);
+    } else {
+        return diffuse_sample(m, wo, u.xy, s);
     }
-    if (HAS_METAL_ROUGH && m.kind == MATERIAL_METAL_ROUGH) {
-        return metal_rough_sample(m, wo, u, s);
+    s.rev_pdf = 0.0;
+    if (sampled && !s.delta) {
+        bsdf_eval(m, s.wi, wo, s.rev_pdf);
     }
-    return diffuse_sample(m, wo, u.xy, s);
+    return sampled;
 }
 
 // Whether the BSDF is a pure delta (no next-event estimation is useful).

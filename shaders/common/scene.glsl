@@ -52,10 +52,7 @@ struct SceneParams {
     vec4 light;    // total NEE light power
 };
 
-const uint MATERIAL_DIFFUSE = 0u;
-const uint MATERIAL_CONDUCTOR = 1u;
-const uint MATERIAL_DIELECTRIC = 2u;
-const uint MATERIAL_METAL_ROUGH = 3u;
+#include "common/material_kinds.glsl"
 const uint MATERIAL_FLAG_EMISSIVE = 1u;
 const uint MATERIAL_FLAG_SMOOTH = 2u;
 const uint MATERIAL_FLAG_ALPHA_MASK = 4u;  // absent where opacity < alpha_cutoff
