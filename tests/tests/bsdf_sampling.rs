@@ -115,7 +115,8 @@ fn samples_carry_the_pdfs_and_weights_their_evaluation_gives() {
     assert_no_validation_messages(&ctx);
 
     for (m, outcomes) in materials.iter().zip(outcomes.chunks(SAMPLES)) {
-        let sampled: Vec<&BsdfOutcome> = outcomes.iter().filter(|o| o.wi_sampled[3] == 1.0).collect();
+        let sampled: Vec<&BsdfOutcome> =
+            outcomes.iter().filter(|o| o.wi_sampled[3] == 1.0).collect();
         assert!(
             sampled.len() > SAMPLES / 2,
             "{m:?}: {} of {SAMPLES} samples succeeded",
