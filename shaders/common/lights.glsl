@@ -390,19 +390,26 @@ bool sample_light(vec3 p, vec4 u, out LightSample ls) {
     return true;
 }
 
+// How far the ray from `origin` along unit `dir` runs before it leaves the scene's box
+// (SceneParams::bounds_min and bounds_max); 0 where it starts outside it and does not enter.
+float scene_exit(vec3 origin, vec3 dir) {
+    vec3 inv_dir = safe_inverse(dir);
+    vec3 t0 = (b_scene.p.bounds_min.xyz - origin) * inv_dir;
+    vec3 t1 = (b_scene.p.bounds_max.xyz - origin) * inv_dir;
+    vec3 far = max(t0, t1);
+    return max(min(min(far.x, far.y), far.z), 0.0);
+}
+
 // The shadow ray testing light sample `ls` from the surface point p (geometric normal ng): the
-// segment from p lifted off its surface to 0.1% of the distance short of the light, traced from the
-// light's end when the light is at a finite distance (the rays towards one light then leave from a
-// small region and walk its surroundings together, and an occluder near the light ends them at
-// once), from the surface towards the sun and the environment.
+// segment from p lifted off its surface to 0.1% of the distance short of the light, or towards the
+// sun and the environment to where it leaves the scene's box, traced from that far end (the rays
+// towards one light then leave from a small region and walk its surroundings together, and an
+// occluder near the light, or a roof or wall at the scene's edge, ends them at once).
 void light_shadow_ray(vec3 p, vec3 ng, LightSample ls, out vec3 origin, out vec3 dir, out float t_max) {
     origin = offset_origin(p, ng, ls.wi);
     dir = ls.wi;
-    t_max = T_INFINITY;
-    if (ls.dist < T_INFINITY) {
-        t_max = ls.dist * (1.0 - 1e-3);
-        reverse_segment(origin, dir, t_max);
-    }
+    t_max = ls.dist < T_INFINITY ? ls.dist * (1.0 - 1e-3) : scene_exit(origin, dir);
+    reverse_segment(origin, dir, t_max);
 }
 
 #endif

@@ -50,6 +50,8 @@ struct SceneParams {
     uvec4 counts0; // triangles, instances, spheres, lights
     uvec4 counts1; // materials, textures, tlas root word, blas nodes
     vec4 light;    // total NEE light power
+    vec4 bounds_min; // a box around the whole scene, a little larger (xyz)
+    vec4 bounds_max;
 };
 
 #include "common/material_kinds.glsl"

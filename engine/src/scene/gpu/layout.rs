@@ -337,13 +337,15 @@ pub struct GpuSun {
     pub radiance_enabled: [f32; 4],
 }
 
-/// Per-scene constants, 208 bytes (valid as std140 and std430).
+/// Per-scene constants, 240 bytes (valid as std140 and std430).
 /// ```glsl
 /// struct SceneParams {
 ///     Camera camera; Environment environment; Sun sun;
 ///     uvec4 counts0;  // triangles, instances, spheres, lights
 ///     uvec4 counts1;  // materials, textures, tlas root word, blas nodes
 ///     vec4  light;    // total NEE light power, uniform selection, power scale, 0
+///     vec4  bounds_min; // a box around the whole scene, a little larger (xyz)
+///     vec4  bounds_max;
 /// };
 /// ```
 #[repr(C)]
@@ -365,6 +367,11 @@ pub struct GpuSceneParams {
     /// selection probability `power * power_scale + uniform`, with power computed as in
     /// `LightDistribution`, so no reverse lookup is needed.
     pub light: [f32; 4],
+    /// The smallest corner of a box around everything rays can hit, a little larger than the
+    /// top level's (xyz; w 0): rays towards the sun and the sky are walked from where they leave it.
+    pub bounds_min: [f32; 4],
+    /// The largest corner of that box (xyz; w 0).
+    pub bounds_max: [f32; 4],
 }
 
 #[cfg(test)]
@@ -384,6 +391,6 @@ mod tests {
         assert_eq!(size_of::<GpuCamera>(), 64);
         assert_eq!(size_of::<GpuEnvironment>(), 64);
         assert_eq!(size_of::<GpuSun>(), 32);
-        assert_eq!(size_of::<GpuSceneParams>(), 208);
+        assert_eq!(size_of::<GpuSceneParams>(), 240);
     }
 }

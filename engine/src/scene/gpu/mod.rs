@@ -98,6 +98,8 @@ pub struct GpuScene {
     pub features: SceneFeatures,
     /// Where each scene texture's texels lie (identity transform, repeating).
     images: Vec<GpuTextureRecord>,
+    /// The top level's box, grown a little ([`GpuSceneParams::bounds_min`]).
+    bounds: [[f32; 4]; 2],
     /// The environment map's texture record (`u32::MAX` without a map).
     environment_record: u32,
     /// The environment map's sampling distribution (empty without a map); its alias table follows
@@ -228,6 +230,7 @@ impl GpuScene {
             .pack_tree(&bvh.tlas.nodes, &bvh.tlas.order, 0);
         self.tlas_root = packed.root;
         self.depths.tlas = packed.depth;
+        self.bounds = bvh.tlas.nodes.first().map_or([[0.0; 4]; 2], |root| grown(root.bounds()));
         let mut gpu_of_instance = vec![u32::MAX; scene.instances.len()];
         self.instances = packed
             .order
@@ -328,6 +331,8 @@ impl GpuScene {
                 self.blas_nodes.len() as u32,
             ],
             light,
+            bounds_min: self.bounds[0],
+            bounds_max: self.bounds[1],
         };
     }
 
@@ -452,4 +457,14 @@ fn inverse_order(order: &[u32]) -> Vec<u32> {
 fn rows(m: &Affine3A) -> [[f32; 4]; 3] {
     let c = m.to_cols_array_2d();
     std::array::from_fn(|r| [c[0][r], c[1][r], c[2][r], c[3][r]])
+}
+
+/// `bounds` grown by a thousandth of its diagonal and a millimetre, so that a ray started on the
+/// grown box starts off every surface, as `[min, max]` with w 0.
+fn grown(bounds: crate::bvh::Aabb) -> [[f32; 4]; 2] {
+    let margin = glam::Vec3::splat(1e-3 * (bounds.max - bounds.min).length() + 1e-3);
+    [
+        (bounds.min - margin).extend(0.0).to_array(),
+        (bounds.max + margin).extend(0.0).to_array(),
+    ]
 }
