@@ -368,7 +368,8 @@ pub struct GpuSceneParams {
     /// `LightDistribution`, so no reverse lookup is needed.
     pub light: [f32; 4],
     /// The smallest corner of a box around everything rays can hit, a little larger than the
-    /// top level's (xyz; w 0): rays towards the sun and the sky are walked from where they leave it.
+    /// top level's (xyz; w 0): shadow rays towards the sun and the environment map are walked from
+    /// where they leave it.
     pub bounds_min: [f32; 4],
     /// The largest corner of that box (xyz; w 0).
     pub bounds_max: [f32; 4],

@@ -230,7 +230,11 @@ impl GpuScene {
             .pack_tree(&bvh.tlas.nodes, &bvh.tlas.order, 0);
         self.tlas_root = packed.root;
         self.depths.tlas = packed.depth;
-        self.bounds = bvh.tlas.nodes.first().map_or([[0.0; 4]; 2], |root| grown(root.bounds()));
+        self.bounds = bvh
+            .tlas
+            .nodes
+            .first()
+            .map_or([[0.0; 4]; 2], |root| grown(root.bounds()));
         let mut gpu_of_instance = vec![u32::MAX; scene.instances.len()];
         self.instances = packed
             .order
