@@ -19,6 +19,14 @@ layout(constant_id = 120) const bool MIS_POWER = true;
 // loop: BDPT's camera pass up to 3.5% faster on an H200, bench/README.md).
 layout(constant_id = 124) const uint CONNECTIONS = 1u;
 
+// Connection roulette (Settings::bdpt_connection_roulette; 0: off). At the camera vertices before
+// Russian roulette's start, a connection whose unoccluded contribution (its largest channel, the
+// camera subpath's throughput included) is under CONNECTION_ROULETTE times the largest channel of
+// what the camera subpath has gathered so far is traced with probability contribution / threshold,
+// and what it brings is divided by that probability: unbiased, and most of the shadow rays of
+// connections that would change their sample little are not traced (bench/README.md).
+layout(constant_id = 125) const float CONNECTION_ROULETTE = 0.1;
+
 layout(push_constant) uniform Params {
     uint light_paths;  // light subpaths traced this frame
     uint path_vertices; // cache slots per light subpath (the most vertices one stores)

@@ -62,8 +62,10 @@ vec3 connect_to_light(CameraVertex c, inout uint rng) {
     return f * ls.radiance * (w * ls.weight);
 }
 
-// Connection (s > 1, t > 1) of camera vertex c to the cached light vertex v.
-vec3 connect_vertices(CameraVertex c, LightVertex v, uint slot) {
+// Connection (s > 1, t > 1) of camera vertex c to the cached light vertex v, under connection
+// roulette below `threshold` (bdpt.glsl's CONNECTION_ROULETTE; 0: none) with the uniform number
+// u_roulette.
+vec3 connect_vertices(CameraVertex c, LightVertex v, uint slot, float threshold, float u_roulette) {
     vec3 to_light = v.p - c.s.p;
     float dist2 = dot(to_light, to_light);
     if (dist2 < 1e-12) {
@@ -101,12 +103,20 @@ vec3 connect_vertices(CameraVertex c, LightVertex v, uint slot) {
     float w_camera = mis(light_pdf * cos_camera / dist2) * (c.dvcm + c.dvc * mis(camera_rev_pdf));
     // The light side carries the adjoint BSDF's shading-normal correction.
     vec3 value = fc * fl * v.throughput * (cos_light / (cos_light_in * dist2 * (1.0 + w_light + w_camera)));
+    // What it adds to the sample: traced with probability share / threshold below the threshold.
+    float share = max3(c.beta * value);
+    if (share <= 0.0 || u_roulette * threshold >= share) {
+        return vec3(0.0);
+    }
+    if (share < threshold) {
+        value *= threshold / share;
+    }
     // Traced from the light vertex's end: an occluder near the light, where light subpaths start,
     // ends the walk at once.
     vec3 origin = offset_origin(c.s.p, c.s.ng, dir);
     float reach = dist * (1.0 - 1e-3);
     reverse_segment(origin, dir, reach);
-    if (max3(value) <= 0.0 || counted_occluded(origin, dir, reach)) {
+    if (counted_occluded(origin, dir, reach)) {
         return vec3(0.0);
     }
     return value;
@@ -115,8 +125,10 @@ vec3 connect_vertices(CameraVertex c, LightVertex v, uint slot) {
 // Connections from camera vertex c (at `segments` from the camera) to cached light vertices: each
 // of the CONNECTIONS draws picks a light subpath uniformly, then one of its n stored vertices
 // uniformly, and is weighted n / draws (its probability is 1 / (subpaths * n), and the cache's
-// connections estimate the sum over all light vertices divided by the subpaths).
-vec3 connect_to_cache(CameraVertex c, uint segments, uint max_depth, inout uint rng) {
+// connections estimate the sum over all light vertices divided by the subpaths). Connection
+// roulette below `threshold` takes its uniform number from the vertex pick's fraction, which is
+// independent of the vertex picked, so that it draws no number of its own.
+vec3 connect_to_cache(CameraVertex c, uint segments, uint max_depth, float threshold, inout uint rng) {
     if (pc.light_paths == 0u) {
         return vec3(0.0);
     }
@@ -128,10 +140,11 @@ vec3 connect_to_cache(CameraVertex c, uint segments, uint max_depth, inout uint 
         if (n == 0u) {
             continue;
         }
-        uint slot = path * pc.path_vertices + min(uint(u_vertex * float(n)), n - 1u);
+        float pick = u_vertex * float(n);
+        uint slot = path * pc.path_vertices + min(uint(pick), n - 1u);
         LightVertex v = b_lvc.v[slot];
         if (v.segments + segments + 1u <= max_depth) {
-            sum += connect_vertices(c, v, slot) * float(n);
+            sum += connect_vertices(c, v, slot, threshold, fract(pick)) * float(n);
         }
     }
     return sum / float(CONNECTIONS);
@@ -202,7 +215,10 @@ vec3 trace_camera_from(uint first_depth, vec3 o, vec3 d, vec3 beta, float dvcm, 
         c.wo = to_local(-d, c.t, c.b, c.s.ns);
         if (!bsdf_is_delta(c.m)) {
             radiance += c.beta * connect_to_light(c, rng);
-            radiance += c.beta * connect_to_cache(c, depth + 1u, max_depth, rng);
+            // Connection roulette before Russian roulette's start only: a parked subpath's record
+            // holds nothing of what it gathered, so its continuation could not set the threshold.
+            float threshold = depth < rr_depth ? CONNECTION_ROULETTE * max3(radiance) : 0.0;
+            radiance += c.beta * connect_to_cache(c, depth + 1u, max_depth, threshold, rng);
         }
         vec3 u_bsdf = vec3(rng_next2(rng), rng_next(rng));
         BsdfSample bs;

@@ -5,7 +5,8 @@
 //! sphere: the caustic seen through the glass and the lamp seen in it are specular chains only the
 //! camera's BSDF sampling finds, with heavy-tailed noise in both estimators. With three
 //! connections a camera vertex instead of one, BDPT converges alike and its noise on the Cornell
-//! box halves; with the balance heuristic instead of the power heuristic it converges alike.
+//! box halves; with the balance heuristic instead of the power heuristic, or with a connection
+//! roulette far stronger than the default's, it converges alike.
 
 use glam::Vec2;
 use lucid_engine::capture::ImageData;
@@ -148,6 +149,30 @@ fn cornell_box_with_the_balance_heuristic_matches_path_tracing() {
     assert_ne!(
         images[0].pixels, power[0].pixels,
         "the same image as the power heuristic's"
+    );
+}
+
+/// With connection roulette twenty times the default's threshold (a connection that would add less
+/// than twice what its camera subpath has gathered is traced with probability in proportion) BDPT
+/// still converges to the path tracer's image: the roulette weighs up what it keeps. With the
+/// roulette off, the image of the same seed differs from the default's (the setting reaches the
+/// shaders).
+#[test]
+fn cornell_box_with_strong_connection_roulette_matches_path_tracing() {
+    let strong = Settings {
+        bdpt_connection_roulette: 2.0,
+        ..Settings::default()
+    };
+    cornell_box_bdpt_converging(strong, "cornell-box, connection roulette 2");
+    let off = Settings {
+        bdpt_connection_roulette: 0.0,
+        ..Settings::default()
+    };
+    let image = render_bdpt("cornell-box", off, CORNELL_FRAMES, 3);
+    assert_ne!(
+        image.pixels,
+        cornell_box().bdpt[0].pixels,
+        "the same image as with the default roulette"
     );
 }
 

@@ -650,6 +650,7 @@ impl Renderer {
                     park_depth: self.park_depth(),
                     connections: self.settings.bdpt_connections,
                     heuristic: self.settings.bdpt_mis,
+                    connection_roulette: self.settings.bdpt_connection_roulette,
                     ..bdpt::Config::default()
                 },
             ),

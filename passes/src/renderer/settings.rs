@@ -5,7 +5,7 @@
 
 use crate::denoise::neural::NeuralParams;
 use crate::denoise::svgf::SvgfParams;
-use crate::light_transport::bdpt::MisHeuristic;
+use crate::light_transport::bdpt::{MisHeuristic, DEFAULT_CONNECTION_ROULETTE};
 use crate::samples_per_pixel::SamplesPerPixel;
 use lucid_engine::capture::{PngEncoding, ToneCurve};
 use std::num::NonZeroU32;
@@ -231,6 +231,11 @@ pub struct Settings {
     /// How BDPT's multiple importance sampling weighs its strategies: the power heuristic, or the
     /// balance heuristic (for comparisons).
     pub bdpt_mis: MisHeuristic,
+    /// BDPT's connection roulette: before Russian roulette's start, a connection that would add
+    /// less than this share of what its camera subpath has gathered is traced with probability
+    /// in proportion and weighted up (unbiased; fewer shadow rays, a little more noise); 0 traces
+    /// every connection. Negative or non-finite values count as 0.
+    pub bdpt_connection_roulette: f32,
     /// Seed of the per-pixel random numbers.
     pub seed: u32,
     /// Average frames while camera and scene are still.
@@ -257,6 +262,7 @@ impl Default for Settings {
             park_long_paths: true,
             bdpt_connections: NonZeroU32::MIN,
             bdpt_mis: MisHeuristic::Power,
+            bdpt_connection_roulette: DEFAULT_CONNECTION_ROULETTE,
             seed: 0,
             accumulate: true,
             display: PngEncoding {

@@ -162,6 +162,7 @@ pub fn run(args: &BenchArgs) -> anyhow::Result<()> {
         "max_depth": args.options.max_depth,
         "bdpt_connections": settings.bdpt_connections.get(),
         "bdpt_mis": settings.bdpt_mis.short_name(),
+        "bdpt_connection_roulette": settings.bdpt_connection_roulette,
         "frames": args.frames,
         "dynamic": args.dynamic,
         "frame_ms": summary(&frame_ms),

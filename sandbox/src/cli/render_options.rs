@@ -12,7 +12,7 @@ use lucid_engine::scene::Scene;
 use lucid_engine::Context;
 use lucid_passes::denoise::neural::{InferencePath, NetworkWeights, NeuralParams};
 use lucid_passes::denoise::svgf::SvgfParams;
-use lucid_passes::light_transport::bdpt::MisHeuristic;
+use lucid_passes::light_transport::bdpt::{MisHeuristic, DEFAULT_CONNECTION_ROULETTE};
 use lucid_passes::renderer::{
     Algorithm, Denoiser, EdgeEmission, Renderer, SamplesPerPixel, Settings,
 };
@@ -48,6 +48,12 @@ pub struct RenderOptions {
     /// How BDPT's multiple importance sampling weighs its strategies.
     #[arg(long, value_enum, default_value_t = MisHeuristic::Power)]
     pub bdpt_mis: MisHeuristic,
+    /// BDPT's connection roulette: a connection that would add less than this share of what its
+    /// camera subpath has gathered is traced with probability in proportion (unbiased: fewer
+    /// shadow rays, a little more noise); 0 traces every connection.
+    #[arg(long, default_value_t = DEFAULT_CONNECTION_ROULETTE, value_name = "SHARE",
+          value_parser = connection_roulette())]
+    pub bdpt_connection_roulette: f32,
     /// Image size.
     #[arg(long, default_value = "512x512")]
     pub size: Size,
@@ -116,6 +122,7 @@ impl RenderOptions {
             max_depth: self.max_depth,
             bdpt_connections: self.bdpt_connections,
             bdpt_mis: self.bdpt_mis,
+            bdpt_connection_roulette: self.bdpt_connection_roulette,
             seed: self.seed,
             accumulate,
             display: self.display(),
@@ -195,6 +202,11 @@ pub fn bdpt_connections() -> impl TypedValueParser<Value = NonZeroU32> {
     clap::value_parser!(u32)
         .range(1..=16)
         .try_map(|n| NonZeroU32::new(n).ok_or("at least 1"))
+}
+
+/// Parses `--bdpt-connection-roulette`: a share from 0 to 100.
+pub fn connection_roulette() -> impl Fn(&str) -> Result<f32, String> + Clone + Send + Sync + 'static {
+    finite_f32(0.0, 100.0)
 }
 
 /// Parses `--exposure`: stops from -64 to 64.
