@@ -217,7 +217,10 @@ vec3 trace_camera_from(uint first_depth, vec3 o, vec3 d, vec3 beta, float dvcm, 
             radiance += c.beta * connect_to_light(c, rng);
             // Connection roulette before Russian roulette's start only: a parked subpath's record
             // holds nothing of what it gathered, so its continuation could not set the threshold.
-            float threshold = depth < rr_depth ? CONNECTION_ROULETTE * max3(radiance) : 0.0;
+            // Where subpaths are parked (at rr_depth: Renderer::park_depth), that is the whole
+            // first kernel and none of the continuation, which the compiler then knows.
+            bool roulette = first_depth == 0u && (PARK_DEPTH != 0u || depth < rr_depth);
+            float threshold = roulette ? CONNECTION_ROULETTE * max3(radiance) : 0.0;
             radiance += c.beta * connect_to_cache(c, depth + 1u, max_depth, threshold, rng);
         }
         vec3 u_bsdf = vec3(rng_next2(rng), rng_next(rng));
