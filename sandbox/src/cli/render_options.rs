@@ -205,7 +205,8 @@ pub fn bdpt_connections() -> impl TypedValueParser<Value = NonZeroU32> {
 }
 
 /// Parses `--bdpt-connection-roulette`: a share from 0 to 100.
-pub fn connection_roulette() -> impl Fn(&str) -> Result<f32, String> + Clone + Send + Sync + 'static {
+pub fn connection_roulette() -> impl Fn(&str) -> Result<f32, String> + Clone + Send + Sync + 'static
+{
     finite_f32(0.0, 100.0)
 }
 
