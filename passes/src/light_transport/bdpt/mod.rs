@@ -71,9 +71,9 @@ impl MisHeuristic {
     }
 }
 
-/// Connection roulette's default threshold: on `classroom` at 1080p, 40% fewer connections traced
-/// and BDPT's camera pass 3.6% faster on an H200, for 0.3% more error at equal samples
-/// (bench/README.md).
+/// Connection roulette's default threshold: on `classroom`, 40% fewer connections traced (counted on
+/// lavapipe) and BDPT's camera pass 4.1% faster at 1080p on an H200, for 0.3% more error at equal
+/// samples (bench/README.md).
 pub const DEFAULT_CONNECTION_ROULETTE: f32 = 0.1;
 
 /// BDPT tuning.
