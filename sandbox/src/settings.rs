@@ -6,7 +6,7 @@ pub use lucid_engine::capture::ToneCurve;
 pub use lucid_passes::renderer::{Algorithm, Denoiser, EdgeEmission, SamplesPerPixel};
 
 use lucid_engine::capture::PngEncoding;
-use lucid_passes::light_transport::bdpt::MisHeuristic;
+use lucid_passes::light_transport::bdpt::{MisHeuristic, DEFAULT_CONNECTION_ROULETTE};
 use std::num::NonZeroU32;
 
 /// What the renderer is asked to do each frame.
@@ -34,6 +34,8 @@ pub struct RenderSettings {
     pub bdpt_connections: NonZeroU32,
     /// How BDPT's multiple importance sampling weighs its strategies.
     pub bdpt_mis: MisHeuristic,
+    /// BDPT's connection roulette (`Settings::bdpt_connection_roulette`; 0: off).
+    pub bdpt_connection_roulette: f32,
     /// The denoiser.
     pub denoiser: Denoiser,
     /// Whether the emission the denoiser adds back is supersampled at emitters' edges.
@@ -81,6 +83,7 @@ impl Default for RenderSettings {
             max_depth: 8,
             bdpt_connections: NonZeroU32::MIN,
             bdpt_mis: MisHeuristic::Power,
+            bdpt_connection_roulette: DEFAULT_CONNECTION_ROULETTE,
             denoiser: Denoiser::Svgf,
             edge_emission: EdgeEmission::ByDenoiser,
             accumulate: true,

@@ -114,4 +114,21 @@ mod tests {
         let render = Cli::try_parse_from(["lucid", "render", "--scene", "classroom"]).unwrap();
         assert!(matches!(render.command, Some(Command::Render(_))));
     }
+
+    #[test]
+    fn connection_roulette_takes_a_finite_share_of_at_least_zero() {
+        for command in ["view", "render", "bench"] {
+            let parse = |share: &str| {
+                Cli::try_parse_from(["lucid", command, "--bdpt-connection-roulette", share])
+            };
+            assert!(parse("0").is_ok() && parse("0.5").is_ok(), "{command}");
+            assert!(
+                parse("-0.1").is_err() && parse("nan").is_err() && parse("inf").is_err(),
+                "{command}"
+            );
+        }
+        let render =
+            Cli::try_parse_from(["lucid", "render", "--bdpt-connection-roulette", "0.5"]).unwrap();
+        assert!(format!("{:?}", render.command).contains("bdpt_connection_roulette: 0.5"));
+    }
 }

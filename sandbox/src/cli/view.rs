@@ -1,13 +1,13 @@
 //! `lucid view` (and `lucid` without a subcommand): the interactive sandbox window.
 
 use super::auto_options::AlgoArg;
-use super::render_options::{bdpt_connections, samples_per_pixel};
+use super::render_options::{bdpt_connections, connection_roulette, samples_per_pixel};
 use super::size::Size;
 use super::split::SplitSpec;
 use anyhow::Context as _;
 use clap::Args;
 use lucid_passes::denoise::neural::NeuralParams;
-use lucid_passes::light_transport::bdpt::MisHeuristic;
+use lucid_passes::light_transport::bdpt::{MisHeuristic, DEFAULT_CONNECTION_ROULETTE};
 use lucid_sandbox::{
     Algorithm, AppOptions, Denoiser, EdgeEmission, RenderSettings, SamplesPerPixel, Screenshot,
     Startup, DEFAULT_SCENE,
@@ -64,6 +64,11 @@ pub struct ViewArgs {
     /// How BDPT's multiple importance sampling weighs its strategies (also a panel choice).
     #[arg(long, value_enum, default_value_t = MisHeuristic::Power)]
     bdpt_mis: MisHeuristic,
+    /// BDPT's connection roulette, a share of what a camera subpath has gathered; 0 off (also a
+    /// panel setting).
+    #[arg(long, default_value_t = DEFAULT_CONNECTION_ROULETTE, value_name = "SHARE",
+          value_parser = connection_roulette())]
+    bdpt_connection_roulette: f32,
     /// Start in the split view: the right half renders ALGO/DENOISER[/SPP[/DEPTH]] (e.g.
     /// `bdpt/none`), the left half the options above, both from the same camera.
     #[arg(long, value_name = "ALGO/DENOISER[/SPP[/DEPTH]]")]
@@ -102,6 +107,7 @@ pub fn run(args: &ViewArgs) -> anyhow::Result<()> {
         max_depth: args.max_depth,
         bdpt_connections: args.bdpt_connections,
         bdpt_mis: args.bdpt_mis,
+        bdpt_connection_roulette: args.bdpt_connection_roulette,
         ..RenderSettings::default()
     };
     let options = AppOptions {

@@ -51,6 +51,7 @@ pub fn renderer_settings(base: &Settings, panel: &RenderSettings) -> Settings {
         max_depth: panel.max_depth.max(1),
         bdpt_connections: panel.bdpt_connections,
         bdpt_mis: panel.bdpt_mis,
+        bdpt_connection_roulette: panel.bdpt_connection_roulette,
         accumulate: panel.accumulate,
         denoiser: panel.denoiser,
         edge_emission: panel.edge_emission,
@@ -145,6 +146,7 @@ mod tests {
             max_depth: 5,
             bdpt_connections: std::num::NonZeroU32::new(3).unwrap(),
             bdpt_mis: MisHeuristic::Balance,
+            bdpt_connection_roulette: 0.5,
             denoiser: Denoiser::Neural,
             edge_emission: EdgeEmission::Off,
             accumulate: false,
@@ -160,6 +162,7 @@ mod tests {
         assert_eq!(settings.max_depth, 5);
         assert_eq!(settings.bdpt_connections.get(), 3);
         assert_eq!(settings.bdpt_mis, MisHeuristic::Balance);
+        assert_eq!(settings.bdpt_connection_roulette, 0.5);
         assert_eq!(settings.denoiser, Denoiser::Neural);
         assert_eq!(settings.edge_emission, EdgeEmission::Off);
         assert!(!settings.accumulate);

@@ -139,6 +139,17 @@ fn renderer(ui: &mut egui::Ui, r: &mut RenderSettings) {
                     ui.selectable_value(&mut r.bdpt_mis, h, h.label());
                 }
             });
+        ui.add(
+            egui::DragValue::new(&mut r.bdpt_connection_roulette)
+                .range(0.0..=100.0)
+                .speed(0.01)
+                .prefix("connection roulette: "),
+        )
+        .on_hover_text(
+            "A connection that would add less than this share of what its camera subpath has \
+             gathered is traced with probability in proportion (unbiased: fewer shadow rays, a \
+             little more noise); 0 traces every connection",
+        );
     }
     egui::ComboBox::from_label("denoiser")
         .selected_text(r.denoiser.label())
