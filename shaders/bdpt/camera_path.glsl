@@ -141,7 +141,7 @@ vec3 connect_to_cache(CameraVertex c, uint segments, uint max_depth, float thres
             continue;
         }
         float pick = u_vertex * float(n);
-        uint slot = path * pc.path_vertices + min(uint(pick), n - 1u);
+        uint slot = min(uint(pick), n - 1u) * pc.light_paths + path;
         LightVertex v = b_lvc.v[slot];
         if (v.segments + segments + 1u <= max_depth) {
             sum += connect_vertices(c, v, slot, threshold, fract(pick)) * float(n);

@@ -147,7 +147,6 @@ void main() {
     }
     uint rr_depth = b_frame.f.rr_depth;
     uint rng = rng_init(uvec2(index, LIGHT_STREAM), b_frame.f.frame_index, b_frame.f.seed);
-    uint first_slot = index * pc.path_vertices;
     uint stored = 0u;
     EmitSample e;
     vec3 u_emit;
@@ -193,7 +192,7 @@ void main() {
         bool last = segments + 2u > max_depth;
         if (connectible) {
             if (!last) {
-                store_vertex(first_slot + stored, s, m.color, wl, beta, dvcm, dvc, segments);
+                store_vertex(stored * pc.light_paths + index, s, m.color, wl, beta, dvcm, dvc, segments);
                 stored += 1u;
             }
             dropped += connect_to_camera(s, m, t, b, wl, beta, dvcm, dvc);

@@ -3,7 +3,7 @@
 //!
 //! - **light** (`shaders/bdpt/light.comp`): light subpaths from emitters picked by power (their
 //!   starts stratified, so that neighbouring invocations trace alike), each stored vertex by
-//!   vertex in its own slots of a light vertex cache and connected to the camera (light tracing,
+//!   vertex in a light vertex cache ([`LightCache`]) and connected to the camera (light tracing,
 //!   its shadow rays leaving from the camera), whose contributions are splatted with 64-bit
 //!   fixed-point atomics;
 //! - **camera** (`shaders/bdpt/camera.comp`): camera subpaths with emission hits, next-event
@@ -23,7 +23,7 @@
 
 mod params;
 
-pub use params::{Params, LIGHT_VERTEX_BYTES};
+pub use params::{LightCache, Params, LIGHT_VERTEX_BYTES};
 
 use crate::light_transport::{parking, sample_batches, Frame, Images, Outputs};
 use crate::plumbing::scene_buffers::SceneHandles;
@@ -134,12 +134,13 @@ pub fn add_bdpt(
     config: &Config,
 ) -> Outputs {
     let (width, height, surface) = (frame.width, frame.height, frame.surface);
-    let params = Params::new(
+    let light_cache = LightCache::new(
         config,
         width * height,
         frame.samples_per_pixel,
         frame.max_depth,
     );
+    let params = Params::new(&light_cache, width * height, frame.samples_per_pixel);
     let spec = spec
         .clone()
         .set("MIS_POWER", config.heuristic == MisHeuristic::Power)
@@ -155,11 +156,11 @@ pub fn add_bdpt(
     let mut pass = g.compute_pass("bdpt.light", &LIGHT);
     scene.read(&mut pass);
     pass.read("b_frame", frame_constants);
-    let cache = pass.create_buffer("b_lvc", "bdpt.cache", params.cache_bytes());
+    let cache = pass.create_buffer("b_lvc", "bdpt.cache", light_cache.cache_bytes());
     let lengths = pass.create_buffer(
         "b_lvc_lengths",
         "bdpt.cache_lengths",
-        params.lengths_bytes(),
+        light_cache.lengths_bytes(),
     );
     // `LVC_COLORS` in `shaders/bdpt/bdpt.glsl`: the cached vertices' base colours.
     let colored = ["HAS_TEXTURES", "HAS_VERTEX_COLORS"]
@@ -168,7 +169,7 @@ pub fn add_bdpt(
     let colors = pass.create_buffer(
         "b_lvc_colors",
         "bdpt.cache_colors",
-        params.color_bytes(colored),
+        light_cache.color_bytes(colored),
     );
     let splat = pass.read_write("b_splat", splat);
     let stats = pass.read_write("b_stats", stats);
