@@ -24,7 +24,8 @@ layout(constant_id = 124) const uint CONNECTIONS = 1u;
 // camera subpath's throughput included) is under CONNECTION_ROULETTE times the largest channel of
 // what the camera subpath has gathered so far is traced with probability contribution / threshold,
 // and what it brings is divided by that probability: unbiased, and most of the shadow rays of
-// connections that would change their sample little are not traced (bench/README.md).
+// connections that would change their sample little are not traced (bench/README.md). Light
+// tracing's camera connections have a roulette of their own on the same setting (light.comp).
 layout(constant_id = 125) const float CONNECTION_ROULETTE = 0.1;
 
 layout(push_constant) uniform Params {

@@ -153,8 +153,9 @@ fn cornell_box_with_the_balance_heuristic_matches_path_tracing() {
 }
 
 /// With connection roulette twenty times the default's threshold (a connection that would add less
-/// than twice what its camera subpath has gathered is traced with probability in proportion) BDPT
-/// still converges to the path tracer's image: the roulette weighs up what it keeps. With the
+/// than twice what its camera subpath has gathered is traced with probability in proportion, and
+/// every light-tracing connection with probability its MIS weight) BDPT still converges to the
+/// path tracer's image: the roulette weighs up what it keeps. With the
 /// roulette off, the image of the same seed differs from the default's (the setting reaches the
 /// shaders).
 #[test]

@@ -233,8 +233,9 @@ pub struct Settings {
     pub bdpt_mis: MisHeuristic,
     /// BDPT's connection roulette: before Russian roulette's start, a connection that would add
     /// less than this share of what its camera subpath has gathered is traced with probability
-    /// in proportion and weighted up (unbiased; fewer shadow rays, a little more noise); 0 traces
-    /// every connection. Negative or non-finite values count as 0.
+    /// in proportion and weighted up (unbiased; fewer shadow rays, a little more noise), and so is
+    /// a light-tracing connection to the camera whose MIS weight is under this share (at most 1);
+    /// 0 traces every connection. Negative or non-finite values count as 0.
     pub bdpt_connection_roulette: f32,
     /// Seed of the per-pixel random numbers.
     pub seed: u32,

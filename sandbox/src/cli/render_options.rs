@@ -49,8 +49,9 @@ pub struct RenderOptions {
     #[arg(long, value_enum, default_value_t = MisHeuristic::Power)]
     pub bdpt_mis: MisHeuristic,
     /// BDPT's connection roulette: a connection that would add less than this share of what its
-    /// camera subpath has gathered is traced with probability in proportion (unbiased: fewer
-    /// shadow rays, a little more noise); 0 traces every connection.
+    /// camera subpath has gathered, or a light-tracing one whose MIS weight is under it (at most
+    /// 1), is traced with probability in proportion (unbiased: fewer shadow rays, a little more
+    /// noise); 0 traces every connection.
     #[arg(long, default_value_t = DEFAULT_CONNECTION_ROULETTE, value_name = "SHARE",
           value_parser = connection_roulette())]
     pub bdpt_connection_roulette: f32,

@@ -64,8 +64,8 @@ pub struct ViewArgs {
     /// How BDPT's multiple importance sampling weighs its strategies (also a panel choice).
     #[arg(long, value_enum, default_value_t = MisHeuristic::Power)]
     bdpt_mis: MisHeuristic,
-    /// BDPT's connection roulette, a share of what a camera subpath has gathered; 0 off (also a
-    /// panel setting).
+    /// BDPT's connection roulette, a share of what a camera subpath has gathered (and light
+    /// tracing's MIS weight, up to 1); 0 off (also a panel setting).
     #[arg(long, default_value_t = DEFAULT_CONNECTION_ROULETTE, value_name = "SHARE",
           value_parser = connection_roulette())]
     bdpt_connection_roulette: f32,

@@ -73,7 +73,8 @@ impl MisHeuristic {
 
 /// Connection roulette's default threshold: on `classroom`, 40% fewer connections traced (counted on
 /// lavapipe) and BDPT's camera pass 4.1% faster at 1080p on an H200, for 0.3% more error at equal
-/// samples (bench/README.md).
+/// samples; light tracing's roulette at this weight took 5.5% off its light pass, for no error
+/// measurable at equal samples (bench/README.md).
 pub const DEFAULT_CONNECTION_ROULETTE: f32 = 0.1;
 
 /// BDPT tuning.
@@ -85,7 +86,8 @@ pub struct Config {
     pub connections: NonZeroU32,
     /// The MIS heuristic (`Settings::bdpt_mis`).
     pub heuristic: MisHeuristic,
-    /// Connection roulette's threshold as a share of what the camera subpath has gathered
+    /// Connection roulette's threshold as a share of what the camera subpath has gathered, and
+    /// (up to 1) as the MIS weight under which light tracing's camera connections are rouletted
     /// (`Settings::bdpt_connection_roulette`; 0: off).
     pub connection_roulette: f32,
     /// Most bytes the light vertex cache may take; 128 MiB is the storage-buffer range every
@@ -174,6 +176,10 @@ pub fn add_bdpt(
     let splat = pass.read_write("b_splat", splat);
     let stats = pass.read_write("b_stats", stats);
     pass.specialization(&spec)
+        .specialize(
+            "LIGHT_TRACING_ROULETTE",
+            config.roulette_threshold().min(1.0),
+        )
         .push(&params)
         .require(require_int64_atomics);
     pass.dispatch(params.light_threads());
