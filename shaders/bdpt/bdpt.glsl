@@ -28,6 +28,14 @@ layout(constant_id = 124) const uint CONNECTIONS = 1u;
 // tracing's camera connections have a roulette of their own on the same setting (light.comp).
 layout(constant_id = 125) const float CONNECTION_ROULETTE = 0.1;
 
+// Next-event estimation's shadow ray waits for the first connection's, and the two are walked
+// together (trace_occluded_pair: a lane whose first walk ends goes on with its second, so that a
+// subgroup waits for its slowest pair rather than its slowest NEE ray and then its slowest
+// connection). On an H200 BDPT's camera pass on `classroom` took 9.8% less time, though holding
+// the waiting ray took it from 72 to 96 registers; where that cost more than the pairing saved the
+// renderer turns it off (bdpt::pairs_shadow_rays, bench/README.md), and NEE's ray is walked at once.
+layout(constant_id = 127) const bool PAIRED_SHADOW_RAYS = true;
+
 layout(push_constant) uniform Params {
     uint light_paths;  // light subpaths traced this frame
     uint stride;       // light-pass invocations per dispatch row
@@ -87,6 +95,12 @@ bool counted_closest(vec3 origin, vec3 dir, out Hit hit) {
 bool counted_occluded(vec3 origin, vec3 dir, float t_max) {
     rays_traced += 1u;
     return trace_occluded(origin, dir, t_max);
+}
+
+// Both shadow rays' occlusion (t_max <= 0: none), walked together.
+bvec2 counted_occluded_pair(vec3 o0, vec3 d0, float t0, vec3 o1, vec3 d1, float t1) {
+    rays_traced += (t0 > 0.0 ? 1u : 0u) + (t1 > 0.0 ? 1u : 0u);
+    return trace_occluded_pair(o0, d0, t0, o1, d1, t1);
 }
 
 float mis(float x) {

@@ -1,6 +1,7 @@
 // BDPT's camera subpaths (camera.comp; camera_long.comp goes on with the ones it parked): emission
 // hits (s = 0), NEE (s = 1) and connections to the light vertex cache (s > 1) at every vertex,
-// each with its recursive MIS weight (bdpt.glsl). Where the including shader defines CAMERA_PARK
+// each with its recursive MIS weight (bdpt.glsl), NEE's shadow ray walked with the first
+// connection's where PAIRED_SHADOW_RAYS (bdpt.glsl). Where the including shader defines CAMERA_PARK
 // (bdpt/long_paths.glsl), a subpath still alive after PARK_DEPTH segments is handed to it and ends
 // here. Requires bdpt.glsl, light_emit.glsl, camera.glsl and surface.glsl.
 #ifndef LUCID_CAMERA_PATH_GLSL
@@ -23,19 +24,30 @@ struct CameraVertex {
     float dvc;
 };
 
-// Next-event estimation (s = 1) from camera vertex c.
-vec3 connect_to_light(CameraVertex c, inout uint rng) {
+// A shadow ray still to be traced and what its strategy brings where it is not occluded (t_max 0:
+// no ray, nothing brought).
+struct ShadowRay {
+    vec3 origin;
+    float t_max;
+    vec3 dir;
+    vec3 value;
+};
+
+const ShadowRay NO_SHADOW_RAY = ShadowRay(vec3(0.0), 0.0, vec3(0.0, 0.0, 1.0), vec3(0.0));
+
+// Next-event estimation (s = 1) from camera vertex c: its shadow ray.
+ShadowRay connect_to_light(CameraVertex c, inout uint rng) {
     vec4 u = vec4(rng_next(rng), rng_next2(rng), rng_side(rng));
     LightSample ls;
     if (!sample_light(c.s.p, u, ls) || ls.pdf <= 0.0) {
-        return vec3(0.0);
+        return NO_SHADOW_RAY;
     }
     vec3 wi = to_local(ls.wi, c.t, c.b, c.s.ns);
     float bsdf_pdf;
     float rev_pdf;
     vec3 f = bsdf_eval_both(c.m, c.wo, wi, bsdf_pdf, rev_pdf);
     if (max3(f) <= 0.0) {
-        return vec3(0.0);
+        return NO_SHADOW_RAY;
     }
     float w;
     float emit_pdf;
@@ -52,24 +64,23 @@ vec3 connect_to_light(CameraVertex c, inout uint rng) {
     } else {
         w = mis_pair(ls.pdf, bsdf_pdf);
     }
-    vec3 origin;
-    vec3 dir;
-    float t_max;
-    light_shadow_ray(c.s.p, c.s.ng, ls, origin, dir, t_max);
-    if (w <= 0.0 || counted_occluded(origin, dir, t_max)) {
-        return vec3(0.0);
+    if (w <= 0.0) {
+        return NO_SHADOW_RAY;
     }
-    return f * ls.radiance * (w * ls.weight);
+    ShadowRay r;
+    light_shadow_ray(c.s.p, c.s.ng, ls, r.origin, r.dir, r.t_max);
+    r.value = f * ls.radiance * (w * ls.weight);
+    return r;
 }
 
 // Connection (s > 1, t > 1) of camera vertex c to the cached light vertex v, under connection
 // roulette below `threshold` (bdpt.glsl's CONNECTION_ROULETTE; 0: none) with the uniform number
-// u_roulette.
-vec3 connect_vertices(CameraVertex c, LightVertex v, uint slot, float threshold, float u_roulette) {
+// u_roulette: its shadow ray.
+ShadowRay connect_vertices(CameraVertex c, LightVertex v, uint slot, float threshold, float u_roulette) {
     vec3 to_light = v.p - c.s.p;
     float dist2 = dot(to_light, to_light);
     if (dist2 < 1e-12) {
-        return vec3(0.0);
+        return NO_SHADOW_RAY;
     }
     float dist = sqrt(dist2);
     vec3 dir = to_light / dist;
@@ -78,7 +89,7 @@ vec3 connect_vertices(CameraVertex c, LightVertex v, uint slot, float threshold,
     float camera_rev_pdf;
     vec3 fc = bsdf_eval_both(c.m, c.wo, wi, camera_pdf, camera_rev_pdf);
     if (max3(fc) <= 0.0) {
-        return vec3(0.0);
+        return NO_SHADOW_RAY;
     }
     vec3 ns = decode_normal(v.ns);
     vec3 ng = decode_normal(v.ng);
@@ -95,7 +106,7 @@ vec3 connect_vertices(CameraVertex c, LightVertex v, uint slot, float threshold,
     vec3 fl = bsdf_eval_both(ml, to_camera, wl, light_rev_pdf, light_pdf);
     float cos_light_in = abs(dot(ng, v.wi));
     if (max3(fl) <= 0.0 || cos_light_in < 1e-6) {
-        return vec3(0.0);
+        return NO_SHADOW_RAY;
     }
     float cos_light = abs(dot(ng, dir));
     float cos_camera = abs(dot(c.s.ng, dir));
@@ -106,20 +117,31 @@ vec3 connect_vertices(CameraVertex c, LightVertex v, uint slot, float threshold,
     // What it adds to the sample: traced with probability share / threshold below the threshold.
     float share = max3(c.beta * value);
     if (share <= 0.0 || u_roulette * threshold >= share) {
-        return vec3(0.0);
+        return NO_SHADOW_RAY;
     }
     if (share < threshold) {
         value *= threshold / share;
     }
     // Traced from the light vertex's end: an occluder near the light, where light subpaths start,
     // ends the walk at once.
-    vec3 origin = offset_origin(c.s.p, c.s.ng, dir);
-    float reach = dist * (1.0 - 1e-3);
-    reverse_segment(origin, dir, reach);
-    if (counted_occluded(origin, dir, reach)) {
-        return vec3(0.0);
-    }
-    return value;
+    ShadowRay r;
+    r.origin = offset_origin(c.s.p, c.s.ng, dir);
+    r.dir = dir;
+    r.t_max = dist * (1.0 - 1e-3);
+    reverse_segment(r.origin, r.dir, r.t_max);
+    r.value = value;
+    return r;
+}
+
+// What the shadow rays a and b bring where they are not occluded: walked together
+// (trace_occluded_pair) with PAIRED_SHADOW_RAYS, else b alone (a is then no ray: NEE's shadow ray
+// was walked at once).
+void trace_shadow_pair(ShadowRay a, ShadowRay b, out vec3 from_a, out vec3 from_b) {
+    bvec2 occluded = PAIRED_SHADOW_RAYS
+        ? counted_occluded_pair(a.origin, a.dir, a.t_max, b.origin, b.dir, b.t_max)
+        : bvec2(false, b.t_max > 0.0 && counted_occluded(b.origin, b.dir, b.t_max));
+    from_a = occluded.x ? vec3(0.0) : a.value;
+    from_b = occluded.y ? vec3(0.0) : b.value;
 }
 
 // Connections from camera vertex c (at `segments` from the camera) to cached light vertices: each
@@ -127,25 +149,33 @@ vec3 connect_vertices(CameraVertex c, LightVertex v, uint slot, float threshold,
 // uniformly, and is weighted n / draws (its probability is 1 / (subpaths * n), and the cache's
 // connections estimate the sum over all light vertices divided by the subpaths). Connection
 // roulette below `threshold` takes its uniform number from the vertex pick's fraction, which is
-// independent of the vertex picked, so that it draws no number of its own.
-vec3 connect_to_cache(CameraVertex c, uint segments, uint max_depth, float threshold, inout uint rng) {
-    if (pc.light_paths == 0u) {
-        return vec3(0.0);
-    }
+// independent of the vertex picked, so that it draws no number of its own. NEE's shadow ray `nee`
+// is walked with the first connection's, and what it brings goes to from_nee.
+vec3 connect_to_cache(CameraVertex c, ShadowRay nee, uint segments, uint max_depth, float threshold, inout uint rng,
+                      out vec3 from_nee) {
+    from_nee = vec3(0.0);
     vec3 sum = vec3(0.0);
     for (uint k = 0u; k < CONNECTIONS; ++k) {
-        uint path = min(uint(rng_next(rng) * float(pc.light_paths)), pc.light_paths - 1u);
-        float u_vertex = rng_next(rng);
-        uint n = b_lvc_lengths.n[path];
-        if (n == 0u) {
-            continue;
+        ShadowRay r = NO_SHADOW_RAY;
+        if (pc.light_paths > 0u) {
+            uint path = min(uint(rng_next(rng) * float(pc.light_paths)), pc.light_paths - 1u);
+            float u_vertex = rng_next(rng);
+            uint n = b_lvc_lengths.n[path];
+            if (n > 0u) {
+                float pick = u_vertex * float(n);
+                uint slot = min(uint(pick), n - 1u) * pc.light_paths + path;
+                LightVertex v = b_lvc.v[slot];
+                if (v.segments + segments + 1u <= max_depth) {
+                    r = connect_vertices(c, v, slot, threshold, fract(pick));
+                    r.value *= float(n);
+                }
+            }
         }
-        float pick = u_vertex * float(n);
-        uint slot = min(uint(pick), n - 1u) * pc.light_paths + path;
-        LightVertex v = b_lvc.v[slot];
-        if (v.segments + segments + 1u <= max_depth) {
-            sum += connect_vertices(c, v, slot, threshold, fract(pick)) * float(n);
-        }
+        vec3 from_first;
+        vec3 from_cache;
+        trace_shadow_pair(k == 0u ? nee : NO_SHADOW_RAY, r, from_first, from_cache);
+        from_nee += from_first;
+        sum += from_cache;
     }
     return sum / float(CONNECTIONS);
 }
@@ -214,14 +244,25 @@ vec3 trace_camera_from(uint first_depth, vec3 o, vec3 d, vec3 beta, float dvcm, 
         make_frame(c.s.ns, c.t, c.b);
         c.wo = to_local(-d, c.t, c.b, c.s.ns);
         if (!bsdf_is_delta(c.m)) {
-            radiance += c.beta * connect_to_light(c, rng);
+            ShadowRay nee = connect_to_light(c, rng);
+            if (!PAIRED_SHADOW_RAYS) {
+                if (nee.t_max > 0.0 && !counted_occluded(nee.origin, nee.dir, nee.t_max)) {
+                    radiance += c.beta * nee.value;
+                }
+                nee = NO_SHADOW_RAY;
+            }
             // Connection roulette before Russian roulette's start only: a parked subpath's record
             // holds nothing of what it gathered, so its continuation could not set the threshold.
             // Where subpaths are parked (at rr_depth: Renderer::park_depth), that is the whole
-            // first kernel and none of the continuation, which the compiler then knows.
+            // first kernel and none of the continuation, which the compiler then knows. NEE's
+            // share counts as if unoccluded where its shadow ray waits to be walked with the
+            // connection's.
             bool roulette = first_depth == 0u && (PARK_DEPTH != 0u || depth < rr_depth);
-            float threshold = roulette ? CONNECTION_ROULETTE * max3(radiance) : 0.0;
-            radiance += c.beta * connect_to_cache(c, depth + 1u, max_depth, threshold, rng);
+            float threshold = roulette ? CONNECTION_ROULETTE * max3(radiance + c.beta * nee.value) : 0.0;
+            vec3 from_nee;
+            vec3 from_cache = connect_to_cache(c, nee, depth + 1u, max_depth, threshold, rng, from_nee);
+            radiance += c.beta * from_nee;
+            radiance += c.beta * from_cache;
         }
         vec3 u_bsdf = vec3(rng_next2(rng), rng_next(rng));
         BsdfSample bs;

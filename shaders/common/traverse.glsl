@@ -226,4 +226,41 @@ bool trace_occluded(vec3 origin, vec3 dir, float t_max) {
     return trace_ray(origin, dir, t_max, true, hit);
 }
 
+
+// Whether each of two shadow rays (t_max <= 0: none) is occluded within (0, t_max). With one
+// triangle instance (SINGLE_INSTANCE) both walk its BLAS in one loop (occluded_pair_blas_binary
+// or occluded_pair_blas_wide), after the loose spheres; otherwise they are traced one after the
+// other.
+bvec2 trace_occluded_pair(vec3 o0, vec3 d0, float t0, vec3 o1, vec3 d1, float t1) {
+    if (!SINGLE_INSTANCE) {
+        return bvec2(t0 > 0.0 && trace_occluded(o0, d0, t0), t1 > 0.0 && trace_occluded(o1, d1, t1));
+    }
+    if (b_scene.p.counts1.z == BVH_EMPTY) {
+        return bvec2(false);
+    }
+    uint slot = 0u;
+    bvec2 by_spheres = bvec2(false);
+    if (HAS_SPHERES) {
+        uint spheres = b_instances.i[0].kind == INSTANCE_SPHERES ? 0u : 1u;
+        slot = 1u - spheres;
+        Hit hit;
+        hit.t = t0;
+        by_spheres.x = t0 > 0.0 && intersect_loose_spheres(spheres, o0, d0, true, hit);
+        hit.t = t1;
+        by_spheres.y = t1 > 0.0 && intersect_loose_spheres(spheres, o1, d1, true, hit);
+    }
+    Instance inst = b_instances.i[slot];
+    if (inst.kind != INSTANCE_FLATTENED) {
+        o0 = transform_point(inst.world_to_object, o0);
+        d0 = transform_vector(inst.world_to_object, d0);
+        o1 = transform_point(inst.world_to_object, o1);
+        d1 = transform_vector(inst.world_to_object, d1);
+    }
+    float s0 = by_spheres.x ? 0.0 : t0;
+    float s1 = by_spheres.y ? 0.0 : t1;
+    bvec2 by_triangles = WIDE_BVH ? occluded_pair_blas_wide(slot, inst, o0, d0, s0, o1, d1, s1)
+                                  : occluded_pair_blas_binary(slot, inst, o0, d0, s0, o1, d1, s1);
+    return bvec2(by_spheres.x || by_triangles.x, by_spheres.y || by_triangles.y);
+}
+
 #endif

@@ -104,6 +104,68 @@ bool traverse_blas_binary(uint inst_index, Instance inst, vec3 o, vec3 d, bool a
     return found;
 }
 
+// Occlusion walks of two rays (object space, t_max <= 0: none) through one instance's binary BLAS,
+// one after the other in a single loop: a lane whose first walk ends goes on with its second at
+// once rather than waiting for the subgroup's slowest first walk. Returns whether each ray is
+// occluded.
+bvec2 occluded_pair_blas_binary(uint inst_index, Instance inst, vec3 o0, vec3 d0, float t0, vec3 o1, vec3 d1,
+                                float t1) {
+    bvec2 occluded = bvec2(false);
+    bool second = !(t0 > 0.0);
+    if (inst.blas_root == BVH_EMPTY || (second && !(t1 > 0.0))) {
+        return occluded;
+    }
+    vec3 o = second ? o1 : o0;
+    vec3 d = second ? d1 : d0;
+    Hit hit;
+    hit.t = second ? t1 : t0;
+    vec3 inv_dir = safe_inverse(d);
+    vec3 scaled_origin = o * inv_dir;
+    uint stack[BLAS_STACK];
+    uint sp = 0u;
+    uint word = inst.blas_root;
+    while (true) {
+        bool ended = false;
+        if ((word & BVH_LEAF) != 0u) {
+            uint first = leaf_first(word);
+            uint count = leaf_count(word);
+            for (uint k = 0u; k < count; ++k) {
+                if (intersect_primitive(inst_index, inst, first + k, o, d, hit)) {
+                    ended = true;
+                    occluded = bvec2(!second || occluded.x, second);
+                    break;
+                }
+            }
+        } else {
+            uint far_child;
+            uint near_child = order_children(blas_binary_node(word), scaled_origin, inv_dir, hit.t, far_child);
+            if (near_child != BVH_EMPTY) {
+                if (far_child != BVH_EMPTY && sp < BLAS_STACK) {
+                    stack[sp++] = far_child;
+                }
+                word = near_child;
+                continue;
+            }
+        }
+        if (!ended && sp > 0u) {
+            word = stack[--sp];
+            continue;
+        }
+        if (second || !(t1 > 0.0)) {
+            break;
+        }
+        second = true;
+        o = o1;
+        d = d1;
+        hit.t = t1;
+        inv_dir = safe_inverse(d);
+        scaled_origin = o * inv_dir;
+        sp = 0u;
+        word = inst.blas_root;
+    }
+    return occluded;
+}
+
 // Walks the binary TLAS from its root word and the BLAS of every instance reached.
 bool trace_binary_tlas(uint word, vec3 origin, vec3 dir, bool any_hit, inout Hit hit) {
     vec3 inv_dir = safe_inverse(dir);

@@ -120,6 +120,75 @@ bool traverse_blas_wide(uint inst_index, Instance inst, vec3 o, vec3 d, bool any
     return found;
 }
 
+// Occlusion walks of two rays (object space, t_max <= 0: none) through one instance's wide BLAS,
+// one after the other in a single loop: a lane whose first walk ends goes on with its second at
+// once rather than waiting for the subgroup's slowest first walk, so that a subgroup takes the
+// most steps of one lane's two walks together rather than the sum of each walk's most. Returns
+// whether each ray is occluded.
+bvec2 occluded_pair_blas_wide(uint inst_index, Instance inst, vec3 o0, vec3 d0, float t0, vec3 o1, vec3 d1,
+                              float t1) {
+    bvec2 occluded = bvec2(false);
+    bool second = !(t0 > 0.0);
+    if (inst.blas_root == BVH_EMPTY || (second && !(t1 > 0.0))) {
+        return occluded;
+    }
+    vec3 o = second ? o1 : o0;
+    vec3 d = second ? d1 : d0;
+    Hit hit;
+    hit.t = second ? t1 : t0;
+    vec3 inv_dir = safe_inverse(d);
+    vec3 scaled_origin = o * inv_dir;
+    uint oct_inv = octant_inverse(d);
+    uvec2 stack[WIDE_STACK];
+    uint sp = 0u;
+    uvec2 group = wide_root_group(inst.blas_root, oct_inv);
+    uvec2 prims = uvec2(0u);
+    while (true) {
+        bool ended = false;
+        while (prims.y != 0u) {
+            uint k = findLSB(prims.y);
+            prims.y &= prims.y - 1u;
+            if (intersect_primitive(inst_index, inst, prims.x + k, o, d, hit)) {
+                ended = true;
+                occluded = bvec2(!second || occluded.x, second);
+                break;
+            }
+        }
+        if (!ended && group.y <= 0x00ffffffu) {
+            ended = sp == 0u;
+            if (!ended) {
+                group = stack[--sp];
+            }
+        }
+        if (ended) {
+            if (second || !(t1 > 0.0)) {
+                break;
+            }
+            second = true;
+            o = o1;
+            d = d1;
+            hit.t = t1;
+            inv_dir = safe_inverse(d);
+            scaled_origin = o * inv_dir;
+            oct_inv = octant_inverse(d);
+            sp = 0u;
+            group = wide_root_group(inst.blas_root, oct_inv);
+            prims = uvec2(0u);
+        }
+        uint k = 5u * wide_pop_child(group, oct_inv);
+        if (group.y > 0x00ffffffu && sp < WIDE_STACK) {
+            stack[sp++] = group;
+        }
+        uvec4 n0 = b_blas.n[k];
+        uvec4 n1 = b_blas.n[k + 1u];
+        uint hits = wide_hits(n0, n1, b_blas.n[k + 2u], b_blas.n[k + 3u], b_blas.n[k + 4u],
+                              scaled_origin, inv_dir, oct_inv, hit.t);
+        group = uvec2(n1.x, (hits & 0xff000000u) | (n0.w >> 24u));
+        prims = uvec2(n1.y, hits & 0x00ffffffu);
+    }
+    return occluded;
+}
+
 // Walks the wide TLAS from its root node and the BLAS of every instance reached.
 bool trace_wide_tlas(uint root, vec3 origin, vec3 dir, bool any_hit, inout Hit hit) {
     vec3 inv_dir = safe_inverse(dir);

@@ -651,6 +651,7 @@ impl Renderer {
                     connections: self.settings.bdpt_connections,
                     heuristic: self.settings.bdpt_mis,
                     connection_roulette: self.settings.bdpt_connection_roulette,
+                    pair_shadow_rays: bdpt::pairs_shadow_rays(&self.gpu.features),
                     ..bdpt::Config::default()
                 },
             ),

@@ -30,6 +30,7 @@ use crate::plumbing::scene_buffers::SceneHandles;
 use crate::samples_per_pixel::SamplesPerPixel;
 use crate::shaders::bdpt::{CAMERA, CAMERA_LONG, LIGHT};
 use lucid_engine::graph::{BufferHandle, ComputePass, PassContext, RenderGraph};
+use lucid_engine::scene::SceneFeatures;
 use lucid_engine::shader::{SpecValue, Specialization};
 use lucid_engine::EngineError;
 use std::num::NonZeroU32;
@@ -90,6 +91,10 @@ pub struct Config {
     /// (up to 1) as the MIS weight under which light tracing's camera connections are rouletted
     /// (`Settings::bdpt_connection_roulette`; 0: off).
     pub connection_roulette: f32,
+    /// Whether next-event estimation's shadow ray waits for the first connection's and the two
+    /// are walked together (`PAIRED_SHADOW_RAYS` in `shaders/bdpt/bdpt.glsl`; the renderer asks
+    /// [`pairs_shadow_rays`]). The image is the same either way with connection roulette off.
+    pub pair_shadow_rays: bool,
     /// Most bytes the light vertex cache may take; 128 MiB is the storage-buffer range every
     /// Vulkan device supports.
     pub cache_bytes: u64,
@@ -107,6 +112,7 @@ impl Default for Config {
             connections: NonZeroU32::MIN,
             heuristic: MisHeuristic::Power,
             connection_roulette: DEFAULT_CONNECTION_ROULETTE,
+            pair_shadow_rays: true,
             cache_bytes: 128 << 20,
             park_depth: None,
         }
@@ -123,6 +129,18 @@ impl Config {
             0.0
         }
     }
+}
+
+/// Whether BDPT's camera pass should walk next-event estimation's shadow ray together with the
+/// first connection's ([`Config::pair_shadow_rays`]) in a scene with `features`: where light
+/// subpaths start (emitting surfaces or point lights: without them there are no connections to
+/// pair) and without analytic spheres. Holding the waiting ray costs registers (72 to 96 on
+/// `classroom`), which the pairing won back and more on `classroom` (-9.8% camera pass on an H200),
+/// the Cornell box (-3.6%) and `cornell-teapot` (-2.3%), but not on `blinds-room` (+7.4%: sky and
+/// sun only), `caustics` (+11%) or `covered-light` (+1.3%), the two scenes with spheres, whose
+/// tests come one by one before the pair's walk (bench/README.md).
+pub fn pairs_shadow_rays(features: &SceneFeatures) -> bool {
+    (features.emissive || features.delta_lights) && !features.spheres
 }
 
 /// Adds the light and camera passes, reading the scene and the frame constants; the outputs are
@@ -147,7 +165,8 @@ pub fn add_bdpt(
         .clone()
         .set("MIS_POWER", config.heuristic == MisHeuristic::Power)
         .set("CONNECTIONS", config.connections.get())
-        .set("CONNECTION_ROULETTE", config.roulette_threshold());
+        .set("CONNECTION_ROULETTE", config.roulette_threshold())
+        .set("PAIRED_SHADOW_RAYS", config.pair_shadow_rays);
     let stats = crate::plumbing::stats::add_counter(g, "bdpt.stats");
     let splat = crate::plumbing::stats::add_zeroed(
         g,
