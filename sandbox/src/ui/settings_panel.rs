@@ -147,8 +147,9 @@ fn renderer(ui: &mut egui::Ui, r: &mut RenderSettings) {
         )
         .on_hover_text(
             "A connection that would add less than this share of what its camera subpath has \
-             gathered is traced with probability in proportion (unbiased: fewer shadow rays, a \
-             little more noise); 0 traces every connection",
+             gathered, or a light-tracing one whose MIS weight is under it (at most 1), is traced \
+             with probability in proportion (unbiased: fewer shadow rays, a little more noise); 0 \
+             traces every connection",
         );
     }
     egui::ComboBox::from_label("denoiser")
