@@ -226,7 +226,6 @@ bool trace_occluded(vec3 origin, vec3 dir, float t_max) {
     return trace_ray(origin, dir, t_max, true, hit);
 }
 
-
 // Whether each of two shadow rays (t_max <= 0: none) is occluded within (0, t_max). With one
 // triangle instance (SINGLE_INSTANCE) both walk its BLAS in one loop (occluded_pair_blas_binary
 // or occluded_pair_blas_wide), after the loose spheres; otherwise they are traced one after the

@@ -4,7 +4,8 @@
 //! just above a surface, nearly parallel to it). The GPU traverses the renderer's packing (static
 //! instances flattened into one BLAS, some kept as instances: walked directly, in turn when few,
 //! or through the top level); hits must name the same original instance as the CPU's two-level
-//! BVH over the original scene.
+//! BVH over the original scene. Occlusion is checked both alone and as the pair walk BDPT's
+//! camera pass uses answers it, each ray walked first and second beside another.
 
 use ash::vk;
 use glam::{Affine3A, Quat, Vec3};
@@ -231,7 +232,8 @@ fn check_scene(
             }
             _ => false,
         };
-        if !same || occluded != (got.occluded == 1) {
+        let paired = if occluded { 3 } else { 0 };
+        if !same || occluded != (got.occluded == 1) || got.paired != paired {
             mismatches.push(format!(
                 "ray {i}: cpu {want:?} occluded {occluded}, gpu {got:?}"
             ));

@@ -27,8 +27,10 @@ pub struct QueryHit {
     pub object_id: u32,
     /// 1 when anything lies within `t_max`.
     pub occluded: u32,
-    /// Padding.
-    pub pad: u32,
+    /// The same as the paired walk answers it (`trace_occluded_pair`, which BDPT's camera pass
+    /// uses): bit 0 with the ray walked first beside its neighbour (index ^ 1), bit 1 with it
+    /// walked second after the neighbour; 3 or 0 where the walks agree with `occluded`.
+    pub paired: u32,
 }
 
 /// Object id of a sphere in [`QueryHit::object_id`].
