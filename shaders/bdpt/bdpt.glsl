@@ -31,7 +31,7 @@ layout(constant_id = 125) const float CONNECTION_ROULETTE = 0.1;
 // Next-event estimation's shadow ray waits for the first connection's, and the two are walked
 // together (trace_occluded_pair: a lane whose first walk ends goes on with its second, so that a
 // subgroup waits for its slowest pair rather than its slowest NEE ray and then its slowest
-// connection). On an H200 BDPT's camera pass on `classroom` took 10% less time, though holding
+// connection). On an H200 BDPT's camera pass on `classroom` took 4.1% less time, though holding
 // the waiting ray took it from 72 to 96 registers; where that cost more than the pairing saved the
 // renderer turns it off (bdpt::pairs_shadow_rays, bench/README.md), and NEE's ray is walked at once.
 layout(constant_id = 127) const bool PAIRED_SHADOW_RAYS = true;

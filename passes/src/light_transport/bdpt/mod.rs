@@ -135,9 +135,9 @@ impl Config {
 /// first connection's ([`Config::pair_shadow_rays`]) in a scene with `features`: where light
 /// subpaths start (emitting surfaces or point lights: without them there are no connections to
 /// pair) and without analytic spheres. Holding the waiting ray costs registers (72 to 96 on
-/// `classroom`), which the pairing won back and more on `classroom` (-9.8% camera pass on an H200),
-/// the Cornell box (-3.6%) and `cornell-teapot` (-2.3%), but not on `blinds-room` (+7.4%: sky and
-/// sun only), `caustics` (+11%) or `covered-light` (+1.3%), the two scenes with spheres, whose
+/// `classroom`), which the pairing won back and more on `classroom` (-4.1% camera pass on an H200)
+/// and the Cornell box (-2.6%), evenly on `cornell-teapot`, but not on `blinds-room` (+7.4%: sky
+/// and sun only), `caustics` (+11%) or `covered-light` (+1.3%), the two scenes with spheres, whose
 /// tests come one by one before the pair's walk (bench/README.md).
 pub fn pairs_shadow_rays(features: &SceneFeatures) -> bool {
     (features.emissive || features.delta_lights) && !features.spheres
