@@ -14,6 +14,7 @@
 // cut short. The samples come in batches (common/sample_batch.glsl): the images hold the running
 // sums (each sample adds to them) until the frame's last sample writes the averages, and
 // b_rng_state each pixel's generator between batches.
+#define SCENE_IN_WORKGROUP
 #include "common/math.glsl"
 #include "common/rng.glsl"
 #include "common/scene.glsl"
@@ -75,6 +76,7 @@ vec3 trace_pixel_sample(ivec2 pixel, inout uint rng, out vec3 albedo, out vec3 e
 }
 
 void main() {
+    scene_to_workgroup(gl_WorkGroupSize.x * gl_WorkGroupSize.y);
     ivec2 pixel = ivec2(gl_GlobalInvocationID.xy);
     uvec2 size = uvec2(b_frame.f.width, b_frame.f.height);
     if (any(greaterThanEqual(uvec2(pixel), size))) {

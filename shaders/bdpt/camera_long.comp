@@ -7,6 +7,7 @@
 // bring to their pixels' images (one sample a pixel, so each pixel has at most one). Counts the
 // rays traced in b_stats.
 #define PARKING_CONTINUE
+#define SCENE_IN_WORKGROUP
 #include "common/math.glsl"
 #include "common/rng.glsl"
 #include "common/scene.glsl"
@@ -26,6 +27,7 @@
 layout(local_size_x = 64) in;
 
 void main() {
+    scene_to_workgroup(gl_WorkGroupSize.x * gl_WorkGroupSize.y);
     uint index = gl_GlobalInvocationID.x;
     if (index < b_parked_count.n) {
         uint pixel_index = b_parked_list.q[index];

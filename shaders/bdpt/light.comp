@@ -11,6 +11,7 @@
 // layout does not depend on thread timing), and every such vertex is connected to the pinhole
 // camera (light tracing, t = 1) and splatted into b_splat in fixed point (integer sums do not
 // depend on the order either); the camera pass scales the splats by pixels / light subpaths.
+#define SCENE_IN_WORKGROUP
 #include "common/math.glsl"
 #include "common/rng.glsl"
 #include "common/scene.glsl"
@@ -157,6 +158,7 @@ void store_vertex(uint slot, Surface s, vec3 base_color, vec3 wl, vec3 beta, flo
 }
 
 void main() {
+    scene_to_workgroup(gl_WorkGroupSize.x * gl_WorkGroupSize.y);
     uint index = gl_GlobalInvocationID.y * pc.stride + gl_GlobalInvocationID.x;
     uint max_depth = b_frame.f.max_depth;
     if (index >= pc.light_paths || max_depth < 2u) {

@@ -2,8 +2,9 @@
 // either GPU layout (WIDE_BVH): stack-based, near child first, with early exit for shadow rays; a
 // single triangle instance is walked without the top level (SINGLE_INSTANCE); hits on cut-out
 // materials count only where the surface is there (common/opacity.glsl, HAS_ALPHA_TEST). The
-// binary walks are in traverse_binary.glsl, the wide ones in traverse_wide.glsl. Requires
-// scene.glsl.
+// binary walks are in traverse_binary.glsl, the wide ones in traverse_wide.glsl; a small scene's
+// binary BLAS and triangles are read from workgroup memory in the shaders that copy them there
+// (common/workgroup_scene.glsl). Requires scene.glsl.
 #ifndef LUCID_TRAVERSE_GLSL
 #define LUCID_TRAVERSE_GLSL
 
@@ -20,6 +21,8 @@ layout(constant_id = 108) const bool SINGLE_INSTANCE = false;
 layout(constant_id = 119) const bool FEW_INSTANCES = false;
 // The BVH nodes are compressed 8-wide ones (lucid_engine::scene::gpu::BvhLayout::Wide), not binary.
 layout(constant_id = 116) const bool WIDE_BVH = false;
+
+#include "common/workgroup_scene.glsl"
 
 const float T_INFINITY = 3.0e38;
 // The root of an empty tree, in both layouts.
@@ -54,12 +57,13 @@ vec3 safe_inverse(vec3 d) {
 // (the lanes of a subgroup test different triangles, so each further exit costs a branch and
 // saves little). Returns t (or T_INFINITY) and barycentrics (zero on a miss).
 float intersect_triangle(uint tri, vec3 o, vec3 d, float t_max, out vec2 bary) {
-    uint f = 3u * tri;
-    vec4 a = b_triangles.t[f];
-    vec4 b = b_triangles.t[f + 1u];
+    vec4 a;
+    vec4 b;
+    float c;
+    triangle_edges(tri, a, b, c);
     vec3 p0 = a.xyz;
     vec3 e1 = vec3(a.w, b.xy);
-    vec3 e2 = vec3(b.zw, b_triangles.t[f + 2u].x);
+    vec3 e2 = vec3(b.zw, c);
     vec3 pv = cross(d, e2);
     float det = dot(e1, pv);
     float inv_det = 1.0 / det;

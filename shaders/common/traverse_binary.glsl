@@ -35,8 +35,8 @@ BvhNode unpack_binary_node(uvec4 a, uvec4 b, uvec4 c, uvec4 d) {
 }
 
 BvhNode blas_binary_node(uint index) {
-    uint k = 4u * index;
-    return unpack_binary_node(b_blas.n[k], b_blas.n[k + 1u], b_blas.n[k + 2u], b_blas.n[k + 3u]);
+    return unpack_binary_node(blas_node_word(index, 0u), blas_node_word(index, 1u), blas_node_word(index, 2u),
+                              blas_node_word(index, 3u));
 }
 
 BvhNode tlas_binary_node(uint index) {

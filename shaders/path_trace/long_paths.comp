@@ -7,6 +7,7 @@
 #define PATH_KEEP_FIRST_ALBEDO(v)
 #define PATH_KEEP_FIRST_EMISSION(v)
 #define PARKING_CONTINUE
+#define SCENE_IN_WORKGROUP
 #include "common/math.glsl"
 #include "common/rng.glsl"
 #include "common/scene.glsl"
@@ -25,6 +26,7 @@ layout(local_size_x = 64) in;
 #include "common/path.glsl"
 
 void main() {
+    scene_to_workgroup(gl_WorkGroupSize.x * gl_WorkGroupSize.y);
     uint index = gl_GlobalInvocationID.x;
     uint rays = 0u;
     if (index < b_parked_count.n) {

@@ -13,6 +13,7 @@
 // over the first hit's albedo and emission:
 // PATH_KEEP_FIRST_ALBEDO(v) and PATH_KEEP_FIRST_EMISSION(v) keep them, PATH_FIRST_ALBEDO and
 // PATH_FIRST_EMISSION read them back after the path.
+#define SCENE_IN_WORKGROUP
 #include "common/math.glsl"
 #include "common/rng.glsl"
 #include "common/scene.glsl"
@@ -58,6 +59,7 @@ vec3 trace_pixel_path(ivec2 source, bool replayed, inout uint rng, inout uint ra
 }
 
 void main() {
+    scene_to_workgroup(gl_WorkGroupSize.x * gl_WorkGroupSize.y);
     ivec2 pixel = ivec2(gl_GlobalInvocationID.xy);
     uvec2 size = uvec2(b_frame.f.width, b_frame.f.height);
     if (any(greaterThanEqual(uvec2(pixel), size))) {

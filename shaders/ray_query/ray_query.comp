@@ -3,6 +3,7 @@
 // invocation per ray, the occlusion also as the pair walk answers it (trace_occluded_pair) with the
 // ray walked first beside its neighbour (index ^ 1) and second after it. Used to check the GPU
 // traversal against the CPU one, and for picking.
+#define SCENE_IN_WORKGROUP
 #include "common/math.glsl"
 #include "common/scene.glsl"
 #include "common/traverse.glsl"
@@ -29,6 +30,7 @@ layout(push_constant) uniform Params {
 } params;
 
 void main() {
+    scene_to_workgroup(gl_WorkGroupSize.x);
     uint index = gl_GlobalInvocationID.x;
     if (index >= params.count) {
         return;

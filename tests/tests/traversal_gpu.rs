@@ -17,7 +17,9 @@ use lucid_engine::scene::gpu::{pack_flat, BvhLayout, MAX_LOOSE_SPHERES};
 use lucid_engine::scene::{Bvh, FlatScene, Material, Scene};
 use lucid_engine::shader::{ShaderLibrary, SpecValue, Specialization};
 use lucid_passes::debug::ray_query::{self, QueryHit, QueryRay, SPHERE_BIT};
-use lucid_passes::plumbing::scene_buffers::{traversal_specialization, SceneBuffers};
+use lucid_passes::plumbing::scene_buffers::{
+    traversal_specialization, workgroup_scene_words, SceneBuffers,
+};
 use lucid_tests::{assert_no_validation_messages, context, run};
 use std::sync::Arc;
 
@@ -47,7 +49,7 @@ fn check_builtin(
     dynamic: impl Fn(usize) -> bool,
     rays_per_scene: usize,
     layout: BvhLayout,
-) -> TopLevel {
+) -> Walk {
     let options = BuildOptions { detail: 0.02 };
     let mut scene = builtin::build_with(name, &options).unwrap();
     scene.validate().unwrap();
@@ -92,6 +94,14 @@ fn grazing_ray(
     Some((target + normal * 1e-3 * size - dir * size, dir))
 }
 
+/// How rays walked a packed scene: how they reached its instances, and whether they read its BLAS
+/// and triangles from workgroup memory (`shaders/common/workgroup_scene.glsl`).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+struct Walk {
+    top: TopLevel,
+    in_workgroup: bool,
+}
+
 /// How rays reached the instances of a packed scene (`shaders/common/traverse.glsl`).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 enum TopLevel {
@@ -119,13 +129,9 @@ impl TopLevel {
 
 /// Traces random, axis-parallel and grazing rays through the validated `scene` packed as the
 /// renderer packs it in `layout`, with the scene's specialization (the single-instance and
-/// few-instance walks included); returns the walk that specialization selected.
-fn check_scene(
-    scene: &Scene,
-    dynamic: &[bool],
-    rays_per_scene: usize,
-    layout: BvhLayout,
-) -> TopLevel {
+/// few-instance walks and the scene in workgroup memory included); returns the walk that
+/// specialization selected.
+fn check_scene(scene: &Scene, dynamic: &[bool], rays_per_scene: usize, layout: BvhLayout) -> Walk {
     let name = format!("{} ({layout})", scene.name);
     let name = name.as_str();
     let bvh = Bvh::build(scene);
@@ -258,7 +264,10 @@ fn check_scene(
     );
     drop((executor, buffers));
     assert_no_validation_messages(&ctx);
-    TopLevel::of(&spec)
+    Walk {
+        top: TopLevel::of(&spec),
+        in_workgroup: workgroup_scene_words(&gpu) != (0, 0),
+    }
 }
 
 #[test]
@@ -267,7 +276,7 @@ fn gpu_traversal_matches_cpu_on_every_builtin_scene() {
     for layout in BvhLayout::ALL {
         let walks: Vec<TopLevel> = builtin::names()
             .iter()
-            .map(|name| check_builtin(name, |i| i % 3 == 1, 4000, layout))
+            .map(|name| check_builtin(name, |i| i % 3 == 1, 4000, layout).top)
             .collect();
         for walk in [TopLevel::Few, TopLevel::Walked] {
             assert!(walks.contains(&walk), "no scene was traced with {walk:?}");
@@ -284,16 +293,25 @@ fn single_instance_fast_path_matches_cpu() {
 
 /// The single-instance fast path in `layout`: a static Cornell box, a static scene with a sphere
 /// beside its triangles (tested one by one), one dynamic instance, alone and beside a sphere; with
-/// more spheres than [`MAX_LOOSE_SPHERES`], the spheres' BLAS beside the triangles'.
+/// more spheres than [`MAX_LOOSE_SPHERES`], the spheres' BLAS beside the triangles'. The Cornell
+/// box's instances are walked in workgroup memory in the binary layout.
 fn check_single_instance(layout: BvhLayout) {
+    let small = |top| Walk {
+        top,
+        in_workgroup: layout == BvhLayout::Binary,
+    };
+    let large = |top| Walk {
+        top,
+        in_workgroup: false,
+    };
     assert_eq!(
         check_builtin("cornell-box", |_| false, 4000, layout),
-        TopLevel::Single,
+        small(TopLevel::Single),
         "a static Cornell box is one flattened instance"
     );
     assert_eq!(
         check_builtin("covered-light", |_| false, 4000, layout),
-        TopLevel::Single,
+        large(TopLevel::Single),
         "a static scene with one sphere is one flattened instance and a loose sphere"
     );
     let mut crowded = builtin::build("cornell-box").unwrap();
@@ -311,7 +329,7 @@ fn check_single_instance(layout: BvhLayout) {
             4000,
             layout
         ),
-        TopLevel::Few,
+        large(TopLevel::Few),
         "more spheres than are tested one by one keep their BLAS"
     );
     // One dynamic instance, mirrored and rotated: the fast path keeps its transform.
@@ -326,7 +344,7 @@ fn check_single_instance(layout: BvhLayout) {
     );
     assert_eq!(
         check_scene(&scene, &[true], 4000, layout),
-        TopLevel::Single,
+        small(TopLevel::Single),
         "a lone dynamic instance is a single instance"
     );
     let material = scene.add_material(Material::diffuse("sphere", Vec3::splat(0.5)));
@@ -335,7 +353,7 @@ fn check_single_instance(layout: BvhLayout) {
     scene.validate().unwrap();
     assert_eq!(
         check_scene(&scene, &[true], 4000, layout),
-        TopLevel::Single,
+        small(TopLevel::Single),
         "a lone dynamic instance beside a sphere is a single instance"
     );
 }

@@ -226,6 +226,37 @@ pub fn traversal_specialization(gpu: &GpuScene) -> Specialization {
             !gpu.single_instance() && gpu.instances.len() <= MAX_FEW_INSTANCES,
         )
         .set("WIDE_BVH", gpu.layout() == BvhLayout::Wide)
+        .set("WORKGROUP_BLAS_WORDS", workgroup_scene_words(gpu).0)
+        .set("WORKGROUP_TRIANGLE_WORDS", workgroup_scene_words(gpu).1)
+}
+
+/// The most bytes of BLAS nodes and triangle records that the tracing kernels copy into each
+/// workgroup's memory (`shaders/common/workgroup_scene.glsl`): with the kernels' own arrays it
+/// stays under the 16 KiB every Vulkan device offers, and the path tracer's workgroups on an H200
+/// stay limited by their registers, not by workgroup memory.
+pub const MAX_WORKGROUP_SCENE_BYTES: usize = 8192;
+
+/// The fewest triangles for which the copy pays: below it a walk is a step or two (`caustics`,
+/// 4 triangles and a sphere: BDPT 1.4% slower on an H200 with the copy, `bench/README.md`).
+pub const MIN_WORKGROUP_SCENE_TRIANGLES: usize = 16;
+
+/// The 16-byte words of BLAS nodes and of triangle records that the tracing kernels copy into
+/// workgroup memory and walk there (the `WORKGROUP_BLAS_WORDS` and `WORKGROUP_TRIANGLE_WORDS`
+/// constants): all of both for a single instance in the binary layout (the Cornell box: 10% off
+/// its path tracer on an H200) of at least [`MIN_WORKGROUP_SCENE_TRIANGLES`] triangles within
+/// [`MAX_WORKGROUP_SCENE_BYTES`], else none (0, 0).
+pub fn workgroup_scene_words(gpu: &GpuScene) -> (u32, u32) {
+    let nodes = gpu.blas_nodes.bytes().len();
+    let triangles = std::mem::size_of_val(gpu.triangles.as_slice());
+    let fits = gpu.layout() == BvhLayout::Binary
+        && gpu.single_instance()
+        && gpu.triangles.len() >= MIN_WORKGROUP_SCENE_TRIANGLES
+        && nodes + triangles <= MAX_WORKGROUP_SCENE_BYTES;
+    if fits {
+        ((nodes / 16) as u32, (triangles / 16) as u32)
+    } else {
+        (0, 0)
+    }
 }
 
 #[cfg(test)]
@@ -246,6 +277,40 @@ mod tests {
         for (slot, name) in slots {
             assert_eq!(NAMES[slot], name);
         }
+    }
+
+    #[test]
+    fn only_small_single_instances_in_the_binary_layout_go_to_workgroup_memory() {
+        use lucid_engine::scene::gpu::pack_flat;
+        use lucid_engine::scene::{builtin, Bvh, FlatScene};
+        let words = |name: &str, layout: BvhLayout| {
+            let options = builtin::BuildOptions { detail: 0.01 };
+            let scene = builtin::build_with(name, &options).unwrap();
+            let flat = FlatScene::new(&scene, &vec![false; scene.instances.len()]);
+            let (gpu, _) = pack_flat(&flat, &scene, &Bvh::build(&flat.scene), layout);
+            let spec = traversal_specialization(&gpu);
+            let (blas, triangles) = workgroup_scene_words(&gpu);
+            assert_eq!(spec.get("WORKGROUP_BLAS_WORDS"), Some(blas.into()));
+            assert_eq!(spec.get("WORKGROUP_TRIANGLE_WORDS"), Some(triangles.into()));
+            (gpu, blas, triangles)
+        };
+        let (cornell, blas, triangles) = words("cornell-box", BvhLayout::Binary);
+        assert_eq!(blas as usize * 16, cornell.blas_nodes.bytes().len());
+        assert_eq!(triangles as usize, 3 * cornell.triangles.len());
+        assert!(16 * (blas + triangles) as usize <= MAX_WORKGROUP_SCENE_BYTES);
+        assert_eq!(
+            words("cornell-box", BvhLayout::Wide).1,
+            0,
+            "wide nodes stay in buffers"
+        );
+        assert_eq!(
+            words("caustics", BvhLayout::Binary).1,
+            0,
+            "too few triangles to pay"
+        );
+        let (teapot, _, triangles) = words("cornell-teapot", BvhLayout::Binary);
+        assert!(teapot.single_instance());
+        assert_eq!(triangles, 0, "too large");
     }
 
     #[test]
