@@ -1,7 +1,10 @@
 // A small scene's binary BLAS nodes and triangle records in workgroup memory: a shader that
 // defines SCENE_IN_WORKGROUP calls scene_to_workgroup at the start of main, in uniform control flow,
 // and its walks then read nodes and triangles there rather than from b_blas and b_triangles (on an
-// H200 the Cornell box's path tracer takes 10% less time, bench/README.md). The renderer sets the
+// H200 the Cornell box's path tracer takes 10% less time, bench/README.md). The workgroup memory
+// is declared even where the sizes are 0, and the NVIDIA driver then runs some kernels slower
+// (the path tracer on `classroom` 2.7%), so the path tracer comes in two shaders
+// (path_trace_in_workgroup.comp is the one that defines it). The renderer sets the
 // sizes only for a scene that fits (lucid_passes::plumbing::scene_buffers::workgroup_scene_words);
 // with sizes 0, and in shaders that do not define SCENE_IN_WORKGROUP, the walks read the buffers.
 // Included by traverse.glsl; requires scene.glsl.
@@ -28,6 +31,10 @@ void scene_to_workgroup(uint invocations) {
         }
         barrier();
     }
+}
+#else
+// Nothing to copy: this shader reads the buffers.
+void scene_to_workgroup(uint invocations) {
 }
 #endif
 

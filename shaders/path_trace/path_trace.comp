@@ -1,13 +1,6 @@
 #version 460
 #extension GL_KHR_shader_subgroup_arithmetic : require
 #extension GL_KHR_shader_subgroup_basic : require
-// The path tracer (path_trace.glsl) without the denoiser's images, or with them and one sample a
-// pixel (ONE_SAMPLE), where the first hit's albedo and emission go straight to their images at the
-// first hit and the path's end reads them back: 72 registers on `classroom` where
-// path_trace_surfaces.comp, which keeps them for the running sums of more samples, takes 80, and 6%
-// faster (bench/README.md).
-#define PATH_KEEP_FIRST_ALBEDO(v) if (SURFACE_OUTPUTS && ONE_SAMPLE) { imageStore(u_albedo, ivec2(gl_GlobalInvocationID.xy), vec4((v), 1.0)); }
-#define PATH_KEEP_FIRST_EMISSION(v) if (SURFACE_OUTPUTS && ONE_SAMPLE) { imageStore(u_emission, ivec2(gl_GlobalInvocationID.xy), vec4((v), 1.0)); }
-#define PATH_FIRST_ALBEDO vec3(1.0)
-#define PATH_FIRST_EMISSION vec3(0.0)
-#include "path_trace/path_trace.glsl"
+// The path tracer without the denoiser's images, or with them and one sample a pixel
+// (first_hit_images.glsl), reading the scene's BVH from its buffers.
+#include "path_trace/first_hit_images.glsl"

@@ -8,12 +8,12 @@
 // (emission removed, divided by albedo) and that hit's albedo and emission. Non-finite samples are
 // dropped and counted in b_stats, as are the rays traced (for rays/s figures) and the pixels whose
 // loops the device cut short.
-// The body of path_trace.comp (without the denoiser's images, or with them and one sample a pixel)
-// and path_trace_surfaces.comp (with them and more samples), which define how trace_path hands
-// over the first hit's albedo and emission:
+// The body of path_trace.comp (without the denoiser's images, or with them and one sample a pixel;
+// path_trace_in_workgroup.comp is the same for a scene walked in workgroup memory) and
+// path_trace_surfaces.comp (with them and more samples), which define how trace_path hands over
+// the first hit's albedo and emission:
 // PATH_KEEP_FIRST_ALBEDO(v) and PATH_KEEP_FIRST_EMISSION(v) keep them, PATH_FIRST_ALBEDO and
 // PATH_FIRST_EMISSION read them back after the path.
-#define SCENE_IN_WORKGROUP
 #include "common/math.glsl"
 #include "common/rng.glsl"
 #include "common/scene.glsl"

@@ -6,7 +6,7 @@ use lucid_engine::graph::{Access, BufferHandle, ComputePass, RenderGraph};
 use lucid_engine::memory::Buffer;
 use lucid_engine::scene::gpu::{BvhLayout, GpuScene};
 use lucid_engine::scene::SceneFeatures;
-use lucid_engine::shader::Specialization;
+use lucid_engine::shader::{SpecValue, Specialization};
 use lucid_engine::{Context, Result};
 use std::sync::Arc;
 
@@ -259,6 +259,13 @@ pub fn workgroup_scene_words(gpu: &GpuScene) -> (u32, u32) {
     }
 }
 
+/// Whether `spec` (made by [`traversal_specialization`]) has the tracing kernels walk the scene in
+/// workgroup memory: the path tracer then runs its shader that declares it.
+pub fn scene_in_workgroup(spec: &Specialization) -> bool {
+    spec.get("WORKGROUP_BLAS_WORDS")
+        .is_some_and(|words| words != SpecValue::from(0u32))
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -292,6 +299,7 @@ mod tests {
             let (blas, triangles) = workgroup_scene_words(&gpu);
             assert_eq!(spec.get("WORKGROUP_BLAS_WORDS"), Some(blas.into()));
             assert_eq!(spec.get("WORKGROUP_TRIANGLE_WORDS"), Some(triangles.into()));
+            assert_eq!(scene_in_workgroup(&spec), blas > 0);
             (gpu, blas, triangles)
         };
         let (cornell, blas, triangles) = words("cornell-box", BvhLayout::Binary);

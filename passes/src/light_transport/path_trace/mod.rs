@@ -1,6 +1,7 @@
 //! Path tracing: next-event estimation with multiple importance sampling, Russian roulette,
-//! N samples per pixel (`shaders/path_trace/path_trace.comp`, `path_trace_surfaces.comp` where the
-//! denoiser's images are written with more than one sample a pixel, `shaders/common/path.glsl`);
+//! N samples per pixel (`shaders/path_trace/path_trace.comp`, `path_trace_in_workgroup.comp` for
+//! a scene walked in workgroup memory, `path_trace_surfaces.comp` where the denoiser's images are
+//! written with more than one sample a pixel, `shaders/common/path.glsl`);
 //! replays
 //! last frame's paths where asked ([`Replay`]); one dispatch per batch of samples
 //! ([`sample_batches`]). With one sample a pixel, the paths Russian roulette keeps past its first
@@ -11,9 +12,11 @@ use crate::light_transport::{
     parking, sample_batches, Frame, Images, Outputs, Replay, ReplayParams, SampleBatch,
 };
 use crate::plumbing::placeholder::add_zero_image;
-use crate::plumbing::scene_buffers::SceneHandles;
+use crate::plumbing::scene_buffers::{scene_in_workgroup, SceneHandles};
 use crate::samples_per_pixel::SamplesPerPixel;
-use crate::shaders::path_trace::{LONG_PATHS, PATH_TRACE, PATH_TRACE_SURFACES};
+use crate::shaders::path_trace::{
+    LONG_PATHS, PATH_TRACE, PATH_TRACE_IN_WORKGROUP, PATH_TRACE_SURFACES,
+};
 use lucid_engine::graph::{BufferHandle, ComputePass, RenderGraph};
 use lucid_engine::memory::ImageDesc;
 use lucid_engine::shader::Specialization;
@@ -59,6 +62,8 @@ pub fn add_path_trace(
     let one_sample = sampling.samples_per_pixel == SamplesPerPixel::ONE;
     let shader = if surface && !one_sample {
         &PATH_TRACE_SURFACES
+    } else if scene_in_workgroup(spec) {
+        &PATH_TRACE_IN_WORKGROUP
     } else {
         &PATH_TRACE
     };
