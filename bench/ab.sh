@@ -12,7 +12,7 @@ for s in ${SCENES:-cornell-box classroom cornell-teapot covered-light blinds-roo
 import json
 r = json.load(open('/tmp/r.json'))
 regs = {k.split('/')[-1]: v.get('Register Count') for k, v in (r.get('pipelines') or {}).items()}
-main = {k: v for k, v in regs.items() if k in ('path_trace', 'path_trace_surfaces', 'camera', 'light')}
+main = {k: v for k, v in regs.items() if k in ('path_trace', 'path_trace_surfaces', 'path_trace_in_workgroup', 'camera', 'light')}
 print('$s', '$b', ' '.join('%s=%.3f' % (k, v['median']) for k, v in r['passes_ms'].items() if v['median'] > ${MIN_MS:-0.05}), main)"
   done
 done | if [ -n "${OUT:-}" ]; then tee -a "$OUT/ab.txt"; else cat; fi

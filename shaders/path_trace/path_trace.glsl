@@ -25,7 +25,11 @@
 #include "common/camera.glsl"
 #include "common/transport_outputs.glsl"
 
-layout(local_size_x = 8, local_size_y = 8) in;
+// Workgroups of 8x8 pixels; PATH_TRACE_WORKGROUP_WIDTH 16 makes them 16x8.
+#ifndef PATH_TRACE_WORKGROUP_WIDTH
+#define PATH_TRACE_WORKGROUP_WIDTH 8
+#endif
+layout(local_size_x = PATH_TRACE_WORKGROUP_WIDTH, local_size_y = 8) in;
 
 layout(set = 0, binding = 16, rgba32f) uniform image2D u_radiance;
 layout(set = 0, binding = 17, rgba32f) uniform image2D u_demodulated;
