@@ -4,12 +4,12 @@
 // Lists the pixels whose paths a light transport kernel parked (parking/parking.glsl) in
 // b_parked_list, in pixel order within a workgroup, with one atomic a workgroup on its length, and
 // keeps the continuation kernel's indirect arguments at workgroups of 64 covering it. Each
-// invocation reads the flags of four pixels (a quarter of the workgroups and atomics of one flag
-// each: 0.016-0.017 -> 0.009-0.010 ms at 1080p on an H200, bench/README.md).
+// invocation reads the flags of eight pixels (at 1080p on an H200: 0.016-0.017 ms with one,
+// 0.009-0.010 with four, 0.007-0.008 with eight, 0.009-0.011 with sixteen; bench/README.md).
 layout(local_size_x = 1024) in;
 
 // Pixels whose flags one invocation reads.
-const uint FLAGS_PER_INVOCATION = 4u;
+const uint FLAGS_PER_INVOCATION = 8u;
 
 layout(set = 0, binding = 0, std430) readonly buffer ParkedFlags { uint f[]; } b_parked_flags;
 layout(set = 0, binding = 1, std430) writeonly buffer ParkedList { uint q[]; } b_parked_list;

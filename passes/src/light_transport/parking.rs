@@ -21,7 +21,7 @@ const PARKED_PATH_BYTES: u64 = 64;
 
 /// Pixels whose flags one invocation of the list pass reads (`FLAGS_PER_INVOCATION` in
 /// `shaders/parking/list.comp`).
-const LIST_FLAGS_PER_INVOCATION: u32 = 4;
+const LIST_FLAGS_PER_INVOCATION: u32 = 8;
 
 /// The most bytes of parked paths: the storage-buffer range every Vulkan device supports (128 MiB,
 /// a 1920x1080 frame's records). Larger frames trace every path in one kernel.
