@@ -3,7 +3,7 @@
 // single triangle instance is walked without the top level (SINGLE_INSTANCE); hits on cut-out
 // materials count only where the surface is there (common/opacity.glsl, HAS_ALPHA_TEST). The
 // binary walks are in traverse_binary.glsl, the wide ones in traverse_wide.glsl; a small scene's
-// binary BLAS and triangles are read from workgroup memory in the shaders that copy them there
+// BLAS and triangles are read from workgroup memory in the shaders that copy them there
 // (common/workgroup_scene.glsl). Requires scene.glsl.
 #ifndef LUCID_TRAVERSE_GLSL
 #define LUCID_TRAVERSE_GLSL

@@ -35,8 +35,8 @@ BvhNode unpack_binary_node(uvec4 a, uvec4 b, uvec4 c, uvec4 d) {
 }
 
 BvhNode blas_binary_node(uint index) {
-    return unpack_binary_node(blas_node_word(index, 0u), blas_node_word(index, 1u), blas_node_word(index, 2u),
-                              blas_node_word(index, 3u));
+    uint k = 4u * index;
+    return unpack_binary_node(blas_word(k), blas_word(k + 1u), blas_word(k + 2u), blas_word(k + 3u));
 }
 
 BvhNode tlas_binary_node(uint index) {

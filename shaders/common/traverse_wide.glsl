@@ -110,9 +110,9 @@ bool traverse_blas_wide(uint inst_index, Instance inst, vec3 o, vec3 d, bool any
         if (group.y > 0x00ffffffu && sp < WIDE_STACK) {
             stack[sp++] = group;
         }
-        uvec4 n0 = b_blas.n[k];
-        uvec4 n1 = b_blas.n[k + 1u];
-        uint hits = wide_hits(n0, n1, b_blas.n[k + 2u], b_blas.n[k + 3u], b_blas.n[k + 4u],
+        uvec4 n0 = blas_word(k);
+        uvec4 n1 = blas_word(k + 1u);
+        uint hits = wide_hits(n0, n1, blas_word(k + 2u), blas_word(k + 3u), blas_word(k + 4u),
                               scaled_origin, inv_dir, oct_inv, hit.t);
         group = uvec2(n1.x, (hits & 0xff000000u) | (n0.w >> 24u));
         prims = uvec2(n1.y, hits & 0x00ffffffu);
@@ -179,9 +179,9 @@ bvec2 occluded_pair_blas_wide(uint inst_index, Instance inst, vec3 o0, vec3 d0, 
         if (group.y > 0x00ffffffu && sp < WIDE_STACK) {
             stack[sp++] = group;
         }
-        uvec4 n0 = b_blas.n[k];
-        uvec4 n1 = b_blas.n[k + 1u];
-        uint hits = wide_hits(n0, n1, b_blas.n[k + 2u], b_blas.n[k + 3u], b_blas.n[k + 4u],
+        uvec4 n0 = blas_word(k);
+        uvec4 n1 = blas_word(k + 1u);
+        uint hits = wide_hits(n0, n1, blas_word(k + 2u), blas_word(k + 3u), blas_word(k + 4u),
                               scaled_origin, inv_dir, oct_inv, hit.t);
         group = uvec2(n1.x, (hits & 0xff000000u) | (n0.w >> 24u));
         prims = uvec2(n1.y, hits & 0x00ffffffu);

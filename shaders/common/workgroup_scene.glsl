@@ -1,4 +1,4 @@
-// A small scene's binary BLAS nodes and triangle records in workgroup memory: a shader that
+// A small scene's BLAS nodes (either layout) and triangle records in workgroup memory: a shader that
 // defines SCENE_IN_WORKGROUP calls scene_to_workgroup at the start of main, in uniform control flow,
 // and its walks then read nodes and triangles there rather than from b_blas and b_triangles (on an
 // H200 the Cornell box's path tracer takes 10% less time, bench/README.md). The workgroup memory
@@ -38,14 +38,14 @@ void scene_to_workgroup(uint invocations) {
 }
 #endif
 
-// Word j (0-3) of binary BLAS node n.
-uvec4 blas_node_word(uint n, uint j) {
+// The k-th 16-byte word of the BLAS nodes (either layout).
+uvec4 blas_word(uint k) {
 #ifdef SCENE_IN_WORKGROUP
     if (WORKGROUP_BLAS_WORDS > 0u) {
-        return s_blas[4u * n + j];
+        return s_blas[k];
     }
 #endif
-    return b_blas.n[4u * n + j];
+    return b_blas.n[k];
 }
 
 // Triangle tri's first vertex and edges (lucid_engine::scene::gpu::GpuTriangle): the first two

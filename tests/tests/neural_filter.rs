@@ -61,7 +61,7 @@ fn frames(weights: Option<&NetworkWeights>, filter_on: impl Fn(usize) -> bool) -
     }
     let mut images = Vec::new();
     for frame in 0..FRAMES {
-        r.set_settings(settings(frame));
+        r.set_settings(settings(frame)).expect("settings");
         let image = r.render_and_read().expect("frame");
         images.push(image.pixels.iter().flat_map(|p| p[..3].to_vec()).collect());
     }

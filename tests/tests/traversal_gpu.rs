@@ -294,11 +294,11 @@ fn single_instance_fast_path_matches_cpu() {
 /// The single-instance fast path in `layout`: a static Cornell box, a static scene with a sphere
 /// beside its triangles (tested one by one), one dynamic instance, alone and beside a sphere; with
 /// more spheres than [`MAX_LOOSE_SPHERES`], the spheres' BLAS beside the triangles'. The Cornell
-/// box's instances are walked in workgroup memory in the binary layout.
+/// box's instances are walked in workgroup memory.
 fn check_single_instance(layout: BvhLayout) {
     let small = |top| Walk {
         top,
-        in_workgroup: layout == BvhLayout::Binary,
+        in_workgroup: true,
     };
     let large = |top| Walk {
         top,

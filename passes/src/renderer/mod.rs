@@ -29,7 +29,9 @@ use crate::denoise::{DenoiseInputs, Denoised, FrameDenoiser, FrameInfo};
 use crate::light_transport::{self, Replay, ReplayParams};
 use crate::light_transport::{bdpt, path_trace, wavefront};
 use crate::plumbing::frame_constants::{self, FrameConstants};
-use crate::plumbing::scene_buffers::{specialization, SceneBuffers, SceneHandles};
+use crate::plumbing::scene_buffers::{
+    specialization, workgroup_scene_words, SceneBuffers, SceneHandles,
+};
 use crate::post::tonemap;
 use lucid_engine::capture::ImageData;
 use lucid_engine::graph::{BufferHandle, Executor, FrameId, ImageHandle, ReadbackId, RenderGraph};
@@ -103,6 +105,8 @@ pub struct Renderer {
     /// histories share a key.
     instance: u32,
     denoiser: Option<ActiveDenoiser>,
+    /// The BVH layout asked for with [`Renderer::set_bvh_layout`]; `None`: [`automatic_layout`].
+    requested_layout: Option<BvhLayout>,
 }
 
 /// The denoiser of [`Settings::denoiser`], built when the denoiser changes (the one place that
@@ -141,8 +145,8 @@ impl ActiveDenoiser {
 static INSTANCES: std::sync::atomic::AtomicU32 = std::sync::atomic::AtomicU32::new(0);
 
 impl Renderer {
-    /// Validates `scene`, builds its BVH, uploads it (in the default [`BvhLayout`]) and prepares
-    /// rendering at `width`×`height`.
+    /// Validates `scene`, builds its BVH, uploads it (in the [`automatic_layout`] for `settings`)
+    /// and prepares rendering at `width`×`height`.
     pub fn new(
         ctx: &Context,
         mut scene: Scene,
@@ -166,7 +170,7 @@ impl Renderer {
         let network = neural::Network::new(ctx, &neural::NetworkWeights::builtin())?;
         let instance = INSTANCES.fetch_add(1, std::sync::atomic::Ordering::Relaxed);
         let camera = scene.camera;
-        Ok(Self {
+        let mut renderer = Self {
             ctx: ctx.clone(),
             executor: Executor::new(ctx, library)?,
             prev_camera: gpu::camera(&camera),
@@ -191,7 +195,10 @@ impl Renderer {
             denoiser: ActiveDenoiser::new(&settings, &network, instance),
             network,
             instance,
-        })
+            requested_layout: None,
+        };
+        renderer.apply_layout()?;
+        Ok(renderer)
     }
 
     /// The scene being rendered.
@@ -219,7 +226,8 @@ impl Renderer {
         &self.settings
     }
 
-    /// Changes settings; anything but display settings restarts accumulation.
+    /// Changes settings; anything but display settings restarts accumulation. Without a layout
+    /// asked for, an algorithm whose [`automatic_layout`] differs packs the BVH again.
     ///
     /// ```no_run
     /// # fn demo() -> lucid_engine::Result<()> {
@@ -229,10 +237,10 @@ impl Renderer {
     ///     algorithm: Algorithm::Bidirectional,
     ///     denoiser: Denoiser::Svgf,
     ///     ..*renderer.settings()
-    /// });
+    /// })?;
     /// # Ok(()) }
     /// ```
-    pub fn set_settings(&mut self, settings: Settings) {
+    pub fn set_settings(&mut self, settings: Settings) -> Result<()> {
         if self.settings.restarts_accumulation(&settings) {
             self.accumulated = 0;
             self.scene_changed = true;
@@ -250,6 +258,7 @@ impl Renderer {
             _ => {}
         }
         self.settings = settings;
+        self.apply_layout()
     }
 
     /// The camera.
@@ -394,7 +403,8 @@ impl Renderer {
         &self.gpu
     }
 
-    /// Packs and uploads the BVH in `layout` (frames in flight keep the old buffers); restarts
+    /// Packs and uploads the BVH in `layout`, or with `None` in the [`automatic_layout`] of each
+    /// algorithm from then on (frames in flight keep the old buffers); a new layout restarts
     /// accumulation. The image stays the same up to how rays graze box edges: both layouts find
     /// the same closest hits.
     ///
@@ -402,10 +412,20 @@ impl Renderer {
     /// # fn demo() -> lucid_engine::Result<()> {
     /// # let mut renderer: lucid_passes::renderer::Renderer = unimplemented!();
     /// use lucid_engine::scene::gpu::BvhLayout;
-    /// renderer.set_bvh_layout(BvhLayout::Binary)?;
+    /// renderer.set_bvh_layout(Some(BvhLayout::Binary))?;
     /// # Ok(()) }
     /// ```
-    pub fn set_bvh_layout(&mut self, layout: BvhLayout) -> Result<()> {
+    pub fn set_bvh_layout(&mut self, layout: Option<BvhLayout>) -> Result<()> {
+        self.requested_layout = layout;
+        self.apply_layout()
+    }
+
+    /// Packs the BVH again where the layout asked for, or else the automatic one, is not the
+    /// current one.
+    fn apply_layout(&mut self) -> Result<()> {
+        let layout = self
+            .requested_layout
+            .unwrap_or_else(|| automatic_layout(self.settings.algorithm, &self.gpu));
         if layout != self.gpu.layout() {
             self.upload_gpu_scene(layout)?;
             self.accumulated = 0;
@@ -420,7 +440,8 @@ impl Renderer {
         check_scene_fits(&self.ctx, &flat.scene)?;
         self.flat = flat;
         self.bvh = Bvh::build(&self.flat.scene);
-        self.upload_gpu_scene(self.gpu.layout())
+        self.upload_gpu_scene(self.gpu.layout())?;
+        self.apply_layout()
     }
 
     /// Packs the flattened scene and its BVH in `layout` and uploads it.
@@ -866,6 +887,19 @@ fn check_scene_fits(ctx: &Context, scene: &Scene) -> Result<()> {
         scene.unique_triangle_count()
     );
     ctx.check_fits(&what, GpuScene::least_bytes(scene))
+}
+
+/// The BVH layout a renderer without one asked for packs `gpu`'s scene in for `algorithm`: the
+/// compressed wide one for path tracing a scene that the tracing kernels walk in workgroup memory
+/// ([`workgroup_scene_words`]; the Cornell box's path tracer 6% faster on an H200, its BDPT camera
+/// pass 15% slower, `bench/README.md`), the binary one otherwise. A scene that fits in the binary
+/// layout fits in the wide one (a quarter smaller), so the choice does not flip back and forth.
+pub fn automatic_layout(algorithm: Algorithm, gpu: &GpuScene) -> BvhLayout {
+    if algorithm == Algorithm::PathTracing && workgroup_scene_words(gpu) != (0, 0) {
+        BvhLayout::Wide
+    } else {
+        BvhLayout::Binary
+    }
 }
 
 /// An error when the packed BVH of `scene` is deeper than the GPU traversal can walk.

@@ -234,7 +234,7 @@ pub fn calibrate(
             })
             .collect::<Result<Vec<_>, _>>()
     })();
-    renderer.set_settings(saved);
+    renderer.set_settings(saved)?;
     renderer.cut();
     Ok(Calibration {
         results: measured?,

@@ -349,7 +349,7 @@ pub fn render_reference(
         seed: base.seed ^ REFERENCE_SEED_XOR,
         accumulate: true,
         ..base
-    });
+    })?;
     renderer.cut();
     let frames = spp.get().div_ceil(REFERENCE_SPP_PER_FRAME.get());
     for _ in 1..frames {
@@ -392,7 +392,7 @@ pub fn measure(
         denoiser: settings.denoiser,
         spp: settings.samples_per_pixel,
     };
-    renderer.set_settings(settings);
+    renderer.set_settings(settings)?;
     for _ in 0..limits.warmup {
         renderer.render()?;
     }

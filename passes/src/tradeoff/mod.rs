@@ -10,7 +10,7 @@
 //! let calibration = calibrate(renderer, &CalibrationOptions::default(), &mut || {})?;
 //! let choice = calibration.choose(Goal::Budget { metric: Metric::Dssim, ms: 8.0 })?;
 //! println!("{}: {}", choice.config.name(), choice.reason);
-//! renderer.set_settings(choice.config.apply(*renderer.settings()));
+//! renderer.set_settings(choice.config.apply(*renderer.settings()))?;
 //! # Ok(()) }
 //! ```
 

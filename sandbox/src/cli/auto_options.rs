@@ -130,7 +130,7 @@ impl AutoOptions {
             calibration.seconds,
             choice.reason
         );
-        renderer.set_settings(choice.config.apply(*renderer.settings()));
+        renderer.set_settings(choice.config.apply(*renderer.settings()))?;
         Ok(choice)
     }
 }

@@ -102,9 +102,11 @@ pub struct RenderOptions {
     #[arg(long, value_name = "on|off", default_value = "on", action = clap::ArgAction::Set,
           value_parser = clap::builder::BoolishValueParser::new())]
     pub neural_filter: bool,
-    /// Layout of the BVH nodes on the GPU (both find the same hits; for A/B timing).
-    #[arg(long, value_enum, default_value_t = BvhLayout::default())]
-    pub bvh: BvhLayout,
+    /// Layout of the BVH nodes on the GPU (both find the same hits; for A/B timing). Default: wide
+    /// for path tracing a scene small enough to walk in workgroup memory (the Cornell box), binary
+    /// otherwise.
+    #[arg(long, value_enum)]
+    pub bvh: Option<BvhLayout>,
     #[command(flatten)]
     pub auto: AutoOptions,
 }

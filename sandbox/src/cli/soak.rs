@@ -192,7 +192,7 @@ pub fn run(args: &SoakArgs) -> anyhow::Result<()> {
                 edge_emission,
                 neural,
                 ..*settings
-            });
+            })?;
         }
         let t = frame as f32 / 30.0;
         if let Some(path) = &path {

@@ -80,7 +80,7 @@ impl FrameSource for RendererSource {
         self.renderer.resize(request.extent[0], request.extent[1])?;
         self.renderer.set_camera(*request.camera);
         let next = renderer_settings(self.renderer.settings(), request.settings);
-        self.renderer.set_settings(next);
+        self.renderer.set_settings(next)?;
         let (images, _) = self.renderer.add_frame(graph);
         let [w, h] = request.extent;
         let shown = lucid_passes::debug::debug_view::add_debug_view(

@@ -45,7 +45,7 @@ impl SplitRenderer {
         self.renderer.resize(width, height)?;
         self.renderer.set_camera(*request.camera);
         let next = renderer_settings(self.renderer.settings(), settings);
-        self.renderer.set_settings(next);
+        self.renderer.set_settings(next)?;
         let output = self.output_image(request.extent)?;
 
         let mut graph = RenderGraph::new();
