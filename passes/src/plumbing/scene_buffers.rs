@@ -217,6 +217,7 @@ pub const MAX_FEW_INSTANCES: usize = 4;
 /// there are more but at most [`MAX_FEW_INSTANCES`] (each one's BLAS walked in turn, no top level
 /// either), and `WIDE_BVH` for the layout of the nodes ([`GpuScene::layout`]).
 pub fn traversal_specialization(gpu: &GpuScene) -> Specialization {
+    let (blas_words, triangle_words) = workgroup_scene_words(gpu);
     Specialization::new()
         .set("HAS_SPHERES", gpu.features.spheres)
         .set("HAS_ALPHA_TEST", gpu.features.alpha_test)
@@ -226,8 +227,8 @@ pub fn traversal_specialization(gpu: &GpuScene) -> Specialization {
             !gpu.single_instance() && gpu.instances.len() <= MAX_FEW_INSTANCES,
         )
         .set("WIDE_BVH", gpu.layout() == BvhLayout::Wide)
-        .set("WORKGROUP_BLAS_WORDS", workgroup_scene_words(gpu).0)
-        .set("WORKGROUP_TRIANGLE_WORDS", workgroup_scene_words(gpu).1)
+        .set("WORKGROUP_BLAS_WORDS", blas_words)
+        .set("WORKGROUP_TRIANGLE_WORDS", triangle_words)
 }
 
 /// The most bytes of BLAS nodes and triangle records that the tracing kernels copy into each
@@ -252,8 +253,9 @@ pub fn workgroup_scene_words(gpu: &GpuScene) -> (u32, u32) {
     let fits = gpu.single_instance()
         && gpu.triangles.len() >= MIN_WORKGROUP_SCENE_TRIANGLES
         && nodes + triangles <= MAX_WORKGROUP_SCENE_BYTES;
+    let words = |bytes: usize| (bytes / std::mem::size_of::<[u32; 4]>()) as u32;
     if fits {
-        ((nodes / 16) as u32, (triangles / 16) as u32)
+        (words(nodes), words(triangles))
     } else {
         (0, 0)
     }
